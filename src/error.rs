@@ -1,0 +1,138 @@
+//! The crate's one error type.
+
+use core::fmt;
+
+/// A parameter was rejected where the value was built.
+///
+/// Every constructor of the crate that takes physical parameters validates them and returns this
+/// error, naming the parameter, the value it got and what it requires.
+///
+/// ```
+/// use diffraction::{Error, Grating};
+/// let err = Grating::new(1600.0, 2000.0, 100).unwrap_err();
+/// assert_eq!(err.parameter(), "slit_width_nm");
+/// assert_eq!(
+///     err.to_string(),
+///     "invalid slit_width_nm = 2000: must satisfy 0 < slit_width_nm <= period_nm (1600)"
+/// );
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A numeric parameter is out of its domain.
+    InvalidParameter {
+        /// The parameter's name, as spelled in the constructor's signature.
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// What the parameter must satisfy.
+        requirement: Requirement,
+    },
+}
+
+/// What a rejected parameter must satisfy (used in [`Error::InvalidParameter`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Requirement {
+    /// Finite and strictly positive.
+    Positive,
+    /// Finite (not NaN nor infinite).
+    Finite,
+    /// At least one.
+    AtLeastOne,
+    /// 0 < value ≤ the given bound (named in the message).
+    AtMost {
+        /// The name of the bound.
+        bound_name: &'static str,
+        /// The bound's value.
+        bound: f64,
+    },
+    /// Strictly greater than the given bound.
+    GreaterThan {
+        /// The name of the bound.
+        bound_name: &'static str,
+        /// The bound's value.
+        bound: f64,
+    },
+    /// Inside a closed interval.
+    Within {
+        /// Lower end.
+        min: f64,
+        /// Upper end.
+        max: f64,
+    },
+}
+
+impl Error {
+    pub(crate) fn invalid(name: &'static str, value: f64, requirement: Requirement) -> Self {
+        Error::InvalidParameter {
+            name,
+            value,
+            requirement,
+        }
+    }
+
+    /// The name of the rejected parameter.
+    #[must_use]
+    pub fn parameter(&self) -> &'static str {
+        match self {
+            Error::InvalidParameter { name, .. } => name,
+        }
+    }
+
+    /// The rejected value.
+    #[must_use]
+    pub fn value(&self) -> f64 {
+        match self {
+            Error::InvalidParameter { value, .. } => *value,
+        }
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::InvalidParameter {
+                name,
+                value,
+                requirement,
+            } => {
+                write!(f, "invalid {name} = {value}: must ")?;
+                match requirement {
+                    Requirement::Positive => write!(f, "be finite and > 0"),
+                    Requirement::Finite => write!(f, "be finite"),
+                    Requirement::AtLeastOne => write!(f, "be at least 1"),
+                    Requirement::AtMost { bound_name, bound } => {
+                        write!(f, "satisfy 0 < {name} <= {bound_name} ({bound})")
+                    }
+                    Requirement::GreaterThan { bound_name, bound } => {
+                        write!(f, "satisfy {name} > {bound_name} ({bound})")
+                    }
+                    Requirement::Within { min, max } => {
+                        write!(f, "lie in [{min}, {max}]")
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl core::error::Error for Error {}
+
+/// Checks that `value` is finite and > 0.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(name, value, Requirement::Positive))
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, Error> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::invalid(name, value, Requirement::Finite))
+    }
+}

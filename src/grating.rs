@@ -1,0 +1,590 @@
+//! Grating parameters, the Agu-Hill intensity, the grating equation and the peak search.
+
+use glam::DVec3;
+
+use crate::error::{positive, Error, Requirement};
+use crate::float::Float;
+use crate::kernel::{n_slit_cycles, single_slit_cycles};
+use crate::math;
+
+/// The number of coherently illuminated slits (periods), N.
+///
+/// The paper's normalisation puts every maximum at 1 whatever N is; the width of a maximum is
+/// about 1/N of a period. [`Slits::Infinite`] is the limit N → ∞: the intensity is S(β) exactly on
+/// the grating equation and 0 elsewhere, and every peak has zero width.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Slits {
+    /// A finite number N ≥ 1 of slits.
+    Finite(u32),
+    /// The limit N → ∞.
+    Infinite,
+}
+
+impl Slits {
+    /// N as a float, `f64::INFINITY` for the limit.
+    #[must_use]
+    pub fn as_f64(self) -> f64 {
+        match self {
+            Slits::Finite(n) => n as f64,
+            Slits::Infinite => f64::INFINITY,
+        }
+    }
+}
+
+/// A wavelength band [min_nm, max_nm], validated: 0 < min < max, both finite.
+///
+/// ```
+/// use diffraction::Band;
+/// assert_eq!(Band::VISIBLE.min_nm(), 360.0);
+/// let b = Band::new(400.0, 700.0)?;
+/// assert!(b.contains(550.0) && !b.contains(750.0));
+/// assert_eq!(Band::new(700.0, 400.0).unwrap_err().parameter(), "max_nm");
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Band {
+    min_nm: f64,
+    max_nm: f64,
+}
+
+impl Band {
+    /// The band of the CIE 1931 tables, 360-830 nm, over which the crate integrates colour.
+    pub const VISIBLE: Band = Band {
+        min_nm: 360.0,
+        max_nm: 830.0,
+    };
+
+    /// A custom band; rejects non-finite or non-positive ends and `max_nm <= min_nm`.
+    pub fn new(min_nm: f64, max_nm: f64) -> Result<Band, Error> {
+        let min_nm = positive("min_nm", min_nm)?;
+        let max_nm = positive("max_nm", max_nm)?;
+        if max_nm <= min_nm {
+            return Err(Error::invalid(
+                "max_nm",
+                max_nm,
+                Requirement::GreaterThan {
+                    bound_name: "min_nm",
+                    bound: min_nm,
+                },
+            ));
+        }
+        Ok(Band { min_nm, max_nm })
+    }
+
+    /// Shortest wavelength, nm.
+    #[must_use]
+    pub fn min_nm(self) -> f64 {
+        self.min_nm
+    }
+
+    /// Longest wavelength, nm.
+    #[must_use]
+    pub fn max_nm(self) -> f64 {
+        self.max_nm
+    }
+
+    /// `max_nm - min_nm`.
+    #[must_use]
+    pub fn width_nm(self) -> f64 {
+        self.max_nm - self.min_nm
+    }
+
+    /// Whether `min_nm <= lambda_nm <= max_nm`.
+    #[must_use]
+    pub fn contains(self, lambda_nm: f64) -> bool {
+        self.min_nm <= lambda_nm && lambda_nm <= self.max_nm
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Band {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        struct Raw {
+            min_nm: f64,
+            max_nm: f64,
+        }
+        let raw = Raw::deserialize(d)?;
+        Band::new(raw.min_nm, raw.max_nm).map_err(serde::de::Error::custom)
+    }
+}
+
+/// A diffraction grating: period d, slit width w and number of slits N.
+///
+/// Its intensity is the paper's eq. 8 with I₀ = 1:
+/// I(u, λ) = S(β)·F_N(α), α = π·d·u/λ, β = π·w·u/λ, where u = (wi + wo)·t
+/// (see [`frame::phase_projection`](crate::frame::phase_projection)).
+///
+/// ```
+/// use diffraction::{Grating, Slits};
+/// let cd = Grating::new(1600.0, 800.0, 2000)?;
+/// assert_eq!(cd.slits(), Slits::Finite(2000));
+/// assert_eq!(cd.intensity(0.0, 550.0), 1.0); // the mirror direction, white
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Grating {
+    period_nm: f64,
+    slit_width_nm: f64,
+    slits: Slits,
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Grating {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        struct Raw {
+            period_nm: f64,
+            slit_width_nm: f64,
+            slits: Slits,
+        }
+        let raw = Raw::deserialize(d)?;
+        Grating::with_slits(raw.period_nm, raw.slit_width_nm, raw.slits)
+            .map_err(serde::de::Error::custom)
+    }
+}
+
+impl Grating {
+    /// A grating of `slits` ≥ 1 periods; rejects d ≤ 0, w ≤ 0, w > d, N = 0 and non-finite values.
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// assert!(Grating::new(1600.0, 800.0, 100).is_ok());
+    /// assert_eq!(Grating::new(-1.0, 1.0, 1).unwrap_err().parameter(), "period_nm");
+    /// assert_eq!(Grating::new(1600.0, 0.0, 1).unwrap_err().parameter(), "slit_width_nm");
+    /// assert_eq!(Grating::new(1600.0, 800.0, 0).unwrap_err().parameter(), "slits");
+    /// ```
+    pub fn new(period_nm: f64, slit_width_nm: f64, slits: u32) -> Result<Grating, Error> {
+        Grating::with_slits(period_nm, slit_width_nm, Slits::Finite(slits))
+    }
+
+    /// A grating with N → ∞ (see [`Slits::Infinite`]).
+    pub fn infinite(period_nm: f64, slit_width_nm: f64) -> Result<Grating, Error> {
+        Grating::with_slits(period_nm, slit_width_nm, Slits::Infinite)
+    }
+
+    /// A grating from its groove density (lines per millimetre), the open fraction w/d of each
+    /// period and N: d = 10⁶ nm / lines_per_mm.
+    ///
+    /// ```
+    /// use diffraction::{Grating, Slits};
+    /// let g = Grating::from_lines_per_mm(600.0, 0.5, Slits::Infinite)?;
+    /// assert!((g.period_nm() - 1666.6666666666667).abs() < 1e-9);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn from_lines_per_mm(
+        lines_per_mm: f64,
+        open_fraction: f64,
+        slits: Slits,
+    ) -> Result<Grating, Error> {
+        let lines = positive("lines_per_mm", lines_per_mm)?;
+        let open = positive("open_fraction", open_fraction)?;
+        if open > 1.0 {
+            return Err(Error::invalid(
+                "open_fraction",
+                open,
+                Requirement::AtMost {
+                    bound_name: "1",
+                    bound: 1.0,
+                },
+            ));
+        }
+        let d = 1.0e6 / lines;
+        Grating::with_slits(d, (open * d).min(d), slits)
+    }
+
+    /// A grating with an explicit [`Slits`] value.
+    pub fn with_slits(period_nm: f64, slit_width_nm: f64, slits: Slits) -> Result<Grating, Error> {
+        let d = positive("period_nm", period_nm)?;
+        let w = positive("slit_width_nm", slit_width_nm)?;
+        if w > d {
+            return Err(Error::invalid(
+                "slit_width_nm",
+                w,
+                Requirement::AtMost {
+                    bound_name: "period_nm",
+                    bound: d,
+                },
+            ));
+        }
+        if slits == Slits::Finite(0) {
+            return Err(Error::invalid("slits", 0.0, Requirement::AtLeastOne));
+        }
+        Ok(Grating {
+            period_nm: d,
+            slit_width_nm: w,
+            slits,
+        })
+    }
+
+    /// The period d, nm.
+    #[must_use]
+    pub fn period_nm(&self) -> f64 {
+        self.period_nm
+    }
+
+    /// The slit width w, nm.
+    #[must_use]
+    pub fn slit_width_nm(&self) -> f64 {
+        self.slit_width_nm
+    }
+
+    /// The number of slits N.
+    #[must_use]
+    pub fn slits(&self) -> Slits {
+        self.slits
+    }
+
+    /// The phase in cycles, x = d·u/λ = α/π. Integer x is a grating-equation maximum.
+    ///
+    /// ```
+    /// # use diffraction::Grating;
+    /// let g = Grating::new(1000.0, 500.0, 10)?;
+    /// assert_eq!(g.phase_cycles(0.5, 500.0), 1.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn phase_cycles(&self, u: f64, lambda_nm: f64) -> f64 {
+        self.period_nm * u / lambda_nm
+    }
+
+    /// I(u, λ) = S(β)·F_N(α), the paper's eq. 8 with I₀ = 1, in [0, 1].
+    ///
+    /// For N = ∞ the pointwise limit is used: S(β) where x = d·u/λ is within 4 ulp of an
+    /// integer (the roundings of forming x), 0 elsewhere. Renderers want the peak search
+    /// ([`Grating::peaks`]) for that case.
+    ///
+    /// Evaluated in `f64` for either argument type; x = d·u/λ is formed with one rounding and
+    /// then reduced exactly (see [`kernel`](crate::kernel) for the accuracy of the factors).
+    /// Returns 0 for λ ≤ 0 and where the phase overflows (|d·u/λ| not finite), never NaN for
+    /// finite input.
+    ///
+    /// ```
+    /// # use diffraction::Grating;
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let u = 0.3; // first order at λ = d·u = 480 nm
+    /// assert!((g.intensity(u, 480.0) - g.single_slit(u, 480.0)).abs() < 1e-15);
+    /// assert!(g.intensity(u as f32, 520.0f32) < 1e-6);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn intensity<T: Float>(&self, u: T, lambda_nm: T) -> T {
+        T::from_f64(self.intensity_f64(u.to_f64(), lambda_nm.to_f64()))
+    }
+
+    #[inline]
+    pub(crate) fn intensity_f64(&self, u: f64, lambda_nm: f64) -> f64 {
+        if lambda_nm.is_nan() || lambda_nm <= 0.0 {
+            return 0.0;
+        }
+        let q = u / lambda_nm;
+        let x = self.period_nm * q;
+        if !x.is_finite() {
+            return 0.0;
+        }
+        let y = self.slit_width_nm * q;
+        single_slit_cycles(y) * self.n_slit_x(x)
+    }
+
+    /// F_N at phase x in cycles, including the N → ∞ limit (1 on integers, 0 elsewhere).
+    #[inline]
+    pub(crate) fn n_slit_x(&self, x: f64) -> f64 {
+        match self.slits {
+            Slits::Finite(n) => n_slit_cycles(x, n),
+            Slits::Infinite => {
+                // x = d·u/λ is formed with a few roundings; within 4 ulp of an integer counts as
+                // on the grating equation.
+                if (x - math::rint(x)).abs() <= 4.0 * f64::EPSILON * x.abs() {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// The single-slit envelope S(β) alone, β = π·w·u/λ (0 for λ ≤ 0).
+    #[must_use]
+    pub fn single_slit(&self, u: f64, lambda_nm: f64) -> f64 {
+        if lambda_nm.is_nan() || lambda_nm <= 0.0 {
+            return 0.0;
+        }
+        let y = self.slit_width_nm * u / lambda_nm;
+        if !y.is_finite() {
+            return 0.0;
+        }
+        single_slit_cycles(y)
+    }
+
+    /// The N-slit factor F_N(α) alone, α = π·d·u/λ (0 for λ ≤ 0).
+    #[must_use]
+    pub fn n_slit(&self, u: f64, lambda_nm: f64) -> f64 {
+        if lambda_nm.is_nan() || lambda_nm <= 0.0 {
+            return 0.0;
+        }
+        let x = self.phase_cycles(u, lambda_nm);
+        if !x.is_finite() {
+            return 0.0;
+        }
+        self.n_slit_x(x)
+    }
+
+    /// The wavelength at which order `order` peaks for phase projection u: λ_m = d·u/m
+    /// (grating equation, eq. 11), or `None` when m = 0 or m has the wrong sign for u.
+    ///
+    /// ```
+    /// # use diffraction::Grating;
+    /// let g = Grating::new(1600.0, 800.0, 10)?;
+    /// assert_eq!(g.peak_wavelength(0.75, 2), Some(600.0));
+    /// assert_eq!(g.peak_wavelength(0.75, -2), None);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn peak_wavelength(&self, u: f64, order: i32) -> Option<f64> {
+        if order == 0 || !u.is_finite() {
+            return None;
+        }
+        let l = self.period_nm * u / order as f64;
+        (l > 0.0 && l.is_finite()).then_some(l)
+    }
+
+    /// The half-width, in u, of the central (order 0) lobe at wavelength λ: the first zero of
+    /// F_N is at |u| = λ/(N·d). Zero for N = ∞.
+    #[must_use]
+    pub fn specular_half_width(&self, lambda_nm: f64) -> f64 {
+        lambda_nm / (self.slits.as_f64() * self.period_nm)
+    }
+
+    /// Every order m ≠ 0 whose maximum λ_m = d·|u|/|m| lies in `band`, as an allocation-free
+    /// iterator of [`Peak`]s in order of increasing |m| (decreasing wavelength).
+    ///
+    /// Order 0 (u = 0: the mirror direction for every wavelength) is reported apart, by
+    /// [`Peaks::specular`]. |u| ≤ 2 for unit directions; larger |u| is accepted and simply has
+    /// more orders (at most `i32::MAX`).
+    ///
+    /// ```
+    /// use diffraction::{Band, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 1000)?; // CD track pitch
+    /// let peaks: Vec<_> = g.peaks(0.9, Band::VISIBLE).collect();
+    /// // d·u = 1440 nm: orders 2 (720 nm), 3 (480 nm) and 4 (360 nm) are visible.
+    /// assert_eq!(peaks.iter().map(|p| p.order).collect::<Vec<_>>(), [2, 3, 4]);
+    /// assert!((peaks[0].wavelength_nm - 720.0).abs() < 1e-12);
+    /// assert!(!g.peaks(0.9, Band::VISIBLE).specular());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn peaks(&self, u: f64, band: Band) -> Peaks {
+        let q = self.period_nm * u.abs();
+        let sign = if u < 0.0 { -1 } else { 1 };
+        let specular = match self.slits {
+            Slits::Infinite => u == 0.0,
+            Slits::Finite(_) => u.abs() < self.specular_half_width(band.max_nm),
+        };
+        let (first, last) = if q > 0.0 && q.is_finite() {
+            order_range(q, band)
+        } else {
+            (1, 0)
+        };
+        Peaks {
+            q,
+            sign,
+            next: first,
+            last,
+            duty: self.slit_width_nm / self.period_nm,
+            n: self.slits.as_f64(),
+            specular,
+        }
+    }
+
+    /// The propagating diffracted orders for light arriving from `wi` (unit, toward the light,
+    /// in the local frame: z normal, x grating vector) at one wavelength: the conical grating
+    /// equation wo_x = m·λ/d − wi_x, wo_y = −wi_y, wo_z = √(1 − wo_x² − wo_y²).
+    ///
+    /// Evanescent orders (wo_x² + wo_y² ≥ 1) are skipped, never returned as NaN. Order 0 is
+    /// the mirror direction. Returns nothing for λ ≤ 0 or a non-finite `wi`.
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// use glam::DVec3;
+    /// // 600 lines/mm, 532 nm at normal incidence: first orders at ±18.6°.
+    /// let g = Grating::from_lines_per_mm(600.0, 0.5, diffraction::Slits::Infinite)?;
+    /// let orders: Vec<_> = g.diffracted_orders(DVec3::Z, 532.0).collect();
+    /// assert_eq!(orders.iter().map(|o| o.order).collect::<Vec<_>>(), [-3, -2, -1, 0, 1, 2, 3]);
+    /// let first = orders.iter().find(|o| o.order == 1).unwrap();
+    /// assert!((first.direction.x.asin().to_degrees() - 18.61).abs() < 0.01);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn diffracted_orders(&self, wi: DVec3, lambda_nm: f64) -> DiffractedOrders {
+        let empty = DiffractedOrders {
+            wi,
+            step: 0.0,
+            next: 1,
+            last: 0,
+            duty: 0.0,
+        };
+        if lambda_nm.is_nan() || lambda_nm <= 0.0 || !wi.is_finite() {
+            return empty;
+        }
+        let step = lambda_nm / self.period_nm; // change of wo_x per order
+        let c2 = 1.0 - wi.y * wi.y;
+        if c2.is_nan() || c2 <= 0.0 || !step.is_finite() || step == 0.0 {
+            return empty;
+        }
+        let c = math::sqrt(c2);
+        // Propagating: |m·step − wi_x| < c.
+        let lo = math::ceil((wi.x - c) / step);
+        let hi = math::floor((wi.x + c) / step);
+        let clamp = |v: f64| v.clamp(i32::MIN as f64 + 1.0, i32::MAX as f64 - 1.0) as i32;
+        DiffractedOrders {
+            wi,
+            step,
+            next: clamp(lo),
+            last: clamp(hi),
+            duty: self.slit_width_nm / self.period_nm,
+        }
+    }
+}
+
+/// The first and last |m| ≥ 1 with q/|m| inside the band (q = d·|u| > 0); empty when first > last.
+fn order_range(q: f64, band: Band) -> (i32, i32) {
+    let cap = i32::MAX as f64;
+    let mut first = math::ceil(q / band.max_nm).max(1.0).min(cap);
+    let mut last = math::floor(q / band.min_nm).min(cap);
+    // The divisions round; settle the ends with the exact membership test on λ = q/m.
+    if first > 1.0 && band.contains(q / (first - 1.0)) {
+        first -= 1.0;
+    }
+    if first <= cap && !band.contains(q / first) {
+        first += 1.0;
+    }
+    if last < cap && band.contains(q / (last + 1.0)) {
+        last += 1.0;
+    }
+    if last >= 1.0 && !band.contains(q / last) {
+        last -= 1.0;
+    }
+    (first.min(cap) as i32, last.max(0.0) as i32)
+}
+
+/// One grating-equation maximum of a given order (see [`Grating::peaks`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Peak {
+    /// The diffraction order m (same sign as u, never 0).
+    pub order: i32,
+    /// The peak wavelength λ_m = d·|u|/|m|, nm.
+    pub wavelength_nm: f64,
+    /// The intensity at the peak: the single-slit envelope S(β_m), β_m = π·m·w/d, since
+    /// F_N = 1 on the grating equation. A [`DiffractionBrdf`](crate::DiffractionBrdf) scales it
+    /// by its own coefficient.
+    pub intensity: f64,
+    /// The peak's equivalent width in wavelength, nm: the width of a rectangle of height
+    /// `intensity` with the area of the whole order (main lobe and side lobes of one period).
+    /// For the N-slit factor this is λ_m/(|m|·N), which is also the distance from the peak to its
+    /// first zero; 0 for N = ∞.
+    pub equivalent_width_nm: f64,
+}
+
+/// The visible orders for one u, from [`Grating::peaks`].
+#[derive(Debug, Clone)]
+pub struct Peaks {
+    q: f64,
+    sign: i32,
+    next: i32,
+    last: i32,
+    duty: f64,
+    n: f64,
+    specular: bool,
+}
+
+impl Peaks {
+    /// Whether u lies inside the central (order 0, mirror) lobe for some wavelength of the band:
+    /// |u| < λ_max/(N·d), or u = 0 exactly for N = ∞. There the model shows the white specular.
+    #[must_use]
+    pub fn specular(&self) -> bool {
+        self.specular
+    }
+}
+
+impl Iterator for Peaks {
+    type Item = Peak;
+
+    #[inline]
+    fn next(&mut self) -> Option<Peak> {
+        if self.next > self.last {
+            return None;
+        }
+        let m = self.next;
+        self.next += 1;
+        let am = m as f64;
+        let lambda = self.q / am;
+        Some(Peak {
+            order: self.sign * m,
+            wavelength_nm: lambda,
+            intensity: single_slit_cycles(self.duty * am),
+            equivalent_width_nm: lambda / (am * self.n),
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = if self.next > self.last {
+            0
+        } else {
+            (self.last - self.next) as usize + 1
+        };
+        (n, Some(n))
+    }
+}
+
+impl ExactSizeIterator for Peaks {}
+impl core::iter::FusedIterator for Peaks {}
+
+/// One propagating diffracted order (see [`Grating::diffracted_orders`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiffractedOrder {
+    /// The order m (0 is the mirror direction).
+    pub order: i32,
+    /// The outgoing unit direction in the local frame (z normal, x grating vector).
+    pub direction: DVec3,
+    /// The single-slit envelope S(β_m) of this order, the intensity of its maximum.
+    pub intensity: f64,
+}
+
+/// The propagating orders for one incidence and wavelength, from [`Grating::diffracted_orders`].
+#[derive(Debug, Clone)]
+pub struct DiffractedOrders {
+    wi: DVec3,
+    step: f64,
+    next: i32,
+    last: i32,
+    duty: f64,
+}
+
+impl Iterator for DiffractedOrders {
+    type Item = DiffractedOrder;
+
+    fn next(&mut self) -> Option<DiffractedOrder> {
+        while self.next <= self.last {
+            let m = self.next;
+            self.next += 1;
+            let ox = m as f64 * self.step - self.wi.x;
+            let oy = -self.wi.y;
+            let z2 = 1.0 - ox * ox - oy * oy;
+            if z2 > 0.0 {
+                return Some(DiffractedOrder {
+                    order: m,
+                    direction: DVec3::new(ox, oy, math::sqrt(z2)),
+                    intensity: single_slit_cycles(self.duty * m as f64),
+                });
+            }
+        }
+        None
+    }
+}
+
+impl core::iter::FusedIterator for DiffractedOrders {}

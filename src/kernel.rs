@@ -1,0 +1,311 @@
+//! The two factors of the Agu-Hill intensity, evaluated stably.
+//!
+//! * [`single_slit`]`(β)` = (sin β / β)², the diffraction pattern of one slit (paper eq. 5),
+//! * [`n_slit`]`(α, N)` = sin²(Nα) / (N² sin²α), the interference of N slits (paper eq. 7-8),
+//!
+//! each also in a *cycles* form ([`single_slit_cycles`], [`n_slit_cycles`]) that takes the phase
+//! divided by π: x = α/π = d·u/λ and y = β/π = w·u/λ. Callers that know x (a grating does) should
+//! use the cycles form: it never rounds through α = πx, so the reduction of the phase is exact.
+//!
+//! # Accuracy
+//!
+//! Every function here evaluates in `f64` whatever its argument type and rounds once to the
+//! caller's precision. Measured against 50-digit mpmath values of the exact function *at the
+//! given floating-point argument* (`tests/kernel_reference.rs`, data from `python_ref/`):
+//!
+//! | function | bound (absolute) | range |
+//! |---|---|---|
+//! | `n_slit_cycles`, `n_slit` (f64) | 1e-12 | N ≤ 10⁷, \|x\| < 2⁵² (cycles), \|α\| ≤ 10⁵ (radians) |
+//! | `single_slit_cycles`, `single_slit` (f64) | 1e-12 | all finite input |
+//! | the same in `f32` | 1e-5 (in practice one `f32` rounding) | N ≤ 10⁶, \|α\| ≤ 10⁴ |
+//!
+//! The results are always inside [0, 1] and never NaN for finite input (N = 0 gives 0: no slit,
+//! no light). Non-finite input gives NaN.
+//!
+//! # How
+//!
+//! F_N has period 1 in x and depends only on r = x − round(x), which is exact in floating point.
+//! The phase N·r is split as N·r_hi + N·r_lo with r_hi on a 2⁻²¹ grid so that N·r_hi is exact
+//! (N < 2³²) and is reduced exactly again; only N·r_lo is rounded, which keeps the phase error
+//! near 2⁻⁷⁵·N cycles. Near a peak (|N·r| ≤ ½) the ratio is evaluated as sinc(πNr)/sinc(πr), the
+//! limit F_N → 1 without 0/0. `sin(π·)` on [−½, ½] is a short polynomial (Taylor coefficients,
+//! error below 1e-19), so no general-purpose range reduction is needed on the hot path.
+//! Radian arguments are first reduced modulo π with a three-part (Cody-Waite) π, exact for
+//! |α| < 2²⁰·π ≈ 3.3·10⁶; beyond that the phase is taken as α/π (relative error 2⁻⁵³).
+//!
+//! The naive formula (module [`naive`]) has none of this; in `f32` near high orders it returns
+//! values far above 1 (e.g. 1.88 at the first orders with N = 5000).
+
+use crate::float::Float;
+use crate::math::rint;
+
+/// sin(π·z) for |z| ≤ ½ (accurate to a few ulp; larger |z| is not expected).
+#[inline]
+pub(crate) fn sinpi(z: f64) -> f64 {
+    // (−1)^k π^(2k+1)/(2k+1)! and (−1)^k π^(2k)/(2k)!, rounded to f64 (mpmath, 40 digits).
+    const S: [f64; 9] = [
+        core::f64::consts::PI,
+        -5.16771278004997,
+        2.5501640398773455,
+        -0.5992645293207921,
+        0.08214588661112823,
+        -0.0073704309457143504,
+        0.00046630280576761255,
+        -2.1915353447830217e-05,
+        7.952054001475513e-07,
+    ];
+    const C: [f64; 10] = [
+        1.0,
+        -4.934802200544679,
+        4.0587121264167685,
+        -1.3352627688545895,
+        0.2353306303588932,
+        -0.02580689139001406,
+        0.0019295743094039231,
+        -0.0001046381049248457,
+        4.303069587032947e-06,
+        -1.3878952462213771e-07,
+    ];
+    let a = z.abs();
+    if a <= 0.25 {
+        let z2 = z * z;
+        let mut p = S[8];
+        let mut i = 8;
+        while i > 0 {
+            i -= 1;
+            p = p * z2 + S[i];
+        }
+        p * z
+    } else {
+        // sin(πa) = cos(π(½ − a)); ½ − a is exact for a in [¼, ½].
+        let c = 0.5 - a;
+        let c2 = c * c;
+        let mut p = C[9];
+        let mut i = 9;
+        while i > 0 {
+            i -= 1;
+            p = p * c2 + C[i];
+        }
+        if z < 0.0 {
+            -p
+        } else {
+            p
+        }
+    }
+}
+
+/// sin(πz)/(πz) for |z| ≤ ½, with the limit 1 at z = 0.
+#[inline]
+fn sinc_pi(z: f64) -> f64 {
+    if z.abs() < 1e-12 {
+        // 1 − (πz)²/6 differs from 1 by less than 2e-24 here.
+        1.0
+    } else {
+        sinpi(z) / (core::f64::consts::PI * z)
+    }
+}
+
+/// Reduces a phase in radians modulo π and returns it in cycles: r with α ≡ π·r (mod π), |r| ≤ ½.
+#[inline]
+fn reduce_radians(alpha: f64) -> f64 {
+    // π = P1 + P2 + P3 to 2⁻¹²⁰ relative; P1 and P2 have 33 significant bits, so k·P1 and
+    // k·P2 are exact for |k| < 2²⁰ and α − k·P1 is exact (Sterbenz).
+    const P1: f64 = 3.1415926534682512;
+    const P2: f64 = 1.2154201012607932e-10;
+    const P3: f64 = 4.044532497591901e-21;
+    const FRAC_1_PI: f64 = core::f64::consts::FRAC_1_PI;
+    let k = rint(alpha * FRAC_1_PI);
+    if k.abs() < 1_048_576.0 {
+        let rho = ((alpha - k * P1) - k * P2) - k * P3;
+        rho * FRAC_1_PI
+    } else {
+        let x = alpha * FRAC_1_PI;
+        x - rint(x)
+    }
+}
+
+/// F_N for a phase already reduced to |r| ≤ ½ cycles (f64 core).
+#[inline]
+fn n_slit_reduced(r: f64, n: u32) -> f64 {
+    if n <= 1 {
+        return if n == 0 { 0.0 } else { 1.0 };
+    }
+    let nf = n as f64;
+    // N·r = N·r_hi + N·r_lo, with N·r_hi exact.
+    const SPLIT: f64 = 2_097_152.0; // 2^21
+    let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
+    let r_lo = r - r_hi;
+    let p_hi = nf * r_hi;
+    let s = (p_hi - rint(p_hi)) + nf * r_lo;
+    let s = s - rint(s);
+    let f = if (nf * r).abs() <= 0.5 {
+        // No wrap: s = N·r. Near the peak, F = (sinc(πNr)/sinc(πr))².
+        sinc_pi(s) / sinc_pi(r)
+    } else {
+        sinpi(s) / (nf * sinpi(r))
+    };
+    let f = f * f;
+    if f > 1.0 {
+        1.0
+    } else {
+        f
+    }
+}
+
+/// F_N(x) = sin²(πNx) / (N² sin²(πx)) with the phase in cycles, x = α/π = d·u/λ.
+///
+/// Equals 1 at every integer x (the grating-equation maxima), 0 at x = k/N for k not a
+/// multiple of N, and lies in [0, 1] everywhere. `n = 1` gives 1 everywhere; `n = 0` gives 0.
+/// See the [module docs](self) for the accuracy.
+///
+/// ```
+/// use diffraction::kernel::n_slit_cycles;
+/// assert_eq!(n_slit_cycles(40.0_f64, 5000), 1.0); // a maximum, order 40
+/// assert!(n_slit_cycles(40.0 + 1.0 / 5000.0, 5000) < 1e-20); // its first zero
+/// assert!(n_slit_cycles(40.1_f32, 5000) <= 1.0);
+/// ```
+#[inline]
+#[must_use]
+pub fn n_slit_cycles<T: Float>(x: T, n: u32) -> T {
+    let x = x.to_f64();
+    T::from_f64(n_slit_reduced(x - rint(x), n))
+}
+
+/// F_N(α) = sin²(Nα) / (N² sin²α), the N-slit factor of the paper's eq. 8, α in radians.
+///
+/// Prefer [`n_slit_cycles`] when the phase is known in cycles. See the [module docs](self)
+/// for the accuracy.
+///
+/// ```
+/// use diffraction::kernel::n_slit;
+/// use core::f64::consts::PI;
+/// assert!((n_slit(3.0 * PI, 1_000_000) - 1.0).abs() < 1e-12);
+/// assert!(n_slit(PI / 2.0, 2) < 1e-30); // sin(π) = 0
+/// ```
+#[inline]
+#[must_use]
+pub fn n_slit<T: Float>(alpha: T, n: u32) -> T {
+    T::from_f64(n_slit_reduced(reduce_radians(alpha.to_f64()), n))
+}
+
+/// S = (sin(πy)/(πy))² with y = β/π = w·u/λ in cycles; S(0) = 1.
+///
+/// Zeros at every non-zero integer y. See the [module docs](self) for the accuracy.
+///
+/// ```
+/// use diffraction::kernel::single_slit_cycles;
+/// assert_eq!(single_slit_cycles(0.0_f64), 1.0);
+/// assert!(single_slit_cycles(3.0_f64) < 1e-30);
+/// let half = single_slit_cycles(0.5_f64); // (2/π)²
+/// assert!((half - 4.0 / (std::f64::consts::PI * std::f64::consts::PI)).abs() < 1e-15);
+/// ```
+#[inline]
+#[must_use]
+pub fn single_slit_cycles<T: Float>(y: T) -> T {
+    let y = y.to_f64();
+    T::from_f64(single_slit_core(y - rint(y), core::f64::consts::PI * y))
+}
+
+/// S(β) = (sin β / β)², the single-slit factor of the paper's eq. 5, β in radians; S(0) = 1.
+///
+/// ```
+/// use diffraction::kernel::single_slit;
+/// assert_eq!(single_slit(0.0_f32), 1.0);
+/// assert!((single_slit(1.0_f64) - 0.708073418273571).abs() < 1e-15); // sin²1
+/// ```
+#[inline]
+#[must_use]
+pub fn single_slit<T: Float>(beta: T) -> T {
+    let b = beta.to_f64();
+    T::from_f64(single_slit_core(reduce_radians(b), b))
+}
+
+/// (sin(π r)/β)² where r ≡ β/π (mod 1), reduced, and β is the full phase in radians.
+#[inline]
+fn single_slit_core(r: f64, beta: f64) -> f64 {
+    if beta.abs() < 1e-8 {
+        // 1 − β²/3 + O(β⁴): exact to f64 precision here, and safe for subnormal β.
+        return 1.0 - beta * beta / 3.0;
+    }
+    let q = sinpi(r) / beta;
+    let s = q * q;
+    if s > 1.0 {
+        1.0
+    } else {
+        s
+    }
+}
+
+/// The textbook formulas evaluated directly in the caller's precision, for comparison only.
+///
+/// These are what the stable kernels replace: they divide 0 by 0 at the maxima (returning NaN),
+/// and in `f32` they leave [0, 1] near high-order peaks. Benchmarks and tests use them as the
+/// baseline; renderers should not.
+///
+/// ```
+/// use diffraction::kernel::{n_slit, n_slit_cycles, naive};
+/// let x = 40.000004f32; // just off the 40th order, N = 5000
+/// let alpha = std::f32::consts::PI * x;
+/// assert!(naive::n_slit(alpha, 5000) > 2.0); // far outside [0, 1]
+/// assert!(n_slit(alpha, 5000) <= 1.0); // the same f32 input
+/// assert!(n_slit_cycles(x, 5000) <= 1.0);
+/// ```
+pub mod naive {
+    use crate::float::Float;
+
+    /// sin²(Nα)/(N² sin²α) evaluated directly in `T`; NaN where sin α = 0.
+    #[inline]
+    #[must_use]
+    pub fn n_slit<T: Float>(alpha: T, n: u32) -> T {
+        let nf = T::from_u32(n);
+        let num = (nf * alpha).sin_native();
+        let den = nf * alpha.sin_native();
+        let q = num / den;
+        q * q
+    }
+
+    /// (sin β/β)² evaluated directly in `T`; NaN at β = 0.
+    #[inline]
+    #[must_use]
+    pub fn single_slit<T: Float>(beta: T) -> T {
+        let q = beta.sin_native() / beta;
+        q * q
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sinpi_matches_std_on_its_range() {
+        let mut worst: f64 = 0.0;
+        for i in -5000..=5000 {
+            let z = i as f64 / 10000.0;
+            let e = (sinpi(z) - (core::f64::consts::PI * z).sin()).abs();
+            worst = worst.max(e);
+        }
+        assert!(worst < 4e-16, "worst {worst}");
+        assert_eq!(sinpi(0.5), 1.0);
+        assert_eq!(sinpi(-0.5), -1.0);
+        assert_eq!(sinpi(0.0), 0.0);
+    }
+
+    #[test]
+    fn reduction_is_exact_at_multiples_of_pi() {
+        // α = fl(k·π) differs from k·π by its rounding. With π = π_hi + π_lo (two doubles) and a
+        // fused multiply-add, α − k·π is known to far below the size of that rounding; the
+        // reduced phase must be that difference over π, not a rounding artefact of α/π.
+        const PI_LO: f64 = 1.2246467991473532e-16;
+        for k in [1.0f64, 7.0, 1000.0, 31831.0, 100_000.0] {
+            let alpha = k * core::f64::consts::PI;
+            let diff = (-k).mul_add(core::f64::consts::PI, alpha) - k * PI_LO;
+            let want = diff / core::f64::consts::PI;
+            let r = reduce_radians(alpha);
+            assert!(
+                (r - want).abs() <= 1e-9 * want.abs(),
+                "k={k} r={r} want={want}"
+            );
+        }
+    }
+}

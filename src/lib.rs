@@ -1,0 +1,77 @@
+//! # diffraction
+//!
+//! Closed-form, numerically robust shading of diffraction gratings after Agu & Hill,
+//! "A Simple Method for Ray Tracing Diffraction": the Huygens-Fresnel intensity of N slits,
+//!
+//! I(u, λ) = S(β) · F_N(α),  S(β) = (sin β / β)²,  F_N(α) = sin²(Nα) / (N² sin²α),
+//!
+//! with α = π·d·u/λ, β = π·w·u/λ and u = (wi + wo)·t, used as the diffraction term of an
+//! ambient + diffuse + diffraction illumination model.
+//!
+//! ## Conventions
+//!
+//! * Lengths and wavelengths are in **nanometres** (names end in `_nm`), angles in radians.
+//! * Local shading frame: `z` is the surface normal, `x` the **grating vector** `t` (in the
+//!   tangent plane, across the grooves), `y` the groove direction.
+//! * `wi` points toward the light, `wo` toward the viewer, both unit and above the surface.
+//! * The phase projection is **u = (wi + wo)·t**; u = 0 is the mirror direction. In the paper's
+//!   angles u = sin θ − sin θi. The paper's step 5 uses the normalised half vector instead, which
+//!   misplaces the peaks by the factor |wi + wo|; this crate uses the exact u
+//!   ([`frame::paper_half_vector_projection`] exists only to document the difference).
+//!
+//! ## Quick start
+//!
+//! ```
+//! use diffraction::{Band, Grating};
+//!
+//! // A 600 lines/mm ruled grating, half-open slits, 10 000 illuminated periods.
+//! let g = Grating::new(1666.67, 833.33, 10_000)?;
+//! // Where does the first order of 532 nm light go at normal incidence? sin θ = λ/d.
+//! let u = 532.0 / 1666.67;
+//! let first = g.peaks(u, Band::VISIBLE).next().unwrap();
+//! assert_eq!(first.order, 1);
+//! assert!((first.wavelength_nm - 532.0).abs() < 1e-9);
+//! // The intensity there is the single-slit envelope S(β₁) (F_N = 1 at every maximum).
+//! assert!((g.intensity(u, 532.0) - first.intensity).abs() < 1e-12);
+//! # Ok::<(), diffraction::Error>(())
+//! ```
+//!
+//! ## Modules
+//!
+//! * [`kernel`]: the two factors S and F_N, stable in `f32` and `f64`, with stated accuracy.
+//! * [`Grating`], [`Band`], [`Peak`]: parameters, intensity, the grating equation and peak search.
+//! * [`frame`]: the phase projection and grating-direction fields (constant, twisted, radial
+//!   tracks of a CD, checkerboards).
+//! * [`DiffractionBrdf`], [`AguHill`]: the BRDF interface and the paper's model.
+//!
+//! ## Feature flags
+//!
+//! * `std` (default): maths from the standard library.
+//! * `libm`: maths from the `libm` crate, for `no_std` (disable default features).
+//! * `serde`: `Serialize`/`Deserialize` for the parameter types.
+//!
+//! One of `std` and `libm` must be enabled.
+
+#![cfg_attr(not(feature = "std"), no_std)]
+#![cfg_attr(docsrs, feature(doc_auto_cfg))]
+
+#[cfg(not(any(feature = "std", feature = "libm")))]
+compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
+
+mod brdf;
+mod error;
+mod float;
+pub mod frame;
+mod grating;
+pub mod kernel;
+mod math;
+
+pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
+pub use error::{Error, Requirement};
+pub use float::Float;
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
+pub use grating::{Band, DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
