@@ -59,6 +59,8 @@
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
 
 mod brdf;
+mod cie_data;
+pub mod color;
 mod error;
 mod float;
 pub mod frame;
