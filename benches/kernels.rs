@@ -3,7 +3,7 @@
 //! Each iteration evaluates a fixed batch of 1024 phases spread over orders 1-40 near and away
 //! from the peaks, so the figure reported per element is ns per evaluation.
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{black_box, BenchmarkId, Criterion, Throughput};
 use diffraction::kernel::{n_slit, n_slit_cycles, naive, single_slit, single_slit_cycles};
 
 const BATCH: usize = 1024;
@@ -104,9 +104,9 @@ fn bench_single_slit(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(
-    name = benches;
-    config = Criterion::default();
-    targets = bench_n_slit, bench_single_slit
-);
-criterion_main!(benches);
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    bench_n_slit(&mut c);
+    bench_single_slit(&mut c);
+    c.final_summary();
+}

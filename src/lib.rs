@@ -43,6 +43,38 @@
 //! * [`frame`]: the phase projection and grating-direction fields (constant, twisted, radial
 //!   tracks of a CD, checkerboards).
 //! * [`DiffractionBrdf`], [`AguHill`]: the BRDF interface and the paper's model.
+//! * [`cie`]: the CIE 1931 2° observer and illuminants E, D65, A at 1 nm (from colour-science).
+//! * [`spectrum`]: the reference colour XYZ of the intensity, by named strategies with stated
+//!   cost and error (uniform, Gauss-Legendre, stratified and hero wavelengths, peak search, the
+//!   paper's peak colours, lobe-exact quadrature, and `Auto` for a requested accuracy).
+//! * [`color`]: XYZ, linear and encoded sRGB, Hall's clipping schemes, CIELAB and ΔE2000.
+//!
+//! ## From a hit point to a pixel
+//!
+//! ```
+//! use diffraction::color::Clip;
+//! use diffraction::frame::{GratingField, ShadingFrame};
+//! use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+//! use diffraction::Grating;
+//! use glam::{DVec2, DVec3};
+//!
+//! let cd = Grating::new(1600.0, 800.0, 1000)?;
+//! let field = GratingField::radial(DVec2::ZERO); // CD tracks around the spindle
+//! let spectral = Spectral::new(Illuminant::D65);
+//!
+//! // A hit at surface point p on a disc lying in the xz-plane (normal +y).
+//! let p = DVec2::new(0.03, 0.01);
+//! let t = field.world_direction(p, DVec3::X, DVec3::Z).unwrap();
+//! let frame = ShadingFrame::new(DVec3::Y, t).unwrap();
+//! let wi = frame.to_local(DVec3::new(-0.3, 1.0, 0.1).normalize()); // toward the light
+//! let wo = frame.to_local(DVec3::new(0.6, 0.7, 0.2).normalize()); // toward the eye
+//! let u = wi.x + wo.x;
+//!
+//! let xyz = spectral.xyz(&cd, u, Strategy::Auto { accuracy: 1e-3 });
+//! let rgb = xyz.to_linear_srgb().clip(Clip::ConstantIntensity).encode().to_rgb8();
+//! # let _ = rgb;
+//! # Ok::<(), diffraction::Error>(())
+//! ```
 //!
 //! ## Feature flags
 //!
@@ -59,6 +91,7 @@
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
 
 mod brdf;
+pub mod cie;
 mod cie_data;
 pub mod color;
 mod error;
@@ -67,6 +100,7 @@ pub mod frame;
 mod grating;
 pub mod kernel;
 mod math;
+pub mod spectrum;
 
 pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
 pub use error::{Error, Requirement};

@@ -1,0 +1,164 @@
+//! The CIE 1931 2° standard observer and the CIE illuminants, at 1 nm over 360-830 nm.
+//!
+//! The tables (`cie_data.rs`) are generated from colour-science by `python_ref/generate.py`, whose
+//! header names the datasets; between the 1 nm rows the crate interpolates linearly, and outside
+//! [360, 830] nm every function here is 0 (the band over which colour is integrated). D65 and A are
+//! tabulated by colour-science to 780 nm; from 780 to 830 nm the tables repeat the 780 nm value
+//! (colour-science's constant extrapolation), where the colour-matching functions are below 1e-4.
+
+use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+
+/// First wavelength of the tables, nm (360).
+pub const TABLE_FIRST_NM: f64 = FIRST_NM as f64;
+/// Last wavelength of the tables, nm (830).
+pub const TABLE_LAST_NM: f64 = LAST_NM as f64;
+
+/// Index of the row at or below λ and the fraction toward the next row; `None` outside the table.
+#[inline]
+fn locate(lambda_nm: f64) -> Option<(usize, f64)> {
+    let s = lambda_nm - TABLE_FIRST_NM;
+    if !(s >= 0.0 && lambda_nm <= TABLE_LAST_NM) {
+        return None;
+    }
+    let last = (LAST_NM - FIRST_NM) as usize - 1; // last row that has a successor
+    let i = (s as usize).min(last);
+    Some((i, s - i as f64))
+}
+
+/// The CIE 1931 2° colour-matching functions [x̄, ȳ, z̄] at λ, linearly interpolated between the
+/// 1 nm rows; [0, 0, 0] outside 360-830 nm.
+///
+/// ```
+/// use diffraction::cie::cmf;
+/// let [_, y, _] = cmf(555.0);
+/// assert!((y - 1.0).abs() < 1e-3);
+/// assert_eq!(cmf(900.0), [0.0; 3]);
+/// ```
+#[inline]
+#[must_use]
+pub fn cmf(lambda_nm: f64) -> [f64; 3] {
+    match locate(lambda_nm) {
+        None => [0.0; 3],
+        Some((i, t)) => {
+            let a = CIE1931_2DEG[i];
+            let b = CIE1931_2DEG[i + 1];
+            [
+                a[0] + t * (b[0] - a[0]),
+                a[1] + t * (b[1] - a[1]),
+                a[2] + t * (b[2] - a[2]),
+            ]
+        }
+    }
+}
+
+/// A CIE illuminant: the light's relative spectral power E(λ).
+///
+/// ```
+/// use diffraction::cie::Illuminant;
+/// assert_eq!(Illuminant::E.power(500.0), 1.0);
+/// assert!((Illuminant::D65.power(560.0) - 100.0).abs() < 1e-9);
+/// assert_eq!("d65".parse::<Illuminant>(), Ok(Illuminant::D65));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Illuminant {
+    /// The equal-energy illuminant, E(λ) = 1.
+    E,
+    /// CIE standard illuminant D65 (average daylight), 100 at 560 nm.
+    D65,
+    /// CIE standard illuminant A (tungsten, 2856 K), 100 at 560 nm.
+    A,
+}
+
+impl Illuminant {
+    /// E(λ), linearly interpolated between the 1 nm rows; 0 outside 360-830 nm.
+    #[inline]
+    #[must_use]
+    pub fn power(self, lambda_nm: f64) -> f64 {
+        let table = match self {
+            Illuminant::E => {
+                return if locate(lambda_nm).is_some() {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            Illuminant::D65 => &D65,
+            Illuminant::A => &ILLUMINANT_A,
+        };
+        match locate(lambda_nm) {
+            None => 0.0,
+            Some((i, t)) => table[i] + t * (table[i + 1] - table[i]),
+        }
+    }
+
+    /// The name used by `FromStr` and `Display`: `E`, `D65` or `A`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Illuminant::E => "E",
+            Illuminant::D65 => "D65",
+            Illuminant::A => "A",
+        }
+    }
+}
+
+impl core::fmt::Display for Illuminant {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The error of parsing an [`Illuminant`] name.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ParseIlluminantError;
+
+impl core::fmt::Display for ParseIlluminantError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("unknown illuminant: expected one of E, D65, A")
+    }
+}
+
+impl core::error::Error for ParseIlluminantError {}
+
+impl core::str::FromStr for Illuminant {
+    type Err = ParseIlluminantError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "E" | "e" => Ok(Illuminant::E),
+            "D65" | "d65" => Ok(Illuminant::D65),
+            "A" | "a" => Ok(Illuminant::A),
+            _ => Err(ParseIlluminantError),
+        }
+    }
+}
+
+/// ∫ a(λ)·b(λ) dλ over 360-830 nm of two functions given by their 1 nm rows and interpolated
+/// linearly: the product is quadratic on each 1 nm step, so Simpson's rule is exact there.
+pub(crate) fn integrate_product_of_rows(a: impl Fn(usize) -> f64, b: impl Fn(usize) -> f64) -> f64 {
+    let rows = (LAST_NM - FIRST_NM) as usize;
+    let mut sum = 0.0;
+    for i in 0..rows {
+        let (a0, a1) = (a(i), a(i + 1));
+        let (b0, b1) = (b(i), b(i + 1));
+        let mid = 0.25 * (a0 + a1) * (b0 + b1);
+        sum += (a0 * b0 + 4.0 * mid + a1 * b1) / 6.0;
+    }
+    sum
+}
+
+/// Row `i` of the illuminant table.
+pub(crate) fn illuminant_row(ill: Illuminant, i: usize) -> f64 {
+    match ill {
+        Illuminant::E => 1.0,
+        Illuminant::D65 => D65[i],
+        Illuminant::A => ILLUMINANT_A[i],
+    }
+}
+
+/// Row `i` of the colour-matching table, channel `c`.
+pub(crate) fn cmf_row(i: usize, c: usize) -> f64 {
+    CIE1931_2DEG[i][c]
+}
