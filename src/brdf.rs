@@ -2,8 +2,10 @@
 
 use glam::{DVec3, Vec3};
 
+use crate::color::Xyz;
 use crate::error::{Error, Requirement};
 use crate::grating::{Band, Grating, Peak};
+use crate::spectrum::{Spectral, Strategy};
 
 /// What [`DiffractionBrdf::peaks`] found besides the peaks it visited.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -64,6 +66,16 @@ pub trait DiffractionBrdf {
 
     /// Whether `eval` already contains the cosine cos θi (see the trait docs).
     fn cosine_included(&self) -> bool;
+
+    /// The reference colour XYZ of the light this BRDF sends toward `wo` from a light at `wi`
+    /// whose spectrum is `spectral`'s illuminant, relative to that illuminant's white (the cosine
+    /// applied as [`cosine_included`](Self::cosine_included) says).
+    ///
+    /// The default integrates [`eval`](Self::eval) and [`peaks`](Self::peaks) by
+    /// [`Spectral::xyz_brdf`]; models with a known lobe structure override it.
+    fn xyz(&self, wi: DVec3, wo: DVec3, spectral: &Spectral, strategy: Strategy) -> Xyz {
+        spectral.xyz_brdf(self, wi, wo, strategy)
+    }
 }
 
 /// The paper's model: an Agu-Hill grating as the diffraction term of the illumination model
@@ -203,6 +215,15 @@ impl DiffractionBrdf for AguHill {
 
     fn cosine_included(&self) -> bool {
         true
+    }
+
+    /// The lobe-exact paths of [`Spectral::xyz`] for the grating, times the diffraction
+    /// coefficient (0 below the surface).
+    fn xyz(&self, wi: DVec3, wo: DVec3, spectral: &Spectral, strategy: Strategy) -> Xyz {
+        if !both_above(wi.z, wo.z) {
+            return Xyz::default();
+        }
+        spectral.xyz(&self.grating, wi.x + wo.x, strategy) * self.diffraction
     }
 }
 

@@ -226,3 +226,37 @@ fn infinite_gratings_integrate_to_zero_off_the_mirror() {
     assert!(s.xyz(&g, 0.4, Strategy::PaperPeaks).y > 0.0);
     assert_eq!(s.xyz(&g, 0.0, Strategy::Exact).y, 1.0);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(60))]
+
+    /// The generic BRDF path (what any model gets) agrees with the grating's lobe-exact path on
+    /// the Agu-Hill model: Exact to 1e-3 of the brightest order's scale, the peak search and the
+    /// paper's mode exactly for the orders (away from order 0 and the band edges).
+    #[test]
+    fn generic_brdf_path_agrees_with_grating_path(d in 700.0f64..20000.0, n in 100u32..1_000_000,
+                                                   t in 0.05f64..1.2) {
+        use diffraction::{AguHill, DiffractionBrdf};
+        use glam::DVec3;
+        let g = Grating::new(d, 0.5 * d, n).unwrap();
+        let m = AguHill::new(g);
+        let s = Spectral::new(Illuminant::D65);
+        let wi = DVec3::Z;
+        let wo = DVec3::new(t.sin(), 0.0, t.cos());
+        let special = m.xyz(wi, wo, &s, Strategy::Exact);
+        let generic = s.xyz_brdf(&m, wi, wo, Strategy::Exact);
+        let scale = 555.0 / (n as f64 * 106.857);
+        prop_assert!((special.y - generic.y).abs() < 1e-3 * scale.max(special.y),
+            "special {:?} generic {:?}", special, generic);
+        let q = d * t.sin();
+        let clear_of_edges = g.peaks(t.sin(), Band::VISIBLE).all(|p| {
+            let w = 64.0 * p.equivalent_width_nm;
+            p.wavelength_nm - w > 360.0 && p.wavelength_nm + w < 830.0
+        });
+        if q > 830.0 && clear_of_edges {
+            let a = m.xyz(wi, wo, &s, Strategy::PaperPeaks);
+            let b = s.xyz_brdf(&m, wi, wo, Strategy::PaperPeaks);
+            prop_assert!((a.y - b.y).abs() <= 1e-12 * a.y.max(1e-300));
+        }
+    }
+}
