@@ -108,6 +108,23 @@ pub struct AguHill {
     diffraction: f64,
 }
 
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for AguHill {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        struct Raw {
+            grating: Grating,
+            ambient: f64,
+            diffuse: f64,
+            diffraction: f64,
+        }
+        let r = Raw::deserialize(d)?;
+        AguHill::new(r.grating)
+            .with_coefficients(r.ambient, r.diffuse, r.diffraction)
+            .map_err(serde::de::Error::custom)
+    }
+}
+
 impl AguHill {
     /// The model with coefficients ambient = 0, diffuse = 0, diffraction = 1: the grating alone.
     #[must_use]

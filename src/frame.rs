@@ -255,6 +255,29 @@ pub enum GratingField {
     },
 }
 
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for GratingField {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        enum Raw {
+            Uniform(Tile),
+            Checkerboard {
+                cell_size: f64,
+                even: Tile,
+                odd: Tile,
+            },
+        }
+        match Raw::deserialize(d)? {
+            Raw::Uniform(t) => Ok(GratingField::Uniform(t)),
+            Raw::Checkerboard {
+                cell_size,
+                even,
+                odd,
+            } => GratingField::checkerboard(cell_size, even, odd).map_err(serde::de::Error::custom),
+        }
+    }
+}
+
 impl GratingField {
     /// A constant grating vector at `angle` radians from the first tangent axis.
     #[must_use]
