@@ -4,7 +4,7 @@
 // Source: colour-science 0.4.7. Values are Python repr() of the library's float64 values (shortest
 // round-trip, so each literal parses back to the same f64).
 // CIE1931_2DEG: colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"], which colour-science
-// ships at 360-830 nm in 1 nm steps (the CIE's own 1 nm table); used as is, no interpolation.
+// ships at 360-830 nm in 1 nm steps; used as is, no interpolation.
 // D65: colour.SDS_ILLUMINANTS["D65"], native 300-780 nm at 5 nm; brought to 360-830 nm at 1 nm
 // with .align(colour.SpectralShape(360, 830, 1)) and its defaults, i.e. LinearInterpolator (the
 // dataset's own interpolator) between the native rows and the default

@@ -52,6 +52,17 @@ fn white_points() {
         (x - 0.3127).abs() < 2e-4 && (y - 0.3290).abs() < 2e-4,
         "{x} {y}"
     );
+    // The same white as colour-science's fixture (python_ref: exact integrals of the tables).
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/lab_de2000.csv");
+    let line = fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .find_map(|l| l.strip_prefix("# white: ").map(str::to_owned))
+        .unwrap();
+    let want: Vec<f64> = line.split(' ').map(|v| v.parse().unwrap()).collect();
+    for (got, want) in [d.x, d.y, d.z].iter().zip(&want) {
+        assert!((got - want).abs() < 1e-14, "{got} {want}");
+    }
     let g = Grating::new(1600.0, 800.0, 100).unwrap();
     let s = Spectral::new(Illuminant::D65);
     for st in [
