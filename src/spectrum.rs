@@ -18,8 +18,8 @@
 //! |---|---|---|
 //! | `Uniform { samples: K }` | K evaluations | fails once peaks (width ≈ λ/(mN)) are narrower than the step |
 //! | `GaussLegendre { intervals: K }` | 8K evaluations | the same, with higher order between |
-//! | `PeakSearch { refine: false }` | O(visible orders), independent of N | O(1/N) relative |
-//! | `PeakSearch { refine: true }` | O(visible orders · 2·4 lobes · 8) | O(1/N²) relative for the peaks, misses the far tails |
+//! | `PeakSearch { refine: false }` | O(visible orders), independent of N (a few µs where order 0's light reaches the band) | 3.5/N of the brightest order; 2e-3 of order 0's light |
+//! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
 //! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
 //! | `Exact` | lobe by lobe when N·Δx ≤ 4096 lobes, else O(orders·128 lobes + log N per period) | below 1e-7 relative |
 //! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
@@ -32,8 +32,12 @@
 //! S(β_m)·E(λ_m)·cmf(λ_m)·λ_m/(|m|·N): the peak value times its
 //! [`equivalent width`](crate::Peak::equivalent_width_nm). With `refine`, the main lobe and the
 //! first three side lobes on each side of every peak are integrated by Gauss-Legendre quadrature
-//! lobe by lobe, and only the remaining mass is assigned at λ_m. Where (wi, wo) is inside the
-//! order-0 lobe (|u| < λ_max/(N·d)), the broad central lobe is integrated by quadrature instead.
+//! lobe by lobe, and only the remaining mass is assigned at λ_m. This helps little: the error of
+//! the analytic weight comes mostly from the far tails of each order (its mass spread over the
+//! whole period), not from the main lobe. Peaks within four lobes of a band end are always
+//! treated this way. Order 0 is broad in wavelength near the mirror direction: where its half
+//! period reaches into the band it is integrated by coarse quadrature (its lobes while they are
+//! wider than 4 nm, then the mean ½ of sin²(Nα)), to 2e-3 of its own colour.
 //!
 //! **The paper's peak colours** (its rendering steps 6-8) evaluate eq. 13 at the peak wavelengths
 //! only, each with its peak intensity S(β_m) whatever N is, and convert each to colour:
@@ -78,7 +82,7 @@ pub use crate::cie::Illuminant;
 use crate::color::Xyz;
 use crate::grating::{Band, Grating, Slits};
 use crate::kernel::{single_slit_cycles, sinpi};
-use crate::math::{ceil, floor, rint};
+use crate::math::{ceil, floor, rint, sqrt};
 
 const BAND: Band = Band::VISIBLE;
 /// Gauss-Legendre 8-point nodes and weights on [−1, 1] (numpy.polynomial.legendre.leggauss(8)).
@@ -104,8 +108,14 @@ const GL_W: [f64; 8] = [
 ];
 /// Lobes integrated exactly on each side of a peak by `PeakSearch { refine: true }`.
 const REFINE_LOBES: f64 = 4.0;
-/// Lobes of order 0 integrated exactly by the peak searches where they reach into the band.
-const ORDER0_LOBES: f64 = 64.0;
+/// Lobes of order 0 the peak searches integrate lobe by lobe before averaging sin²(Nα).
+const ORDER0_LOBES: f64 = 4.0;
+/// The peak searches average sin²(Nα) over order 0's lobes only where these are narrower than
+/// this, in wavelength.
+const AVERAGE_BELOW_NM: f64 = 4.0;
+/// Largest wavelength span of one 4-point Gauss-Legendre piece in the peak searches' treatment
+/// of order 0.
+const COARSE_SPAN_NM: f64 = 16.0;
 /// Lobes integrated exactly around every integer x and band end by `Exact` in its hybrid mode.
 const NEAR_LOBES: f64 = 64.0;
 /// Above this many lobes in the band, `Exact` switches to its hybrid mode.
@@ -308,8 +318,9 @@ impl Spectral {
     /// relative to the XYZ of the brightest order of this grating, is within it.
     ///
     /// Bounds (measured over the test grid of `tests/spectral_reference.rs`, where the worst
-    /// is 3/N, and kept with a margin): peak search 8/N, `Exact` 1e-7. Where the band holds at
-    /// most 64 lobes, `Exact` costs no more than the peak search and is chosen.
+    /// is 3.5/N, and kept with a margin): peak search 8/N, plus 2e-3 of the order-0 light where
+    /// order 0's half period reaches into the band (d·|u|/830 nm < ½); `Exact` 1e-7. Where the
+    /// band holds at most 64 lobes, `Exact` costs no more than the peak search and is chosen.
     #[must_use]
     pub fn choose(&self, grating: &Grating, u: f64, accuracy: f64) -> Strategy {
         let n = match grating.slits() {
@@ -323,7 +334,19 @@ impl Spectral {
         } else {
             DEFAULT_ACCURACY
         };
-        if lobes > 64.0 && 8.0 / n <= accuracy {
+        // Order 0's half period in the band: the peak search integrates it coarsely (2e-3 of
+        // its own colour). Its colour is at most F_N(x_lo) of the white, and the brightest
+        // order is about Y₁ = 555 nm/(N·∫ȳ) ≈ 5.2/N.
+        let x_lo = q / BAND.max_nm();
+        let order0 = if x_lo >= 0.5 {
+            0.0
+        } else if x_lo * n < 1.0 {
+            2e-3 * n / 5.2
+        } else {
+            let f = 1.0 / (n * sinpi(x_lo - rint(x_lo)));
+            2e-3 * f * f * n / 5.2
+        };
+        if lobes > 64.0 && 8.0 / n + order0 <= accuracy {
             Strategy::PeakSearch { refine: false }
         } else {
             Strategy::Exact
@@ -376,15 +399,24 @@ impl Spectral {
         let lobes = Lobes::new(self, grating, q, n);
         let mut acc = [0.0; 3];
         // Order 0 is broad in wavelength: where its half period (x < ½) reaches into the band,
-        // integrate the first ORDER0_LOBES lobes from the band's start by quadrature and the
-        // rest of the half period with sin²(Nα) → ½, starting on a zero of sin(Nα).
+        // the partial lobe at the start, the next ORDER0_LOBES lobes and all lobes wider than
+        // AVERAGE_BELOW_NM are integrated lobe by lobe, the rest with sin²(Nα) → ½ (starting and ending on zeros of sin(Nα), where that
+        // costs nothing), and the final partial lobe again lobe by lobe; every piece spans at
+        // most COARSE_SPAN_NM and is not split at table rows. This light is broad and its error
+        // is small against the orders' (see the module docs).
         if x_lo < 0.5 {
-            let order0_end = (ceil(x_lo * n + ORDER0_LOBES) / n).min(x_hi);
-            add(&mut acc, lobes.lobes(x_lo, order0_end));
-            let tail_end = x_hi.min(0.5);
-            if order0_end < tail_end {
-                add(&mut acc, lobes.envelope(order0_end, tail_end));
+            let end = x_hi.min(0.5);
+            // Lobes are q/(N·x²) nm wide: average only where they are narrower than
+            // AVERAGE_BELOW_NM, after at least ORDER0_LOBES lobes.
+            let narrow_from = ceil(sqrt(q / (n * AVERAGE_BELOW_NM)) * n);
+            let near_end = (ceil(x_lo * n) + ORDER0_LOBES).max(narrow_from) / n;
+            let near_end = near_end.min(end);
+            add(&mut acc, lobes.coarse_lobes(x_lo, near_end));
+            let tail_end = (floor(end * n) / n).max(near_end);
+            if near_end < tail_end {
+                add(&mut acc, lobes.envelope(near_end, tail_end, false));
             }
+            add(&mut acc, lobes.coarse_lobes(tail_end, end));
         }
         let half = REFINE_LOBES / n;
         // Mass of F_N within ±REFINE_LOBES lobes of a peak (the same for every order), and the
@@ -473,7 +505,7 @@ impl Spectral {
             if near {
                 add(&mut acc, lobes.lobes(cursor, until));
             } else {
-                add(&mut acc, lobes.envelope(cursor, until));
+                add(&mut acc, lobes.envelope(cursor, until, true));
             }
             cursor = until;
         }
@@ -748,6 +780,44 @@ impl<'a> Lobes<'a> {
         acc
     }
 
+    /// ∫ over [a, b] lobe by lobe, each lobe in pieces of at most COARSE_SPAN_NM, 4-point
+    /// Gauss-Legendre, not split at the table rows.
+    fn coarse_lobes(&self, a: f64, b: f64) -> [f64; 3] {
+        let mut acc = [0.0; 3];
+        if b.is_nan() || a.is_nan() || b <= a {
+            return acc;
+        }
+        let mut k = floor(a * self.n) + 1.0;
+        let mut lo = a;
+        while lo < b {
+            let hi = (k / self.n).min(b);
+            if hi > lo {
+                self.coarse(lo, hi, &mut acc, &|x| {
+                    let f = crate::kernel::n_slit_cycles(x, self.n_int);
+                    let e = self.envelope_at(x);
+                    [e[0] * f, e[1] * f, e[2] * f]
+                });
+            }
+            lo = hi;
+            k += 1.0;
+        }
+        acc
+    }
+
+    /// 4-point Gauss-Legendre on pieces of [a, b] spanning at most COARSE_SPAN_NM.
+    fn coarse(&self, a: f64, b: f64, acc: &mut [f64; 3], f: &dyn Fn(f64) -> [f64; 3]) {
+        let span = self.q / a - self.q / b;
+        let pieces = ceil(span / COARSE_SPAN_NM).max(1.0);
+        let step = (b - a) / pieces;
+        let count = pieces as u32;
+        let mut t = a;
+        for j in 1..=count {
+            let e = if j == count { b } else { a + j as f64 * step };
+            gl4(t, e, acc, f);
+            t = e;
+        }
+    }
+
     /// ∫ F_N dr over [−h, h] (lobe-exact Gauss-Legendre), h a whole number of lobes.
     fn kernel_mass(&self, h: f64) -> f64 {
         let mut sum = 0.0;
@@ -764,7 +834,7 @@ impl<'a> Lobes<'a> {
 
     /// ∫ over [a, b] (away from integers) with sin²(πNx) replaced by its mean ½, on a grid
     /// where the distance to the nearest integer changes by at most a factor 2 per piece.
-    fn envelope(&self, a: f64, b: f64) -> [f64; 3] {
+    fn envelope(&self, a: f64, b: f64, split_rows: bool) -> [f64; 3] {
         let mut acc = [0.0; 3];
         let mut lo = a;
         while lo < b {
@@ -776,12 +846,17 @@ impl<'a> Lobes<'a> {
                 lo + 0.5 * (m + 1.0 - lo)
             };
             let hi = if hi > lo { hi.min(b) } else { b };
-            self.split_at_rows(lo, hi, &mut acc, &|x| {
+            let f = |x: f64| {
                 let den = self.n * sinpi(x - rint(x));
                 let f = 0.5 / (den * den);
                 let e = self.envelope_at(x);
                 [e[0] * f, e[1] * f, e[2] * f]
-            });
+            };
+            if split_rows {
+                self.split_at_rows(lo, hi, &mut acc, &f);
+            } else {
+                self.coarse(lo, hi, &mut acc, &f);
+            }
             lo = hi;
         }
         acc
@@ -804,6 +879,18 @@ impl<'a> Lobes<'a> {
         if b > lo {
             gl8(lo, b, acc, f);
         }
+    }
+}
+
+/// 4-point Gauss-Legendre over [a, b] (numpy.polynomial.legendre.leggauss(4)).
+#[inline]
+fn gl4(a: f64, b: f64, acc: &mut [f64; 3], f: &dyn Fn(f64) -> [f64; 3]) {
+    const X: [f64; 2] = [0.33998104358485626, 0.8611363115940526];
+    const W: [f64; 2] = [0.6521451548625464, 0.34785484513745357];
+    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    for (x, w) in X.iter().zip(W) {
+        add_scaled(acc, f(mid - half * x), w * half);
+        add_scaled(acc, f(mid + half * x), w * half);
     }
 }
 
