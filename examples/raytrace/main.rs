@@ -1,0 +1,304 @@
+//! The reference ray tracer of the `diffraction` crate: the scenes of Agu & Hill's figures 4-6
+//! (gratings, twisted and checkerboard gratings, a CD-ROM beside an image-mapped can, a mirror
+//! cube, all on wood), rendered Whitted-style with the crate's diffraction shading.
+//!
+//! ```text
+//! cargo run --release --example raytrace                       # every scene into out/
+//! cargo run --release --example raytrace -- fig6 --out cd.png --width 800 --height 600 --spp 16
+//! cargo run --release --example raytrace -- fig4b --frames 36 --out anim/
+//! cargo run --release --example raytrace -- --help
+//! ```
+//!
+//! Only the diffraction shading and the colour pipeline come from the crate (`Grating`,
+//! `AguHill`, `frame::{GratingField, Tile, ShadingFrame}`, `spectrum::Spectral`,
+//! `color::{Xyz, LinearSrgb, Clip}`); geometry, textures, scene files and output are here.
+
+mod cli;
+mod diagnostics;
+mod font;
+mod geometry;
+mod material;
+mod output;
+mod render;
+mod scene;
+mod texture;
+
+#[cfg(test)]
+mod tests;
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use cli::{Command, Options};
+use scene::Scene;
+
+/// Where the shipped scenes live.
+fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
+}
+
+/// Where the generated can label is shipped.
+fn label_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/assets/label.png")
+}
+
+/// The shipped scene names, sorted.
+fn scene_names() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(scenes_dir())
+        .map(|dir| {
+            dir.filter_map(|e| e.ok())
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+                .filter_map(|p| p.file_stem().map(|s| s.to_string_lossy().into_owned()))
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
+
+/// A scene argument: a shipped scene's name, or a path to a `.toml` file.
+fn scene_path(arg: &str) -> Result<PathBuf, String> {
+    let as_path = Path::new(arg);
+    if arg.ends_with(".toml") || arg.contains(std::path::MAIN_SEPARATOR) || arg.contains('/') {
+        return Ok(as_path.to_path_buf());
+    }
+    let p = scenes_dir().join(format!("{arg}.toml"));
+    if p.exists() {
+        Ok(p)
+    } else {
+        Err(format!(
+            "unknown scene \"{arg}\": expected one of {} or a path to a .toml file",
+            scene_names().join(", ")
+        ))
+    }
+}
+
+/// Loads a scene and applies the command line's overrides.
+fn prepare(path: &Path, opts: &Options) -> Result<Scene, String> {
+    let mut scene = scene::load(path).map_err(|e| e.to_string())?;
+    let s = &mut scene.settings;
+    let (w0, h0) = (s.width, s.height);
+    match (opts.width, opts.height) {
+        (Some(w), Some(h)) => (s.width, s.height) = (w, h),
+        // One side given: keep the scene's aspect ratio.
+        (Some(w), None) => {
+            (s.width, s.height) = (
+                w,
+                ((w as f64 * h0 as f64 / w0 as f64).round() as u32).clamp(1, scene::MAX_SIZE),
+            )
+        }
+        (None, Some(h)) => {
+            (s.width, s.height) = (
+                ((h as f64 * w0 as f64 / h0 as f64).round() as u32).clamp(1, scene::MAX_SIZE),
+                h,
+            )
+        }
+        (None, None) => {}
+    }
+    if let Some(spp) = opts.spp {
+        s.spp = spp;
+    }
+    if let Some(seed) = opts.seed {
+        s.seed = seed;
+    }
+    if let Some(clip) = opts.clip {
+        s.clip = clip;
+    }
+    if let Some(strategy) = opts.strategy {
+        scene.set_strategy(strategy);
+    }
+    Ok(scene)
+}
+
+fn note(opts: &Options, msg: &str) {
+    if !opts.quiet {
+        eprintln!("{msg}");
+    }
+}
+
+fn has_extension(p: &Path, ext: &str) -> bool {
+    p.extension().is_some_and(|x| x.eq_ignore_ascii_case(ext))
+}
+
+/// Renders one still; writes a PNG and/or a PFM.
+fn still(
+    scene: &Scene,
+    png: Option<&Path>,
+    pfm: Option<&Path>,
+    opts: &Options,
+) -> Result<(), String> {
+    let start = Instant::now();
+    if !scene.description.is_empty() {
+        note(opts, &format!("{}: {}", scene.name, scene.description));
+    }
+    let image = render::render(
+        scene,
+        &scene.camera,
+        render::progress_wanted(opts.quiet),
+        &scene.name,
+    );
+    if opts.compare_clip {
+        if let Some(p) = png {
+            output::write_png(p, &output::clip_panels(&image))?;
+        }
+    } else if let Some(p) = png {
+        output::write_png(p, &output::to_rgb8(&image, scene.settings.clip))?;
+    }
+    if let Some(p) = pfm {
+        output::write_pfm(p, &image)?;
+    }
+    let s = &scene.settings;
+    let written: Vec<String> = png
+        .iter()
+        .chain(pfm.iter())
+        .map(|p| p.display().to_string())
+        .collect();
+    note(
+        opts,
+        &format!(
+            "{}: {}x{}, {} spp, {}, clip {} in {:.2} s -> {}",
+            scene.name,
+            s.width,
+            s.height,
+            s.spp,
+            s.strategy,
+            if opts.compare_clip {
+                "all".to_string()
+            } else {
+                s.clip.to_string()
+            },
+            start.elapsed().as_secs_f64(),
+            written.join(", ")
+        ),
+    );
+    Ok(())
+}
+
+/// Renders `frames` frames orbiting the camera once around its target into `dir`, as numbered
+/// PNGs and an animated GIF.
+fn animation(scene: &Scene, frames: u32, dir: &Path, opts: &Options) -> Result<(), String> {
+    let start = Instant::now();
+    let bar = render::progress_wanted(opts.quiet);
+    let mut pictures = Vec::new();
+    for i in 0..frames {
+        let angle = std::f64::consts::TAU * i as f64 / frames as f64;
+        let camera = render::orbit(&scene.camera, angle);
+        let image = render::render(
+            scene,
+            &camera,
+            bar,
+            &format!("{} {}/{}", scene.name, i + 1, frames),
+        );
+        let png = output::to_rgb8(&image, scene.settings.clip);
+        output::write_png(&dir.join(format!("{}_{i:04}.png", scene.name)), &png)?;
+        pictures.push(png);
+    }
+    let gif = dir.join(format!("{}.gif", scene.name));
+    output::write_gif(&gif, &pictures, 80)?;
+    note(
+        opts,
+        &format!(
+            "{}: {frames} frames in {:.1} s -> {}/{}_NNNN.png, {}",
+            scene.name,
+            start.elapsed().as_secs_f64(),
+            dir.display(),
+            scene.name,
+            gif.display()
+        ),
+    );
+    Ok(())
+}
+
+fn run(opts: &Options) -> Result<(), String> {
+    let all = opts.scenes.is_empty();
+    let names: Vec<String> = if all {
+        scene_names()
+    } else {
+        opts.scenes.clone()
+    };
+    if names.is_empty() {
+        return Err(format!("no scenes found in {}", scenes_dir().display()));
+    }
+    let single = names.len() == 1;
+    let out = opts.out.clone();
+    let start = Instant::now();
+    for name in &names {
+        let path = scene_path(name)?;
+        let scene = prepare(&path, opts)?;
+        if let Some(frames) = opts.frames {
+            let dir = match &out {
+                Some(d) if single => d.clone(),
+                Some(d) => d.join(&scene.name),
+                None => PathBuf::from("out").join(&scene.name),
+            };
+            animation(&scene, frames, &dir, opts)?;
+            continue;
+        }
+        // One scene and a file name: write exactly that; otherwise a directory of NAME.png
+        // (and NAME.pfm when rendering everything or when asked).
+        let file_out = out
+            .as_ref()
+            .filter(|p| single && (has_extension(p, "png") || has_extension(p, "pfm")));
+        let suffix = if opts.compare_clip { "-clipping" } else { "" };
+        let (png, pfm) = match file_out {
+            Some(p) if has_extension(p, "pfm") => (None, Some(p.clone())),
+            Some(p) => (Some(p.clone()), opts.pfm.clone()),
+            None => {
+                let dir = out.clone().unwrap_or_else(|| PathBuf::from("out"));
+                let png = dir.join(format!("{}{suffix}.png", scene.name));
+                let pfm = if opts.compare_clip {
+                    None
+                } else if all {
+                    Some(dir.join(format!("{}.pfm", scene.name)))
+                } else {
+                    opts.pfm.clone()
+                };
+                (Some(png), pfm)
+            }
+        };
+        still(&scene, png.as_deref(), pfm.as_deref(), opts)?;
+    }
+    if !single {
+        note(
+            opts,
+            &format!(
+                "{} scenes in {:.1} s",
+                names.len(),
+                start.elapsed().as_secs_f64()
+            ),
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let command = match cli::parse(&args) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}\n\nRun with --help for usage.");
+            return ExitCode::from(2);
+        }
+    };
+    let result = match command {
+        Command::Help => {
+            print!("{}", cli::USAGE);
+            Ok(())
+        }
+        Command::MakeLabel { out } => {
+            let out = out.unwrap_or_else(label_path);
+            output::write_png(&out, &texture::make_label())
+                .map(|()| eprintln!("wrote {}", out.display()))
+        }
+        Command::Render(opts) => run(&opts),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,163 @@
+//! Materials: a diffuse colour source (solid, wood, image), optional mirror reflection, and for
+//! diffraction gratings the crate's Agu-Hill model with a grating-direction field.
+
+use std::sync::Arc;
+
+use diffraction::color::Xyz;
+use diffraction::frame::{GratingField, Tile};
+use diffraction::spectrum::{Spectral, Strategy};
+use diffraction::{AguHill, Grating};
+use glam::DVec3;
+
+use crate::geometry::{Hit, Part};
+use crate::texture::{ImageTexture, Wood};
+
+/// Where the diffuse colour of a surface comes from.
+#[derive(Debug, Clone)]
+pub enum Albedo {
+    Solid(DVec3),
+    Wood(Wood),
+    /// An image on the side of a cylinder (a can's label); `other` colours the caps and any
+    /// other part.
+    Image {
+        texture: Arc<ImageTexture>,
+        other: DVec3,
+    },
+}
+
+impl Albedo {
+    pub fn at(&self, hit: &Hit) -> DVec3 {
+        match self {
+            Albedo::Solid(c) => *c,
+            Albedo::Wood(w) => w.albedo(hit.object_point),
+            Albedo::Image { texture, other } => match hit.part {
+                Part::Side | Part::Face => texture.sample(hit.uv),
+                Part::Cap => *other,
+            },
+        }
+    }
+}
+
+/// A surface material.
+#[derive(Debug, Clone)]
+pub struct Material {
+    pub albedo: Albedo,
+    /// Phong ambient coefficient k_a.
+    pub ambient: f64,
+    /// Phong diffuse coefficient k_d.
+    pub diffuse: f64,
+    /// Fraction of perfect mirror reflection (0: none), tinted by `mirror_tint`.
+    pub mirror: f64,
+    pub mirror_tint: DVec3,
+    /// The diffraction grating, for diffractive materials; `None` costs nothing spectral.
+    pub grating: Option<GratingMaterial>,
+}
+
+/// A diffraction grating material: the paper's illumination model (eq. 12) with the crate's
+/// Agu-Hill intensity, over a field of grating directions.
+#[derive(Debug, Clone)]
+pub struct GratingMaterial {
+    /// The grating and the coefficients (ambient, diffuse, diffraction) of eq. 12.
+    pub model: AguHill,
+    /// The grating vector across the surface (constant, twisted, radial, checkerboard).
+    pub field: GratingField,
+    /// How the spectral integral is evaluated.
+    pub strategy: Strategy,
+    /// Scale of the diffraction XYZ, see [`exposure`].
+    pub exposure: f64,
+    /// The diffuse colour of the plain (non-grating) squares of a checkerboard.
+    pub plain_albedo: DVec3,
+}
+
+impl GratingMaterial {
+    /// The diffraction term's colour for phase projection `u`: k_diffraction · exposure · XYZ(u).
+    pub fn xyz(&self, spectral: &Spectral, u: f64) -> Xyz {
+        let (_, _, k) = self.model.coefficients();
+        spectral
+            .xyz(self.model.grating(), u, self.strategy)
+            .scale(k * self.exposure)
+    }
+
+    /// Whether the field has a grating at the tangent point `p` (not a plain square).
+    pub fn is_plain_at(&self, p: glam::DVec2) -> bool {
+        matches!(self.field.tile_at(p), Tile::Plain)
+    }
+}
+
+/// The strategy used to measure a grating's exposure when rendering with `strategy`.
+///
+/// The peak search is cheap (O(visible orders)) and accurate to O(1/N), so it measures the
+/// exposure for every strategy that estimates the spectral integral; the paper's peak colours
+/// are normalised differently (each peak has weight S(β_m), about 1) and are measured with
+/// themselves.
+fn exposure_strategy(strategy: Strategy) -> Strategy {
+    match strategy {
+        Strategy::PaperPeaks => Strategy::PaperPeaks,
+        _ => Strategy::PeakSearch { refine: false },
+    }
+}
+
+/// Number of u values scanned by [`exposure`].
+pub const EXPOSURE_SCAN: usize = 4000;
+
+/// The exposure of a grating's diffraction term: `1 / max Y(u)` over the diffracted orders,
+/// computed once per material when the scene is loaded.
+///
+/// With the paper's 1/N² normalisation the peak of every order is 1 but its width is about
+/// λ/(|m|·N), so the colour an order integrates to, XYZ(u) = ∫ E·I(u, λ)·cmf dλ / ∫ E·ȳ dλ, is
+/// about 1/N as bright as a white reflector (Y ≈ 5·10⁻⁴ for N = 1000). Scaling the diffraction
+/// XYZ by this exposure gives the grating's brightest **diffracted** colour Y = 1, the crate's
+/// convention for colour errors too, whatever N is; the relative brightness of the orders and
+/// the hues are the integral's.
+///
+/// The scan covers u ∈ [-2, 2] at [`EXPOSURE_SCAN`] points with the cheap peak search, but
+/// leaves out |u| < λ_min/(2d), the neighbourhood of the order-0 (mirror) lobe: there
+/// I(u, λ) ≈ 1 at every wavelength, Y ≈ 1, and including it would always give exposure 1. The
+/// mirror highlight of a light is therefore `exposure` times overexposed, as a real grating's
+/// zeroth order is next to its faint spectra. With the paper's own peak colours
+/// (`Strategy::PaperPeaks`, weights about 1) the exposure comes out near 1 and changes little.
+pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f64 {
+    let strategy = exposure_strategy(strategy);
+    let u_min = diffraction::Band::VISIBLE.min_nm() / (2.0 * grating.period_nm());
+    let mut max_y: f64 = 0.0;
+    for i in 0..=EXPOSURE_SCAN {
+        let u = -2.0 + 4.0 * i as f64 / EXPOSURE_SCAN as f64;
+        if u.abs() < u_min {
+            continue;
+        }
+        max_y = max_y.max(spectral.xyz(grating, u, strategy).y);
+    }
+    if max_y > 0.0 && max_y.is_finite() {
+        1.0 / max_y
+    } else {
+        1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use diffraction::cie::Illuminant;
+
+    #[test]
+    fn exposure_brings_the_brightest_order_to_one() {
+        let spectral = Spectral::new(Illuminant::D65);
+        let g = Grating::new(1600.0, 800.0, 1000).unwrap();
+        let k = exposure(&spectral, &g, Strategy::PeakSearch { refine: false });
+        // About N / (λ·…): hundreds for N = 1000.
+        assert!(k > 100.0 && k < 10_000.0, "{k}");
+        let brightest = (0..=EXPOSURE_SCAN)
+            .map(|i| -2.0 + 4.0 * i as f64 / EXPOSURE_SCAN as f64)
+            .filter(|u: &f64| u.abs() > 0.2)
+            .map(|u| {
+                spectral
+                    .xyz(&g, u, Strategy::PeakSearch { refine: false })
+                    .y
+                    * k
+            })
+            .fold(0.0, f64::max);
+        assert!((brightest - 1.0).abs() < 1e-9);
+        let paper = exposure(&spectral, &g, Strategy::PaperPeaks);
+        assert!(paper > 0.3 && paper < 3.0, "{paper}");
+    }
+}
