@@ -726,6 +726,9 @@ impl Spectral {
     }
 }
 
+/// A quadrature rule applied to one piece [a, b] of a [`Lobes`] integral.
+type PieceRule<'a> = fn(&Lobes<'a>, f64, f64, &mut [f64; 3], &dyn Fn(f64) -> [f64; 3]);
+
 /// Quadrature in the phase x = q/λ (q = d·|u|) of E·S·cmf·F_N·norm·q/x².
 struct Lobes<'a> {
     s: &'a Spectral,
@@ -757,46 +760,35 @@ impl<'a> Lobes<'a> {
         [w[0] * k, w[1] * k, w[2] * k]
     }
 
-    /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables.
+    /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables (8-point rule).
     fn lobes(&self, a: f64, b: f64) -> [f64; 3] {
-        let mut acc = [0.0; 3];
-        if b.is_nan() || a.is_nan() || b <= a {
-            return acc;
-        }
-        let mut k = floor(a * self.n) + 1.0;
-        let mut lo = a;
-        while lo < b {
-            let hi = (k / self.n).min(b);
-            if hi > lo {
-                self.split_at_rows(lo, hi, &mut acc, &|x| {
-                    let f = crate::kernel::n_slit_cycles(x, self.n_int);
-                    let e = self.envelope_at(x);
-                    [e[0] * f, e[1] * f, e[2] * f]
-                });
-            }
-            lo = hi;
-            k += 1.0;
-        }
-        acc
+        self.lobes_by(a, b, Self::split_at_rows)
     }
 
     /// ∫ over [a, b] lobe by lobe, each lobe in pieces of at most COARSE_SPAN_NM, 4-point
     /// Gauss-Legendre, not split at the table rows.
     fn coarse_lobes(&self, a: f64, b: f64) -> [f64; 3] {
+        self.lobes_by(a, b, Self::coarse)
+    }
+
+    /// ∫ over [a, b] of the full integrand, one lobe (between zeros x = k/N) at a time, each
+    /// lobe handed to `rule`.
+    fn lobes_by(&self, a: f64, b: f64, rule: PieceRule<'a>) -> [f64; 3] {
         let mut acc = [0.0; 3];
         if b.is_nan() || a.is_nan() || b <= a {
             return acc;
         }
+        let integrand = |x: f64| {
+            let f = crate::kernel::n_slit_cycles(x, self.n_int);
+            let e = self.envelope_at(x);
+            [e[0] * f, e[1] * f, e[2] * f]
+        };
         let mut k = floor(a * self.n) + 1.0;
         let mut lo = a;
         while lo < b {
             let hi = (k / self.n).min(b);
             if hi > lo {
-                self.coarse(lo, hi, &mut acc, &|x| {
-                    let f = crate::kernel::n_slit_cycles(x, self.n_int);
-                    let e = self.envelope_at(x);
-                    [e[0] * f, e[1] * f, e[2] * f]
-                });
+                rule(self, lo, hi, &mut acc, &integrand);
             }
             lo = hi;
             k += 1.0;
