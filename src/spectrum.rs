@@ -9,7 +9,7 @@
 //! ```
 //!
 //! with the CIE 1931 2° observer and the illuminant interpolated linearly between their 1 nm rows
-//! ([`cie`](crate::cie)), so that a perfect white reflector has Y = 1. [`Spectral::xyz`] computes
+//! ([`cie`]), so that a perfect white reflector has Y = 1. [`Spectral::xyz`] computes
 //! it for the Agu-Hill intensity I(u, λ) = S(β)·F_N(α) of a [`Grating`] seen at phase projection u.
 //!
 //! # Strategies
