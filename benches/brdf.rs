@@ -1,0 +1,139 @@
+//! Cost of one BRDF evaluation at one wavelength: `AguHill`'s `eval` (f64) and `eval_f32`,
+//! against the textbook formula written directly in f32 and f64 (`kernel::naive`).
+//!
+//! Each iteration evaluates a fixed, deterministic batch of 1024 (wi, wo, λ), half of them within
+//! a few lobes of a diffraction peak, so the figure reported per element is ns per evaluation.
+//! Gratings: N ∈ {1, 30, 1000, 10⁶} slits, periods 740, 1600 and 100 000 nm, slit width d/2.
+
+use criterion::{black_box, BenchmarkId, Criterion, Throughput};
+use diffraction::kernel::naive;
+use diffraction::{AguHill, DiffractionBrdf, Grating};
+use glam::{DVec3, Vec3};
+use std::time::Duration;
+
+const BATCH: usize = 1024;
+const SLITS: [u32; 4] = [1, 30, 1000, 1_000_000];
+const PERIODS: [f64; 3] = [740.0, 1600.0, 100_000.0];
+
+/// A small deterministic generator of numbers in [0, 1) (SplitMix64).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A unit direction in the upper hemisphere (z ≥ 0.05).
+    fn direction(&mut self) -> DVec3 {
+        let z = 0.05 + 0.95 * self.next();
+        let phi = std::f64::consts::TAU * self.next();
+        let s = (1.0 - z * z).sqrt();
+        DVec3::new(s * phi.cos(), s * phi.sin(), z)
+    }
+}
+
+/// The batch for one grating: (wi, wo, λ), every other one near a peak of order 1-4.
+fn samples(period: f64, n: u32) -> Vec<(DVec3, DVec3, f64)> {
+    let mut rng = Rng(0xB4D5 ^ u64::from(n) ^ ((period as u64) << 20));
+    let mut v = Vec::with_capacity(BATCH);
+    while v.len() < BATCH {
+        let wi = rng.direction();
+        let lambda = 360.0 + 470.0 * rng.next();
+        let mut wo = rng.direction();
+        if v.len() % 2 == 0 {
+            // u = m·λ/d plus a few lobes λ/(N·d).
+            let m = 1.0 + (rng.next() * 4.0).floor();
+            let off = (rng.next() - 0.5) * 8.0 / f64::from(n);
+            let x = (m + off) * lambda / period - wi.x;
+            let y = 0.3 * (rng.next() - 0.5);
+            let z2 = 1.0 - x * x - y * y;
+            if z2 <= 0.0025 {
+                continue;
+            }
+            wo = DVec3::new(x, y, z2.sqrt());
+        }
+        v.push((wi, wo, lambda));
+    }
+    v
+}
+
+/// The textbook formula in `f32`, as a renderer would write it.
+#[inline]
+fn naive_f32(d: f32, w: f32, n: u32, wi: Vec3, wo: Vec3, lambda: f32) -> f32 {
+    if wi.z <= 0.0 || wo.z <= 0.0 {
+        return 0.0;
+    }
+    let k = std::f32::consts::PI * (wi.x + wo.x) / lambda;
+    naive::single_slit(k * w) * naive::n_slit(k * d, n)
+}
+
+/// The textbook formula in `f64`.
+#[inline]
+fn naive_f64(d: f64, w: f64, n: u32, wi: DVec3, wo: DVec3, lambda: f64) -> f64 {
+    if wi.z <= 0.0 || wo.z <= 0.0 {
+        return 0.0;
+    }
+    let k = std::f64::consts::PI * (wi.x + wo.x) / lambda;
+    naive::single_slit(k * w) * naive::n_slit(k * d, n)
+}
+
+fn bench_eval(c: &mut Criterion) {
+    let mut g = c.benchmark_group("brdf_eval");
+    g.throughput(Throughput::Elements(BATCH as u64))
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(1))
+        .sample_size(50);
+    for period in PERIODS {
+        for n in SLITS {
+            let w = period / 2.0;
+            let brdf = AguHill::new(Grating::new(period, w, n).expect("valid grating"));
+            let s64 = samples(period, n);
+            let s32: Vec<(Vec3, Vec3, f32)> = s64
+                .iter()
+                .map(|&(a, b, l)| (a.as_vec3(), b.as_vec3(), l as f32))
+                .collect();
+            let (d32, w32) = (period as f32, w as f32);
+            let id = format!("N={n},d={period}");
+            g.bench_function(BenchmarkId::new("eval_f64", &id), |b| {
+                b.iter(|| {
+                    s64.iter()
+                        .map(|&(wi, wo, l)| brdf.eval(black_box(wi), wo, l))
+                        .sum::<f64>()
+                })
+            });
+            g.bench_function(BenchmarkId::new("eval_f32", &id), |b| {
+                b.iter(|| {
+                    s32.iter()
+                        .map(|&(wi, wo, l)| brdf.eval_f32(black_box(wi), wo, l))
+                        .sum::<f32>()
+                })
+            });
+            g.bench_function(BenchmarkId::new("naive_f64", &id), |b| {
+                b.iter(|| {
+                    s64.iter()
+                        .map(|&(wi, wo, l)| naive_f64(period, w, n, black_box(wi), wo, l))
+                        .sum::<f64>()
+                })
+            });
+            g.bench_function(BenchmarkId::new("naive_f32", &id), |b| {
+                b.iter(|| {
+                    s32.iter()
+                        .map(|&(wi, wo, l)| naive_f32(d32, w32, n, black_box(wi), wo, l))
+                        .sum::<f32>()
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    bench_eval(&mut c);
+    c.final_summary();
+}
