@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use crate::error::{positive, Error, Requirement};
 use crate::float::Float;
-use crate::kernel::{n_slit_cycles, single_slit_cycles};
+use crate::kernel::{intensity_cycles, n_slit_cycles, single_slit_cycles};
 use crate::math;
 
 /// The number of coherently illuminated slits (periods), N.
@@ -287,7 +287,10 @@ impl Grating {
             return 0.0;
         }
         let y = self.slit_width_nm * q;
-        single_slit_cycles(y) * self.n_slit_x(x)
+        match self.slits {
+            Slits::Finite(n) if n >= 2 => intensity_cycles(x, y, n),
+            _ => single_slit_cycles(y) * self.n_slit_x(x),
+        }
     }
 
     /// F_N at phase x in cycles, including the N → ∞ limit (1 on integers, 0 elsewhere).

@@ -152,6 +152,44 @@ fn n_slit_reduced(r: f64, n: u32) -> f64 {
     }
 }
 
+/// S(y)·F_N(x) with one division: the grating intensity for phases in cycles (x = d·u/λ,
+/// y = w·u/λ), `n` ≥ 2. Same accuracy as the product of [`single_slit_cycles`] and
+/// [`n_slit_cycles`] (a few ulp of each factor), about half the cost.
+#[inline]
+pub(crate) fn intensity_cycles(x: f64, y: f64, n: u32) -> f64 {
+    // F_N = (f_num/f_den)², as in `n_slit_reduced`.
+    let r = x - rint(x);
+    let nf = n as f64;
+    const SPLIT: f64 = 2_097_152.0; // 2^21
+    let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
+    let p_hi = nf * r_hi;
+    let s = (p_hi - rint(p_hi)) + nf * (r - r_hi);
+    let s = s - rint(s);
+    let (f_num, f_den) = if (nf * r).abs() <= 0.5 {
+        if s.abs() < 1e-12 {
+            (1.0, 1.0) // F = 1 − O((πs)²) = 1 in f64
+        } else {
+            // sinc(πs)/sinc(πr) = sin(πs)·r / (s·sin(πr)); r ≥ s/N > 1e-22, no underflow.
+            (sinpi(s) * r, s * sinpi(r))
+        }
+    } else {
+        (sinpi(s), nf * sinpi(r))
+    };
+    // S = (s_num/s_den)², as in `single_slit_core`.
+    let (s_num, s_den) = if y.abs() < 1e-8 {
+        (1.0, 1.0) // 1 − (πy)²/3 = 1 to 3e-16
+    } else {
+        (sinpi(y - rint(y)), core::f64::consts::PI * y)
+    };
+    let q = (f_num * s_num) / (f_den * s_den);
+    let i = q * q;
+    if i > 1.0 {
+        1.0
+    } else {
+        i
+    }
+}
+
 /// F_N(x) = sin²(πNx) / (N² sin²(πx)) with the phase in cycles, x = α/π = d·u/λ.
 ///
 /// Equals 1 at every integer x (the grating-equation maxima), 0 at x = k/N for k not a

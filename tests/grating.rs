@@ -260,3 +260,23 @@ fn non_physical_wavelengths_give_zero_not_nan() {
     assert_eq!(g.diffracted_orders(DVec3::Z, 0.0).count(), 0);
     assert_eq!(g.peak_wavelength(0.5, 0), None);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The fused intensity (one division) is the product of the two kernels at the same phases
+    /// x = d·(u/λ), y = w·(u/λ), to a few ulp.
+    #[test]
+    fn intensity_is_the_product_of_the_factors(g in grating(), u in -2.0f64..2.0,
+                                               l in 360.0f64..830.0) {
+        use diffraction::kernel::n_slit_cycles;
+        let q = u / l;
+        let (x, y) = (g.period_nm() * q, g.slit_width_nm() * q);
+        let want = match g.slits() {
+            Slits::Finite(n) => single_slit_cycles(y) * n_slit_cycles(x, n),
+            Slits::Infinite => return Ok(()),
+        };
+        let got = g.intensity(u, l);
+        prop_assert!((got - want).abs() <= 1e-14 * want + 1e-300, "{} vs {}", got, want);
+    }
+}
