@@ -436,10 +436,15 @@ impl Spectral {
             }
             // Main and first side lobes by quadrature (clipped to the band), the rest of the
             // mass of each side that lies in the band at the peak.
-            add(
-                &mut acc,
-                lobes.lobes((m - half).max(x_lo), (m + half).min(x_hi)),
-            );
+            // (Refined: exact lobes; plain: the coarse rule, enough for the peak search's
+            // accuracy and far cheaper when N is small and the lobes are wide.)
+            let (a, b) = ((m - half).max(x_lo), (m + half).min(x_hi));
+            let near = if refine {
+                lobes.lobes(a, b)
+            } else {
+                lobes.coarse_lobes(a, b)
+            };
+            add(&mut acc, near);
             let sides = (m - half >= x_lo) as u8 + (m + half <= x_hi) as u8;
             let rest = 0.5 * sides as f64 * (1.0 / n - near_mass_edge).max(0.0);
             let w = self.weight(p.wavelength_nm);
@@ -449,7 +454,7 @@ impl Spectral {
         for m in [floor(x_lo), ceil(x_hi)] {
             if m >= 1.0 && !(x_lo..=x_hi).contains(&m) {
                 let (a, b) = ((m - half).max(x_lo), (m + half).min(x_hi));
-                add(&mut acc, lobes.lobes(a, b));
+                add(&mut acc, lobes.coarse_lobes(a, b));
             }
         }
         acc
