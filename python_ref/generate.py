@@ -6,7 +6,8 @@
     python3 python_ref/generate.py --only tables kernels   # restrict to some parts (for development)
 
 Parts: tables (src/cie_data.rs), kernels (tests/data/kernels.csv), colour (cmf_interp.csv,
-xyz_to_srgb.csv, srgb_transfer.csv, lab_de2000.csv), spectral (spectral_xyz.csv; the slow one).
+xyz_to_srgb.csv, srgb_transfer.csv, lab_de2000.csv), spectral (spectral_xyz.csv; the slow one),
+stam (stam_orders.csv).
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import colour_fixtures  # noqa: E402
 import kernels  # noqa: E402
 import spectral  # noqa: E402
+import stam  # noqa: E402
 import tables  # noqa: E402
 from common import REPO  # noqa: E402
 
@@ -33,6 +35,7 @@ PARTS = {
     "kernels": kernels.generate,
     "colour": colour_fixtures.generate,
     "spectral": spectral.generate,
+    "stam": stam.generate,
 }
 
 

@@ -47,6 +47,13 @@ pub enum Requirement {
         /// The bound's value.
         bound: f64,
     },
+    /// At least the given bound.
+    AtLeast {
+        /// The name of the bound.
+        bound_name: &'static str,
+        /// The bound's value.
+        bound: f64,
+    },
     /// Strictly greater than the given bound.
     GreaterThan {
         /// The name of the bound.
@@ -104,6 +111,9 @@ impl fmt::Display for Error {
                     Requirement::AtLeastOne => write!(f, "be at least 1"),
                     Requirement::AtMost { bound_name, bound } => {
                         write!(f, "satisfy 0 < {name} <= {bound_name} ({bound})")
+                    }
+                    Requirement::AtLeast { bound_name, bound } => {
+                        write!(f, "satisfy {name} >= {bound_name} ({bound})")
                     }
                     Requirement::GreaterThan { bound_name, bound } => {
                         write!(f, "satisfy {name} > {bound_name} ({bound})")

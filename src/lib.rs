@@ -43,6 +43,10 @@
 //! * [`frame`]: the phase projection and grating-direction fields (constant, twisted, radial
 //!   tracks of a CD, checkerboards).
 //! * [`DiffractionBrdf`], [`AguHill`]: the BRDF interface and the paper's model.
+//! * [`Thorman`]: the baseline the paper improves on, peak directions only, every order equally
+//!   bright (a Gaussian lobe of chosen width around each).
+//! * `Stam`, `Profile`, `stam::bessel_j` (feature `stam`): Stam's Fourier-optics diffraction
+//!   shader for sinusoidal and binary profiles with a finite coherence area.
 //! * [`cie`]: the CIE 1931 2° observer and illuminants E, D65, A at 1 nm (from colour-science).
 //! * [`spectrum`]: the reference colour XYZ of the intensity, by named strategies with stated
 //!   cost and error (uniform, Gauss-Legendre, stratified and hero wavelengths, peak search, the
@@ -81,6 +85,8 @@
 //! * `std` (default): maths from the standard library.
 //! * `libm`: maths from the `libm` crate, for `no_std` (disable default features).
 //! * `serde`: `Serialize`/`Deserialize` for the parameter types.
+//! * `stam`: the `stam` module with Stam's model (adds the `num-complex` dependency, without its
+//!   default features: it works with `std` and with `libm`).
 //!
 //! One of `std` and `libm` must be enabled.
 
@@ -101,10 +107,16 @@ mod grating;
 pub mod kernel;
 mod math;
 pub mod spectrum;
+#[cfg(feature = "stam")]
+pub mod stam;
+mod thorman;
 
 pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
 pub use error::{Error, Requirement};
 pub use float::Float;
+#[cfg(feature = "stam")]
+pub use stam::{Profile, Stam};
+pub use thorman::Thorman;
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

@@ -1,12 +1,15 @@
 //! Materials: a diffuse colour source (solid, wood, image), optional mirror reflection, and for
-//! diffraction gratings the crate's Agu-Hill model with a grating-direction field.
+//! diffraction gratings one of the crate's models (the paper's Agu-Hill model, or the baselines
+//! Thorman and, with the `stam` feature, Stam) with a grating-direction field.
 
 use std::sync::Arc;
 
 use diffraction::color::Xyz;
 use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
-use diffraction::{AguHill, Grating};
+#[cfg(feature = "stam")]
+use diffraction::Stam;
+use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
 use glam::DVec3;
 
 use crate::geometry::{Hit, Part};
@@ -53,12 +56,38 @@ pub struct Material {
     pub grating: Option<GratingMaterial>,
 }
 
-/// A diffraction grating material: the paper's illumination model (eq. 12) with the crate's
-/// Agu-Hill intensity, over a field of grating directions.
+/// The diffraction model of a grating material (the scene's `model` key).
+#[derive(Debug, Clone)]
+pub enum Model {
+    /// The paper's model, with the coefficients (ambient, diffuse, diffraction) of eq. 12.
+    AguHill(AguHill),
+    /// Thorman's: peak directions only, every order equally bright.
+    Thorman(Thorman),
+    /// Stam's Fourier optics (sinusoidal or binary profile).
+    #[cfg(feature = "stam")]
+    Stam(Stam),
+}
+
+impl Model {
+    /// The model as a BRDF.
+    pub fn brdf(&self) -> &dyn DiffractionBrdf {
+        match self {
+            Model::AguHill(m) => m,
+            Model::Thorman(m) => m,
+            #[cfg(feature = "stam")]
+            Model::Stam(m) => m,
+        }
+    }
+}
+
+/// A diffraction grating material: the paper's illumination model (eq. 12) with one of the
+/// crate's diffraction models, over a field of grating directions.
 #[derive(Debug, Clone)]
 pub struct GratingMaterial {
-    /// The grating and the coefficients (ambient, diffuse, diffraction) of eq. 12.
-    pub model: AguHill,
+    /// The diffraction model (for Agu-Hill with the coefficients of eq. 12).
+    pub model: Model,
+    /// The diffraction coefficient k_diffraction of eq. 12.
+    pub diffraction: f64,
     /// The grating vector across the surface (constant, twisted, radial, checkerboard).
     pub field: GratingField,
     /// How the spectral integral is evaluated.
@@ -70,12 +99,16 @@ pub struct GratingMaterial {
 }
 
 impl GratingMaterial {
-    /// The diffraction term's colour for phase projection `u`: k_diffraction · exposure · XYZ(u).
-    pub fn xyz(&self, spectral: &Spectral, u: f64) -> Xyz {
-        let (_, _, k) = self.model.coefficients();
-        spectral
-            .xyz(self.model.grating(), u, self.strategy)
-            .scale(k * self.exposure)
+    /// The diffraction term's colour for local directions `wi`, `wo` (z the normal, x the
+    /// grating vector): k_diffraction · exposure · XYZ. Agu-Hill depends on u = wi.x + wo.x only
+    /// and takes the lobe-exact paths of `Spectral::xyz`; the other models go through
+    /// `DiffractionBrdf::xyz` (with cos θi for Stam, a BRDF).
+    pub fn xyz(&self, spectral: &Spectral, wi: DVec3, wo: DVec3) -> Xyz {
+        let xyz = match &self.model {
+            Model::AguHill(m) => spectral.xyz(m.grating(), wi.x + wo.x, self.strategy),
+            other => other.brdf().xyz(wi, wo, spectral, self.strategy),
+        };
+        xyz.scale(self.diffraction * self.exposure)
     }
 
     /// Whether the field has a grating at the tangent point `p` (not a plain square).
@@ -134,6 +167,34 @@ pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f
     }
 }
 
+/// The exposure of any model: as [`exposure`] (the same for Agu-Hill), scanning the Littrow
+/// configuration wi = wo = (u/2, 0, √(1 − u²/4)), which reaches every u in (−2, 2) on the plane
+/// of the diffracted cone (v = 0, where Stam's lobes are).
+pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
+    let (brdf, period) = match model {
+        Model::AguHill(m) => return exposure(spectral, m.grating(), strategy),
+        Model::Thorman(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
+        #[cfg(feature = "stam")]
+        Model::Stam(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
+    };
+    let strategy = exposure_strategy(strategy);
+    let u_min = diffraction::Band::VISIBLE.min_nm() / (2.0 * period);
+    let mut max_y: f64 = 0.0;
+    for i in 0..=EXPOSURE_SCAN {
+        let u = -2.0 + 4.0 * i as f64 / EXPOSURE_SCAN as f64;
+        if u.abs() < u_min || u.abs() >= 2.0 {
+            continue;
+        }
+        let w = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
+        max_y = max_y.max(brdf.xyz(w, w, spectral, strategy).y);
+    }
+    if max_y > 0.0 && max_y.is_finite() {
+        1.0 / max_y
+    } else {
+        1.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -159,5 +220,12 @@ mod tests {
         assert!((brightest - 1.0).abs() < 1e-9);
         let paper = exposure(&spectral, &g, Strategy::PaperPeaks);
         assert!(paper > 0.3 && paper < 3.0, "{paper}");
+        // The generic scan agrees with the grating's for Agu-Hill, and brings Thorman's
+        // brightest diffracted colour to 1 too.
+        let m = Model::AguHill(AguHill::new(g));
+        assert_eq!(model_exposure(&spectral, &m, Strategy::PaperPeaks), paper);
+        let t = Model::Thorman(Thorman::new(1600.0, 0.003).unwrap());
+        let k = model_exposure(&spectral, &t, Strategy::PeakSearch { refine: false });
+        assert!(k > 1.0 && k.is_finite(), "{k}");
     }
 }

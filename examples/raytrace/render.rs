@@ -204,8 +204,9 @@ pub fn trace(scene: &Scene, ray: &Ray, depth: u32, rng: &mut Rng) -> DVec3 {
 /// For a diffraction grating (steps 3-5) the grating vector t at the hit comes from the
 /// material's field in the surface's tangent coordinates, the frame (normal, t) gives local wi
 /// and wo, and u = wi.x + wo.x = (wi + wo)·t. The diffraction term (steps 6-8) is the crate's
-/// spectral colour XYZ(u) of the Agu-Hill intensity, scaled by k_diffraction and the material's
-/// exposure, converted to linear sRGB and coloured by the light. Materials without a grating
+/// spectral colour XYZ(u) of the Agu-Hill intensity (or of the material's other model at
+/// (wi, wo)), scaled by k_diffraction and the material's exposure, converted to linear sRGB and
+/// coloured by the light. Materials without a grating
 /// never call the spectral code.
 fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec3 {
     let material = &scene.materials[scene.objects[hit.object].material];
@@ -243,9 +244,9 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
             // Steps 3 and 5: local directions and the phase projection.
             let (wi_l, wo_l) = (frame.to_local(wi), frame.to_local(wo));
             if wi_l.z > 0.0 && wo_l.z > 0.0 {
-                let u = wi_l.x + wo_l.x;
-                // Steps 6-8: the spectral colour of the diffraction term.
-                let rgb = g.xyz(&scene.spectral, u).to_linear_srgb();
+                // Steps 6-8: the spectral colour of the diffraction term (for Agu-Hill, of
+                // u = wi.x + wo.x).
+                let rgb = g.xyz(&scene.spectral, wi_l, wo_l).to_linear_srgb();
                 reflected += DVec3::new(rgb.r, rgb.g, rgb.b);
             }
         }

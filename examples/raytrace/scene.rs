@@ -2,7 +2,8 @@
 //!
 //! A scene file has the tables `[render]`, `[camera]`, `[environment]`, an array `[[lights]]`
 //! and an array `[[objects]]`, each object with a `[objects.material]` (and, for gratings, a
-//! `[objects.material.field]`). See `examples/scenes/fig4a.toml` for a commented example.
+//! `[objects.material.field]`). See `examples/scenes/fig4a.toml` for a commented example, and
+//! `examples/scenes/baselines/compare.toml` for the grating `model` key (Agu-Hill, Thorman, Stam).
 //!
 //! Parsing has two stages: serde checks the types (unknown keys are errors), then
 //! [`build`] checks the values and builds the scene. Either stage's error names the file, the
@@ -16,14 +17,14 @@ use diffraction::cie::Illuminant;
 use diffraction::color::Clip;
 use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
-use diffraction::{AguHill, Grating};
+use diffraction::{AguHill, Grating, Thorman};
 use glam::DVec3;
 use serde::Deserialize;
 use toml::de::DeTable;
 
 use crate::diagnostics::{line_of, locate, path_at, plain_message, FieldError, SceneError};
 use crate::geometry::{Primitive, Shape, Transform};
-use crate::material::{exposure, Albedo, GratingMaterial, Material};
+use crate::material::{model_exposure, Albedo, GratingMaterial, Material, Model};
 use crate::texture::{ImageTexture, Wood};
 
 /// Largest accepted image width or height.
@@ -142,6 +143,13 @@ struct RawMaterial {
     diffraction: Option<f64>,
     strategy: Option<String>,
     field: Option<RawField>,
+    // grating model and its parameters
+    model: Option<String>,
+    lobe_width: Option<f64>,
+    depth_nm: Option<f64>,
+    fraction: Option<f64>,
+    coherence_nm: Option<f64>,
+    reflectance: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -231,7 +239,7 @@ impl Scene {
         for (m, follows) in self.materials.iter_mut().zip(&self.follows_default) {
             if let (Some(g), true) = (&mut m.grating, *follows) {
                 g.strategy = strategy;
-                g.exposure = exposure(&self.spectral, g.model.grating(), strategy);
+                g.exposure = model_exposure(&self.spectral, &g.model, strategy);
             }
         }
     }
@@ -582,6 +590,12 @@ fn build_material(
         ("diffraction", m.diffraction.is_some()),
         ("strategy", m.strategy.is_some()),
         ("field", m.field.is_some()),
+        ("model", m.model.is_some()),
+        ("lobe_width", m.lobe_width.is_some()),
+        ("depth_nm", m.depth_nm.is_some()),
+        ("fraction", m.fraction.is_some()),
+        ("coherence_nm", m.coherence_nm.is_some()),
+        ("reflectance", m.reflectance.is_some()),
     ];
     const COMMON: [&str; 4] = ["ambient", "diffuse", "mirror", "mirror_color"];
     let allowed: Vec<&str> = match m.kind.as_str() {
@@ -597,6 +611,12 @@ fn build_material(
             "diffraction",
             "strategy",
             "field",
+            "model",
+            "lobe_width",
+            "depth_nm",
+            "fraction",
+            "coherence_nm",
+            "reflectance",
         ],
         other => {
             return Err(FieldError::new(
@@ -682,25 +702,8 @@ fn build_material(
                 ))
             }
         };
-        let width = positive(&f("slit_width_nm"), m.slit_width_nm.unwrap_or(period / 2.0))?;
-        let slits = m.slits.unwrap_or(1000);
-        expect(
-            &f("slits"),
-            (1..=MAX_SLITS).contains(&slits),
-            &format!("an integer in [1, {MAX_SLITS}]"),
-            slits,
-        )?;
-        let grating = Grating::new(period, width, slits as u32).map_err(|e| {
-            let field = match e.parameter() {
-                "period_nm" if m.period_nm.is_none() => "lines_per_mm",
-                p => p,
-            };
-            FieldError::new(f(field), e.to_string())
-        })?;
         let kdiff = non_negative(&f("diffraction"), m.diffraction.unwrap_or(1.0))?;
-        let model = AguHill::new(grating)
-            .with_coefficients(ka, kd, kdiff)
-            .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?;
+        let model = build_model(m, path, period, (ka, kd, kdiff), &present)?;
         let strategy = match &m.strategy {
             Some(s) => {
                 follows = false;
@@ -713,10 +716,11 @@ fn build_material(
             Some(field) => build_field(field, &f("field"), base_color)?,
         };
         Some(GratingMaterial {
+            exposure: model_exposure(spectral, &model, strategy),
             model,
+            diffraction: kdiff,
             field,
             strategy,
-            exposure: exposure(spectral, &grating, strategy),
             plain_albedo,
         })
     } else {
@@ -733,6 +737,125 @@ fn build_material(
             grating,
         },
         follows,
+    ))
+}
+
+/// The grating's diffraction model (`model`, default "agu-hill") and its parameters; a
+/// parameter of another model is an error, and so is a Stam model in a build without the
+/// `stam` feature.
+fn build_model(
+    m: &RawMaterial,
+    path: &str,
+    period: f64,
+    (ka, kd, kdiff): (f64, f64, f64),
+    present: &[(&str, bool)],
+) -> Check<Model> {
+    let f = |name: &str| format!("{path}.{name}");
+    let name = m.model.as_deref().unwrap_or("agu-hill");
+    const PARAMETERS: [&str; 7] = [
+        "slit_width_nm",
+        "slits",
+        "lobe_width",
+        "depth_nm",
+        "fraction",
+        "coherence_nm",
+        "reflectance",
+    ];
+    let takes: &[&str] = match name {
+        "agu-hill" => &["slit_width_nm", "slits"],
+        "thorman" => &["lobe_width"],
+        "stam-sine" => &["depth_nm", "coherence_nm", "reflectance"],
+        "stam-binary" => &["depth_nm", "fraction", "coherence_nm", "reflectance"],
+        other => {
+            return Err(FieldError::new(
+                f("model"),
+                format!("expected one of \"agu-hill\", \"thorman\", \"stam-sine\", \"stam-binary\", got \"{other}\""),
+            ))
+        }
+    };
+    for (key, is_set) in present {
+        if *is_set && PARAMETERS.contains(key) && !takes.contains(key) {
+            return Err(FieldError::new(
+                f(key),
+                format!(
+                    "not used by model \"{name}\" (it takes {})",
+                    takes.join(", ")
+                ),
+            ));
+        }
+    }
+    let crate_error = |e: diffraction::Error| {
+        let field = match e.parameter() {
+            "period_nm" if m.period_nm.is_none() => "lines_per_mm",
+            p => p,
+        };
+        FieldError::new(f(field), e.to_string())
+    };
+    match name {
+        "agu-hill" => {
+            let width = positive(&f("slit_width_nm"), m.slit_width_nm.unwrap_or(period / 2.0))?;
+            let slits = m.slits.unwrap_or(1000);
+            expect(
+                &f("slits"),
+                (1..=MAX_SLITS).contains(&slits),
+                &format!("an integer in [1, {MAX_SLITS}]"),
+                slits,
+            )?;
+            let grating = Grating::new(period, width, slits as u32).map_err(crate_error)?;
+            let model = AguHill::new(grating)
+                .with_coefficients(ka, kd, kdiff)
+                .map_err(crate_error)?;
+            Ok(Model::AguHill(model))
+        }
+        "thorman" => Ok(Model::Thorman(
+            Thorman::new(period, m.lobe_width.unwrap_or(0.005)).map_err(crate_error)?,
+        )),
+        _ => stam_model(m, path, name, period, &crate_error),
+    }
+}
+
+/// `stam-sine` or `stam-binary`: depth_nm (default 100), coherence_nm (default 10 periods),
+/// fraction (binary, default 0.5), reflectance (default 1).
+#[cfg(feature = "stam")]
+fn stam_model(
+    m: &RawMaterial,
+    _: &str,
+    name: &str,
+    period: f64,
+    crate_error: &dyn Fn(diffraction::Error) -> FieldError,
+) -> Check<Model> {
+    use diffraction::{Profile, Stam};
+    let profile = match name {
+        "stam-sine" => Profile::Sine,
+        _ => Profile::Binary {
+            fraction: m.fraction.unwrap_or(0.5),
+        },
+    };
+    let stam = Stam::new(
+        profile,
+        period,
+        m.depth_nm.unwrap_or(100.0),
+        m.coherence_nm.unwrap_or(10.0 * period),
+    )
+    .and_then(|s| s.with_reflectance(m.reflectance.unwrap_or(1.0)))
+    .map_err(crate_error)?;
+    Ok(Model::Stam(stam))
+}
+
+#[cfg(not(feature = "stam"))]
+fn stam_model(
+    _: &RawMaterial,
+    path: &str,
+    name: &str,
+    _: f64,
+    _: &dyn Fn(diffraction::Error) -> FieldError,
+) -> Check<Model> {
+    Err(FieldError::new(
+        format!("{path}.model"),
+        format!(
+            "model \"{name}\" needs the crate feature `stam`: build with `--features stam` \
+             (e.g. cargo run --release --features stam --example raytrace -- ...)"
+        ),
     ))
 }
 

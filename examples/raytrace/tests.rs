@@ -313,3 +313,94 @@ fn scene_errors_name_file_line_and_field() {
         "{e}"
     );
 }
+
+/// The comparison of the models (examples/scenes/baselines/compare.toml): with the `stam`
+/// feature it loads, every plate has its model, and each bay's plate shows its spectrum; without
+/// it, the error names the feature.
+#[test]
+fn the_model_comparison_scene() {
+    let path = crate::scenes_dir().join("baselines/compare.toml");
+    #[cfg(feature = "stam")]
+    {
+        use crate::material::Model;
+        let mut scene = scene::load(&path).unwrap();
+        let models: Vec<&str> = scene
+            .materials
+            .iter()
+            .filter_map(|m| m.grating.as_ref())
+            .map(|g| match g.model {
+                Model::AguHill(_) => "agu-hill",
+                Model::Thorman(_) => "thorman",
+                Model::Stam(_) => "stam",
+            })
+            .collect();
+        assert_eq!(models, ["agu-hill", "thorman", "stam", "stam"]);
+        scene.settings.width = 160;
+        scene.settings.height = 60;
+        scene.settings.spp = 1;
+        let img = render(&scene, &scene.camera, false, "");
+        assert!(img.pixels.iter().all(|p| p.is_finite()));
+        // Every quarter of the picture (one bay each) holds a saturated diffracted colour.
+        for bay in 0..4 {
+            let brightest = (0..60)
+                .flat_map(|y| (bay * 40..bay * 40 + 40).map(move |x| (x, y)))
+                .map(|(x, y)| img.pixels[y * 160 + x])
+                .map(|c| c.max_element())
+                .fold(0.0, f64::max);
+            assert!(brightest > 0.3, "bay {bay}: {brightest}");
+        }
+    }
+    #[cfg(not(feature = "stam"))]
+    {
+        let e = scene::load(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("model \"stam-sine\" needs the crate feature `stam`"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn grating_models_are_checked() {
+    let grating = |fields: &str| {
+        format!("{MINIMAL}\n[[objects]]\nshape = \"quad\"\n[objects.material]\ntype = \"grating\"\nperiod_nm = 1600\n{fields}\n")
+    };
+    assert_eq!(
+        error_of(&grating("model = \"fourier\"")),
+        "test.toml: line 10, field objects[0].material.model: expected one of \"agu-hill\", \
+         \"thorman\", \"stam-sine\", \"stam-binary\", got \"fourier\""
+    );
+    assert_eq!(
+        error_of(&grating("model = \"thorman\"\nslits = 100")),
+        "test.toml: line 11, field objects[0].material.slits: not used by model \"thorman\" \
+         (it takes lobe_width)"
+    );
+    assert_eq!(
+        error_of(&grating("model = \"thorman\"\nlobe_width = 3.0")),
+        "test.toml: line 11, field objects[0].material.lobe_width: invalid lobe_width = 3: \
+         must satisfy 0 < lobe_width <= 1 (1)"
+    );
+    assert_eq!(
+        error_of(&grating("depth_nm = 100")),
+        "test.toml: line 10, field objects[0].material.depth_nm: not used by model \"agu-hill\" \
+         (it takes slit_width_nm, slits)"
+    );
+    assert!(parse(&grating("model = \"thorman\"\nlobe_width = 0.01")).is_ok());
+    #[cfg(feature = "stam")]
+    {
+        assert!(parse(&grating(
+            "model = \"stam-binary\"\ndepth_nm = 120\nfraction = 0.3\ncoherence_nm = 9000"
+        ))
+        .is_ok());
+        assert_eq!(
+            error_of(&grating("model = \"stam-sine\"\ncoherence_nm = 100")),
+            "test.toml: line 11, field objects[0].material.coherence_nm: invalid coherence_nm = \
+             100: must satisfy coherence_nm >= period_nm (1600)"
+        );
+        assert_eq!(
+            error_of(&grating("model = \"stam-sine\"\nfraction = 0.5")),
+            "test.toml: line 11, field objects[0].material.fraction: not used by model \
+             \"stam-sine\" (it takes depth_nm, coherence_nm, reflectance)"
+        );
+    }
+}

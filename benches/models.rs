@@ -1,0 +1,153 @@
+//! Cost of the three grating models side by side: Agu-Hill (the paper), Thorman (peaks only) and
+//! Stam (Fourier optics, feature `stam`, sinusoidal and binary profiles).
+//!
+//! * `eval`: one spectral evaluation; each iteration evaluates a fixed, deterministic batch of
+//!   1024 (wi, wo, λ), half of them near a peak of order 1-3 (for Stam also near the plane of
+//!   the diffracted cone, where its lobes are not cut off early), so the figure per element is
+//!   ns per evaluation.
+//! * `xyz`: one colour through `DiffractionBrdf::xyz` with the peak search and with `Exact`
+//!   (Agu-Hill overrides `xyz` with its lobe-exact paths; Thorman and Stam take the generic
+//!   `Spectral::xyz_brdf`), over a batch of 64 near-peak direction pairs.
+//!
+//! The models are set up to have the same peak widths: N = 10 slits, Thorman's
+//! `matching` lobe at 550 nm, Stam's σ_c = N·d/(2√π).
+
+use criterion::{black_box, BenchmarkId, Criterion, Throughput};
+use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
+use glam::DVec3;
+use std::time::Duration;
+
+const BATCH: usize = 1024;
+const COLOURS: usize = 64;
+const PERIOD: f64 = 1600.0;
+const SLITS: u32 = 10;
+
+/// A small deterministic generator of numbers in [0, 1) (SplitMix64).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// A unit direction in the upper hemisphere (z ≥ 0.2).
+    fn direction(&mut self) -> DVec3 {
+        let z = 0.2 + 0.8 * self.next();
+        let phi = std::f64::consts::TAU * self.next();
+        let s = (1.0 - z * z).sqrt();
+        DVec3::new(s * phi.cos(), s * phi.sin(), z)
+    }
+
+    /// (wi, wo, λ): every other one near order 1-3 of λ and near v = 0.
+    fn sample(&mut self, i: usize) -> (DVec3, DVec3, f64) {
+        let lambda = 380.0 + 400.0 * self.next();
+        loop {
+            let wi = self.direction();
+            if i % 2 == 1 {
+                return (wi, self.direction(), lambda);
+            }
+            let m = 1.0 + (3.0 * self.next()).floor();
+            let x = m * lambda / PERIOD - wi.x + 0.01 * (self.next() - 0.5);
+            let y = -wi.y + 0.01 * (self.next() - 0.5);
+            let z2 = 1.0 - x * x - y * y;
+            if z2 > 0.04 {
+                return (wi, DVec3::new(x, y, z2.sqrt()), lambda);
+            }
+        }
+    }
+}
+
+type Models = Vec<(&'static str, Box<dyn DiffractionBrdf>)>;
+
+/// The models under comparison, by name.
+fn models() -> Models {
+    let grating = Grating::new(PERIOD, PERIOD / 2.0, SLITS).unwrap();
+    let mut v: Models = vec![
+        ("agu_hill", Box::new(AguHill::new(grating))),
+        (
+            "thorman",
+            Box::new(Thorman::matching(&grating, 550.0).unwrap()),
+        ),
+    ];
+    v.extend(stam_models());
+    v
+}
+
+#[cfg(feature = "stam")]
+fn stam_models() -> Models {
+    use diffraction::{Profile, Stam};
+    let coherence = SLITS as f64 * PERIOD / (2.0 * std::f64::consts::PI.sqrt());
+    vec![
+        (
+            "stam_sine",
+            Box::new(Stam::new(Profile::Sine, PERIOD, 80.0, coherence).unwrap()),
+        ),
+        (
+            "stam_binary",
+            Box::new(
+                Stam::new(Profile::Binary { fraction: 0.5 }, PERIOD, 120.0, coherence).unwrap(),
+            ),
+        ),
+    ]
+}
+
+#[cfg(not(feature = "stam"))]
+fn stam_models() -> Models {
+    Vec::new()
+}
+
+fn bench_eval(c: &mut Criterion) {
+    let mut rng = Rng(7);
+    let batch: Vec<_> = (0..BATCH).map(|i| rng.sample(i)).collect();
+    let mut g = c.benchmark_group("eval");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    for (name, model) in models() {
+        g.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| {
+                batch
+                    .iter()
+                    .map(|&(wi, wo, l)| model.eval(black_box(wi), black_box(wo), l))
+                    .sum::<f64>()
+            })
+        });
+    }
+    g.finish();
+}
+
+fn bench_xyz(c: &mut Criterion) {
+    let mut rng = Rng(11);
+    let batch: Vec<_> = (0..COLOURS).map(|_| rng.sample(0)).collect();
+    let spectral = Spectral::new(Illuminant::D65);
+    let mut g = c.benchmark_group("xyz");
+    g.throughput(Throughput::Elements(COLOURS as u64));
+    g.measurement_time(Duration::from_secs(4));
+    for (strategy, label) in [
+        (Strategy::PeakSearch { refine: false }, "peaks"),
+        (Strategy::Exact, "exact"),
+    ] {
+        for (name, model) in models() {
+            g.bench_function(BenchmarkId::new(label, name), |b| {
+                b.iter(|| {
+                    batch
+                        .iter()
+                        .map(|&(wi, wo, _)| model.xyz(black_box(wi), wo, &spectral, strategy).y)
+                        .sum::<f64>()
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    bench_eval(&mut c);
+    bench_xyz(&mut c);
+    c.final_summary();
+}
