@@ -15,36 +15,18 @@ const BATCH: usize = 1024;
 const SLITS: [u32; 4] = [1, 30, 1000, 1_000_000];
 const PERIODS: [f64; 3] = [740.0, 1600.0, 100_000.0];
 
-/// A small deterministic generator of numbers in [0, 1) (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A unit direction in the upper hemisphere (z ≥ 0.05).
-    fn direction(&mut self) -> DVec3 {
-        let z = 0.05 + 0.95 * self.next();
-        let phi = std::f64::consts::TAU * self.next();
-        let s = (1.0 - z * z).sqrt();
-        DVec3::new(s * phi.cos(), s * phi.sin(), z)
-    }
-}
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// The batch for one grating: (wi, wo, λ), every other one near a peak of order 1-4.
 fn samples(period: f64, n: u32) -> Vec<(DVec3, DVec3, f64)> {
     let mut rng = Rng(0xB4D5 ^ u64::from(n) ^ ((period as u64) << 20));
     let mut v = Vec::with_capacity(BATCH);
     while v.len() < BATCH {
-        let wi = rng.direction();
+        let wi = rng.direction(0.05);
         let lambda = 360.0 + 470.0 * rng.next();
-        let mut wo = rng.direction();
+        let mut wo = rng.direction(0.05);
         if v.len() % 2 == 0 {
             // u = m·λ/d plus a few lobes λ/(N·d).
             let m = 1.0 + (rng.next() * 4.0).floor();

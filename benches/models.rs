@@ -23,42 +23,24 @@ const COLOURS: usize = 64;
 const PERIOD: f64 = 1600.0;
 const SLITS: u32 = 10;
 
-/// A small deterministic generator of numbers in [0, 1) (SplitMix64).
-struct Rng(u64);
+#[path = "support/rng.rs"]
+mod rng;
+use rng::Rng;
 
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A unit direction in the upper hemisphere (z ≥ 0.2).
-    fn direction(&mut self) -> DVec3 {
-        let z = 0.2 + 0.8 * self.next();
-        let phi = std::f64::consts::TAU * self.next();
-        let s = (1.0 - z * z).sqrt();
-        DVec3::new(s * phi.cos(), s * phi.sin(), z)
-    }
-
-    /// (wi, wo, λ): every other one near order 1-3 of λ and near v = 0.
-    fn sample(&mut self, i: usize) -> (DVec3, DVec3, f64) {
-        let lambda = 380.0 + 400.0 * self.next();
-        loop {
-            let wi = self.direction();
-            if i % 2 == 1 {
-                return (wi, self.direction(), lambda);
-            }
-            let m = 1.0 + (3.0 * self.next()).floor();
-            let x = m * lambda / PERIOD - wi.x + 0.01 * (self.next() - 0.5);
-            let y = -wi.y + 0.01 * (self.next() - 0.5);
-            let z2 = 1.0 - x * x - y * y;
-            if z2 > 0.04 {
-                return (wi, DVec3::new(x, y, z2.sqrt()), lambda);
-            }
+/// (wi, wo, λ): every other one near order 1-3 of λ and near v = 0.
+fn sample(rng: &mut Rng, i: usize) -> (DVec3, DVec3, f64) {
+    let lambda = 380.0 + 400.0 * rng.next();
+    loop {
+        let wi = rng.direction(0.2);
+        if i % 2 == 1 {
+            return (wi, rng.direction(0.2), lambda);
+        }
+        let m = 1.0 + (3.0 * rng.next()).floor();
+        let x = m * lambda / PERIOD - wi.x + 0.01 * (rng.next() - 0.5);
+        let y = -wi.y + 0.01 * (rng.next() - 0.5);
+        let z2 = 1.0 - x * x - y * y;
+        if z2 > 0.04 {
+            return (wi, DVec3::new(x, y, z2.sqrt()), lambda);
         }
     }
 }
@@ -104,7 +86,7 @@ fn stam_models() -> Models {
 
 fn bench_eval(c: &mut Criterion) {
     let mut rng = Rng(7);
-    let batch: Vec<_> = (0..BATCH).map(|i| rng.sample(i)).collect();
+    let batch: Vec<_> = (0..BATCH).map(|i| sample(&mut rng, i)).collect();
     let mut g = c.benchmark_group("eval");
     g.throughput(Throughput::Elements(BATCH as u64));
     for (name, model) in models() {
@@ -122,7 +104,7 @@ fn bench_eval(c: &mut Criterion) {
 
 fn bench_xyz(c: &mut Criterion) {
     let mut rng = Rng(11);
-    let batch: Vec<_> = (0..COLOURS).map(|_| rng.sample(0)).collect();
+    let batch: Vec<_> = (0..COLOURS).map(|_| sample(&mut rng, 0)).collect();
     let spectral = Spectral::new(Illuminant::D65);
     let mut g = c.benchmark_group("xyz");
     g.throughput(Throughput::Elements(COLOURS as u64));
