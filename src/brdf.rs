@@ -8,6 +8,17 @@ use crate::grating::{Band, Grating, Peak};
 use crate::spectrum::{Spectral, Strategy};
 
 /// What [`DiffractionBrdf::peaks`] found besides the peaks it visited.
+///
+/// ```
+/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+/// use glam::DVec3;
+/// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+/// // The mirror direction (u = 0): inside the order-0 lobe, and no order m ≠ 0.
+/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8));
+/// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |_| {});
+/// assert_eq!((summary.orders, summary.specular), (0, true));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub struct PeakSummary {
@@ -51,10 +62,30 @@ pub struct PeakSummary {
 pub trait DiffractionBrdf {
     /// The spectral value at wavelength `lambda_nm` (nm) for local directions `wi`, `wo`.
     /// Finite and ≥ 0 for finite input.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// use glam::DVec3;
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8));
+    /// assert_eq!(brdf.eval(wi, wo, 550.0), 1.0); // the mirror direction: S(0)·F_N(0) = 1
+    /// assert_eq!(brdf.eval(-wi, wo, 550.0), 0.0); // light below the surface
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64;
 
     /// [`eval`](Self::eval) for `f32` callers. Implementations may override it with a faster
     /// path; the default widens to `f64`.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// use glam::Vec3;
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// let (wi, wo) = (Vec3::Z, Vec3::new(0.3, 0.0, 0.91f32.sqrt())); // near order 1 at 480 nm
+    /// let wide = brdf.eval(wi.as_dvec3(), wo.as_dvec3(), 480.0);
+    /// assert_eq!(brdf.eval_f32(wi, wo, 480.0), wide as f32); // the f64 value, rounded once
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     fn eval_f32(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
         self.eval(wi.as_dvec3(), wo.as_dvec3(), lambda_nm as f64) as f32
     }
@@ -62,9 +93,28 @@ pub trait DiffractionBrdf {
     /// Visits every narrow peak (order m ≠ 0 on the grating equation inside `band`) that
     /// (wi, wo) sees, in order of increasing |m|, with its value of `eval` at the peak and its
     /// equivalent width; returns the count and whether the order-0 lobe is seen.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+    /// use glam::DVec3;
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.9, 0.0, 0.19f64.sqrt())); // u = 0.9, d·u = 1440 nm
+    /// let mut orders = vec![];
+    /// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |p| orders.push(p.order));
+    /// assert_eq!(orders, [2, 3, 4]); // 720, 480 and 360 nm
+    /// assert_eq!((summary.orders, summary.specular), (3, false));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary;
 
     /// Whether `eval` already contains the cosine cos θi (see the trait docs).
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// assert!(brdf.cosine_included()); // the paper applies no cos θi to its diffraction term
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     fn cosine_included(&self) -> bool;
 
     /// The reference colour XYZ of the light this BRDF sends toward `wo` from a light at `wi`
@@ -73,6 +123,19 @@ pub trait DiffractionBrdf {
     ///
     /// The default integrates [`eval`](Self::eval) and [`peaks`](Self::peaks) by
     /// [`Spectral::xyz_brdf`]; models with a known lobe structure override it.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// use glam::DVec3;
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let brdf = AguHill::new(g).with_coefficients(0.0, 0.0, 2.0)?;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.34, 0.0, (1.0f64 - 0.34 * 0.34).sqrt())); // u = 0.34
+    /// // The grating's colour at u, times the diffraction coefficient.
+    /// assert_eq!(brdf.xyz(wi, wo, &s, Strategy::Exact), s.xyz(&g, 0.34, Strategy::Exact) * 2.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     fn xyz(&self, wi: DVec3, wo: DVec3, spectral: &Spectral, strategy: Strategy) -> Xyz {
         spectral.xyz_brdf(self, wi, wo, strategy)
     }
@@ -127,6 +190,15 @@ impl<'de> serde::Deserialize<'de> for AguHill {
 
 impl AguHill {
     /// The model with coefficients ambient = 0, diffuse = 0, diffraction = 1: the grating alone.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 100)?;
+    /// let m = AguHill::new(g);
+    /// assert_eq!(m.grating(), &g);
+    /// assert_eq!(m.coefficients(), (0.0, 0.0, 1.0));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn new(grating: Grating) -> AguHill {
         AguHill {
@@ -138,6 +210,14 @@ impl AguHill {
     }
 
     /// Sets the coefficients of eq. 12; each must be finite and ≥ 0.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Grating};
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert_eq!(m.with_coefficients(0.1, 0.5, 2.0)?.coefficients(), (0.1, 0.5, 2.0));
+    /// assert_eq!(m.with_coefficients(0.1, -0.5, 2.0).unwrap_err().parameter(), "diffuse");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     pub fn with_coefficients(
         self,
         ambient: f64,
@@ -167,12 +247,27 @@ impl AguHill {
     }
 
     /// The grating.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Grating};
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert_eq!(m.grating().period_nm(), 1600.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn grating(&self) -> &Grating {
         &self.grating
     }
 
     /// The coefficients (ambient, diffuse, diffraction).
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Grating};
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 100)?).with_coefficients(0.2, 0.0, 1.5)?;
+    /// let (ambient, diffuse, diffraction) = m.coefficients();
+    /// assert_eq!((ambient, diffuse, diffraction), (0.2, 0.0, 1.5));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn coefficients(&self) -> (f64, f64, f64) {
         (self.ambient, self.diffuse, self.diffraction)
@@ -180,6 +275,20 @@ impl AguHill {
 
     /// Eq. 12 at one wavelength: `ambient·ambient_light + light·(diffuse·cos θi + eval)`, with
     /// the light terms 0 when either direction is below the surface.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// use glam::DVec3;
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?).with_coefficients(0.1, 0.3, 1.0)?;
+    /// // u = 0.3: order 1 at 480 nm.
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()));
+    /// let i = m.illumination(wi, wo, 480.0, 2.0, 1.0);
+    /// let expected = 0.1 * 2.0 + 0.3 * 1.0 + m.eval(wi, wo, 480.0);
+    /// assert!((i - expected).abs() < 1e-12); // the order of the additions only
+    /// // Light from below the surface: only the ambient term remains.
+    /// assert_eq!(m.illumination(-wi, wo, 480.0, 2.0, 1.0), 0.1 * 2.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn illumination(
         &self,

@@ -9,8 +9,22 @@
 use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
 
 /// First wavelength of the tables, nm (360).
+///
+/// ```
+/// use diffraction::cie::{cmf, TABLE_FIRST_NM};
+/// assert_eq!(TABLE_FIRST_NM, 360.0);
+/// assert_eq!(TABLE_FIRST_NM, diffraction::Band::VISIBLE.min_nm());
+/// assert_eq!(cmf(TABLE_FIRST_NM - 1.0), [0.0; 3]); // outside the tables
+/// ```
 pub const TABLE_FIRST_NM: f64 = FIRST_NM as f64;
 /// Last wavelength of the tables, nm (830).
+///
+/// ```
+/// use diffraction::cie::{Illuminant, TABLE_LAST_NM};
+/// assert_eq!(TABLE_LAST_NM, 830.0);
+/// assert!(Illuminant::D65.power(TABLE_LAST_NM) > 0.0);
+/// assert_eq!(Illuminant::D65.power(TABLE_LAST_NM + 1.0), 0.0); // outside the tables
+/// ```
 pub const TABLE_LAST_NM: f64 = LAST_NM as f64;
 
 /// Index of the row at or below λ and the fraction toward the next row; `None` outside the table.
@@ -73,6 +87,16 @@ pub enum Illuminant {
 
 impl Illuminant {
     /// E(λ), linearly interpolated between the 1 nm rows; 0 outside 360-830 nm.
+    ///
+    /// ```
+    /// use diffraction::cie::Illuminant;
+    /// let a = Illuminant::A;
+    /// assert!((a.power(560.0) - 100.0).abs() < 1e-9); // normalised at 560 nm
+    /// // Halfway between two rows: their mean (up to rounding).
+    /// let mean = 0.5 * (a.power(600.0) + a.power(601.0));
+    /// assert!((a.power(600.5) - mean).abs() < 1e-12);
+    /// assert_eq!(Illuminant::E.power(900.0), 0.0);
+    /// ```
     #[inline]
     #[must_use]
     pub fn power(self, lambda_nm: f64) -> f64 {
@@ -94,6 +118,13 @@ impl Illuminant {
     }
 
     /// The name used by `FromStr` and `Display`: `E`, `D65` or `A`.
+    ///
+    /// ```
+    /// use diffraction::cie::Illuminant;
+    /// assert_eq!(Illuminant::D65.name(), "D65");
+    /// assert_eq!(Illuminant::A.to_string(), Illuminant::A.name());
+    /// assert_eq!(Illuminant::E.name().parse::<Illuminant>(), Ok(Illuminant::E));
+    /// ```
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -111,6 +142,15 @@ impl core::fmt::Display for Illuminant {
 }
 
 /// The error of parsing an [`Illuminant`] name.
+///
+/// ```
+/// use diffraction::cie::{Illuminant, ParseIlluminantError};
+/// assert_eq!("D50".parse::<Illuminant>(), Err(ParseIlluminantError));
+/// assert_eq!(
+///     ParseIlluminantError.to_string(),
+///     "unknown illuminant: expected one of E, D65, A"
+/// );
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ParseIlluminantError;
 

@@ -31,6 +31,18 @@ pub enum Error {
 }
 
 /// What a rejected parameter must satisfy (used in [`Error::InvalidParameter`]).
+///
+/// ```
+/// use diffraction::{Error, Grating, Requirement};
+/// let err = Grating::new(1600.0, 2000.0, 100).unwrap_err();
+/// assert!(matches!(
+///     err,
+///     Error::InvalidParameter {
+///         requirement: Requirement::AtMost { bound_name: "period_nm", bound },
+///         ..
+///     } if bound == 1600.0
+/// ));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum Requirement {
@@ -80,6 +92,11 @@ impl Error {
     }
 
     /// The name of the rejected parameter.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// assert_eq!(Band::new(400.0, f64::NAN).unwrap_err().parameter(), "max_nm");
+    /// ```
     #[must_use]
     pub fn parameter(&self) -> &'static str {
         match self {
@@ -88,6 +105,12 @@ impl Error {
     }
 
     /// The rejected value.
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// assert_eq!(Grating::new(-5.0, 1.0, 1).unwrap_err().value(), -5.0);
+    /// assert_eq!(Grating::new(1600.0, 800.0, 0).unwrap_err().value(), 0.0);
+    /// ```
     #[must_use]
     pub fn value(&self) -> f64 {
         match self {

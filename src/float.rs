@@ -54,10 +54,28 @@ pub trait Float:
     + 'static
 {
     /// Widens to `f64` (exact).
+    ///
+    /// ```
+    /// use diffraction::Float;
+    /// assert_eq!(0.5f32.to_f64(), 0.5);
+    /// assert_ne!(0.1f32.to_f64(), 0.1f64); // exact: the f32 nearest 0.1 is not the f64 nearest
+    /// ```
     fn to_f64(self) -> f64;
     /// Narrows from `f64`, rounding to nearest.
+    ///
+    /// ```
+    /// use diffraction::Float;
+    /// assert_eq!(f32::from_f64(0.1), 0.1f32); // to nearest
+    /// assert_eq!(f64::from_f64(0.1), 0.1);
+    /// ```
     fn from_f64(value: f64) -> Self;
     /// Converts a small integer exactly (|n| < 2^24).
+    ///
+    /// ```
+    /// use diffraction::Float;
+    /// assert_eq!(f32::from_u32(5000), 5000.0f32);
+    /// assert_eq!(f64::from_u32(5000), 5000.0);
+    /// ```
     fn from_u32(n: u32) -> Self;
 }
 

@@ -42,6 +42,15 @@ mod sealed {
 }
 
 /// A glam 3-vector of either precision ([`Vec3`] or [`DVec3`]); sealed.
+///
+/// ```
+/// use diffraction::frame::phase_projection;
+/// use glam::{DVec3, Vec3};
+/// // `Scalar` is `f32` for `Vec3` and `f64` for `DVec3`.
+/// let a: f32 = phase_projection(Vec3::Z, Vec3::new(0.5, 0.0, 0.75f32.sqrt()), Vec3::X);
+/// let b: f64 = phase_projection(DVec3::Z, DVec3::new(0.5, 0.0, 0.75f64.sqrt()), DVec3::X);
+/// assert_eq!((a, b), (0.5, 0.5));
+/// ```
 pub trait Vector: sealed::Sealed + Copy {
     /// The scalar type, `f32` or `f64`.
     type Scalar: crate::Float;
@@ -136,6 +145,15 @@ pub struct ShadingFrame {
 impl ShadingFrame {
     /// Builds the frame from a normal and an approximate grating vector, removing the latter's
     /// normal component (Gram-Schmidt). `None` if either is zero, non-finite, or they are parallel.
+    ///
+    /// ```
+    /// use diffraction::frame::ShadingFrame;
+    /// use glam::DVec3;
+    /// let f = ShadingFrame::new(DVec3::Z, DVec3::new(2.0, 0.0, 5.0)).unwrap();
+    /// assert_eq!(f.grating, DVec3::X); // normal component removed, then normalised
+    /// assert_eq!(f.groove, DVec3::Y); // z × x
+    /// assert!(ShadingFrame::new(DVec3::Z, DVec3::Z).is_none()); // parallel
+    /// ```
     #[must_use]
     pub fn new(normal: DVec3, grating: DVec3) -> Option<ShadingFrame> {
         let n = normal.try_normalize()?;
@@ -148,6 +166,15 @@ impl ShadingFrame {
     }
 
     /// A world direction in local coordinates (x along t, y along the grooves, z along the normal).
+    ///
+    /// ```
+    /// use diffraction::frame::ShadingFrame;
+    /// use glam::DVec3;
+    /// // A disc in the xz-plane, grating vector along world x: local y (grooves) is world −z.
+    /// let f = ShadingFrame::new(DVec3::Y, DVec3::X).unwrap();
+    /// assert_eq!(f.to_local(DVec3::new(0.6, 0.8, 0.0)), DVec3::new(0.6, 0.0, 0.8));
+    /// assert_eq!(f.to_local(DVec3::Z), DVec3::NEG_Y);
+    /// ```
     #[inline]
     #[must_use]
     pub fn to_local(&self, v: DVec3) -> DVec3 {
@@ -155,6 +182,14 @@ impl ShadingFrame {
     }
 
     /// A local direction back in world coordinates.
+    ///
+    /// ```
+    /// use diffraction::frame::ShadingFrame;
+    /// use glam::DVec3;
+    /// let f = ShadingFrame::new(DVec3::Y, DVec3::X).unwrap();
+    /// assert_eq!(f.to_world(DVec3::Z), DVec3::Y); // the local normal
+    /// assert_eq!(f.to_world(DVec3::Y), DVec3::NEG_Z); // the groove direction
+    /// ```
     #[inline]
     #[must_use]
     pub fn to_world(&self, v: DVec3) -> DVec3 {
@@ -163,6 +198,14 @@ impl ShadingFrame {
 }
 
 /// The grating direction of one region of a surface (one tile of a checkerboard).
+///
+/// ```
+/// use diffraction::frame::Tile;
+/// use glam::DVec2;
+/// assert_eq!(Tile::Plain.direction_at(DVec2::ZERO), None);
+/// let t = Tile::Constant { angle: 0.0 };
+/// assert_eq!(t.direction_at(DVec2::new(5.0, 7.0)), Some(DVec2::X)); // the same everywhere
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Tile {
@@ -186,6 +229,14 @@ pub enum Tile {
 impl Tile {
     /// The unit grating vector at `p` in tangent coordinates, or `None` (plain tile, or the exact
     /// centre of a radial tile, where the direction is undefined).
+    ///
+    /// ```
+    /// use diffraction::frame::Tile;
+    /// use glam::DVec2;
+    /// let cd = Tile::Radial { center: [1.0, 1.0], twist: 0.0 };
+    /// assert_eq!(cd.direction_at(DVec2::new(5.0, 1.0)), Some(DVec2::X)); // away from the centre
+    /// assert_eq!(cd.direction_at(DVec2::new(1.0, 1.0)), None); // the centre itself
+    /// ```
     #[must_use]
     pub fn direction_at(&self, p: DVec2) -> Option<DVec2> {
         match *self {
@@ -199,6 +250,12 @@ impl Tile {
     }
 
     /// The same tile rotated by `twist` radians about the normal (plain stays plain).
+    ///
+    /// ```
+    /// use diffraction::frame::Tile;
+    /// assert_eq!(Tile::Constant { angle: 0.25 }.twisted(0.5), Tile::Constant { angle: 0.75 });
+    /// assert_eq!(Tile::Plain.twisted(0.5), Tile::Plain);
+    /// ```
     #[must_use]
     pub fn twisted(self, twist: f64) -> Tile {
         match self {
@@ -280,12 +337,31 @@ impl<'de> serde::Deserialize<'de> for GratingField {
 
 impl GratingField {
     /// A constant grating vector at `angle` radians from the first tangent axis.
+    ///
+    /// ```
+    /// use diffraction::frame::{GratingField, Tile};
+    /// use glam::DVec2;
+    /// use std::f64::consts::FRAC_PI_2;
+    /// let f = GratingField::constant(FRAC_PI_2);
+    /// assert_eq!(f, GratingField::Uniform(Tile::Constant { angle: FRAC_PI_2 }));
+    /// let t = f.direction_at(DVec2::new(3.0, -2.0)).unwrap();
+    /// assert!((t - DVec2::Y).length() < 1e-15); // cos(π/2) rounds to 6e-17, not 0
+    /// ```
     #[must_use]
     pub fn constant(angle: f64) -> GratingField {
         GratingField::Uniform(Tile::Constant { angle })
     }
 
     /// Concentric circular grooves about `center` (the grating vector is radial).
+    ///
+    /// ```
+    /// use diffraction::frame::GratingField;
+    /// use glam::DVec2;
+    /// let cd = GratingField::radial(DVec2::new(1.0, 0.0));
+    /// // The grating vector points away from the centre.
+    /// assert_eq!(cd.direction_at(DVec2::new(1.0, -4.0)), Some(DVec2::NEG_Y));
+    /// assert_eq!(cd.direction_at(DVec2::new(1.0, 0.0)), None); // the centre itself
+    /// ```
     #[must_use]
     pub fn radial(center: DVec2) -> GratingField {
         GratingField::Uniform(Tile::Radial {
@@ -295,6 +371,17 @@ impl GratingField {
     }
 
     /// A checkerboard of two tiles; rejects a non-positive or non-finite `cell_size`.
+    ///
+    /// ```
+    /// use diffraction::frame::{GratingField, Tile};
+    /// use glam::DVec2;
+    /// let f = GratingField::checkerboard(1.0, Tile::Plain, Tile::Constant { angle: 0.0 })?;
+    /// assert_eq!(f.direction_at(DVec2::new(0.5, 0.5)), None); // even square: plain
+    /// assert_eq!(f.direction_at(DVec2::new(1.5, 0.5)), Some(DVec2::X)); // odd square
+    /// let err = GratingField::checkerboard(0.0, Tile::Plain, Tile::Plain).unwrap_err();
+    /// assert_eq!(err.parameter(), "cell_size");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     pub fn checkerboard(cell_size: f64, even: Tile, odd: Tile) -> Result<GratingField, Error> {
         let cell_size = positive("cell_size", cell_size)?;
         Ok(GratingField::Checkerboard {
@@ -330,6 +417,17 @@ impl GratingField {
     }
 
     /// The tile that applies at `p`.
+    ///
+    /// ```
+    /// use diffraction::frame::{GratingField, Tile};
+    /// use glam::DVec2;
+    /// let (even, odd) = (Tile::Plain, Tile::Constant { angle: 0.0 });
+    /// let f = GratingField::checkerboard(2.0, even, odd)?;
+    /// assert_eq!(f.tile_at(DVec2::new(1.0, 1.0)), even);
+    /// assert_eq!(f.tile_at(DVec2::new(3.0, 1.0)), odd);
+    /// assert_eq!(f.tile_at(DVec2::new(-1.0, 1.0)), odd); // the squares continue below zero
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn tile_at(&self, p: DVec2) -> Tile {
         match *self {
@@ -352,6 +450,14 @@ impl GratingField {
     }
 
     /// The unit grating vector at `p` in tangent coordinates, or `None` where there is no grating.
+    ///
+    /// ```
+    /// use diffraction::frame::GratingField;
+    /// use glam::DVec2;
+    /// let f = GratingField::constant(0.0);
+    /// assert_eq!(f.direction_at(DVec2::new(2.0, 3.0)), Some(DVec2::X));
+    /// assert_eq!(f.direction_at(DVec2::new(f64::NAN, 0.0)), None); // not a point
+    /// ```
     #[must_use]
     pub fn direction_at(&self, p: DVec2) -> Option<DVec2> {
         if !p.is_finite() {
@@ -361,6 +467,16 @@ impl GratingField {
     }
 
     /// The world-space grating vector at `p`, given the surface's world tangents at that point.
+    ///
+    /// ```
+    /// use diffraction::frame::GratingField;
+    /// use glam::{DVec2, DVec3};
+    /// let cd = GratingField::radial(DVec2::ZERO);
+    /// // A disc in the xz-plane: tangent coordinates (p.x, p.y) run along world x and z.
+    /// let t = cd.world_direction(DVec2::new(0.0, 2.0), DVec3::X, DVec3::Z);
+    /// assert_eq!(t, Some(DVec3::Z));
+    /// assert_eq!(cd.world_direction(DVec2::ZERO, DVec3::X, DVec3::Z), None); // the centre
+    /// ```
     #[must_use]
     pub fn world_direction(&self, p: DVec2, tangent: DVec3, bitangent: DVec3) -> Option<DVec3> {
         let d = self.direction_at(p)?;

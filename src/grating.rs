@@ -12,6 +12,16 @@ use crate::math;
 /// The paper's normalisation puts every maximum at 1 whatever N is; the width of a maximum is
 /// about 1/N of a period. [`Slits::Infinite`] is the limit N → ∞: the intensity is S(β) exactly on
 /// the grating equation and 0 elsewhere, and every peak has zero width.
+///
+/// ```
+/// use diffraction::{Grating, Slits};
+/// let few = Grating::with_slits(1600.0, 800.0, Slits::Finite(10))?;
+/// let ideal = Grating::with_slits(1600.0, 800.0, Slits::Infinite)?;
+/// // Off the grating equation (x = d·u/λ = 0.05) ten slits still send light; the limit does not.
+/// assert!(few.intensity(0.025, 800.0) > 0.1);
+/// assert_eq!(ideal.intensity(0.025, 800.0), 0.0);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Slits {
@@ -23,6 +33,12 @@ pub enum Slits {
 
 impl Slits {
     /// N as a float, `f64::INFINITY` for the limit.
+    ///
+    /// ```
+    /// use diffraction::Slits;
+    /// assert_eq!(Slits::Finite(1000).as_f64(), 1000.0);
+    /// assert_eq!(Slits::Infinite.as_f64(), f64::INFINITY);
+    /// ```
     #[must_use]
     pub fn as_f64(self) -> f64 {
         match self {
@@ -51,12 +67,28 @@ pub struct Band {
 
 impl Band {
     /// The band of the CIE 1931 tables, 360-830 nm, over which the crate integrates colour.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// assert_eq!((Band::VISIBLE.min_nm(), Band::VISIBLE.max_nm()), (360.0, 830.0));
+    /// assert_eq!(Band::VISIBLE, Band::new(360.0, 830.0)?);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     pub const VISIBLE: Band = Band {
         min_nm: 360.0,
         max_nm: 830.0,
     };
 
     /// A custom band; rejects non-finite or non-positive ends and `max_nm <= min_nm`.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// let b = Band::new(380.0, 780.0)?;
+    /// assert_eq!((b.min_nm(), b.max_nm()), (380.0, 780.0));
+    /// assert_eq!(Band::new(0.0, 780.0).unwrap_err().parameter(), "min_nm");
+    /// assert_eq!(Band::new(500.0, 500.0).unwrap_err().parameter(), "max_nm"); // empty
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     pub fn new(min_nm: f64, max_nm: f64) -> Result<Band, Error> {
         let min_nm = positive("min_nm", min_nm)?;
         let max_nm = positive("max_nm", max_nm)?;
@@ -74,24 +106,50 @@ impl Band {
     }
 
     /// Shortest wavelength, nm.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// assert_eq!(Band::new(400.0, 700.0)?.min_nm(), 400.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn min_nm(self) -> f64 {
         self.min_nm
     }
 
     /// Longest wavelength, nm.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// assert_eq!(Band::new(400.0, 700.0)?.max_nm(), 700.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn max_nm(self) -> f64 {
         self.max_nm
     }
 
     /// `max_nm - min_nm`.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// assert_eq!(Band::VISIBLE.width_nm(), 470.0);
+    /// assert_eq!(Band::new(400.0, 700.0)?.width_nm(), 300.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn width_nm(self) -> f64 {
         self.max_nm - self.min_nm
     }
 
     /// Whether `min_nm <= lambda_nm <= max_nm`.
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// let b = Band::VISIBLE;
+    /// assert!(b.contains(360.0) && b.contains(830.0)); // both ends belong to the band
+    /// assert!(!b.contains(830.5) && !b.contains(f64::NAN));
+    /// ```
     #[must_use]
     pub fn contains(self, lambda_nm: f64) -> bool {
         self.min_nm <= lambda_nm && lambda_nm <= self.max_nm
@@ -162,6 +220,16 @@ impl Grating {
     }
 
     /// A grating with N → ∞ (see [`Slits::Infinite`]).
+    ///
+    /// ```
+    /// use diffraction::{Grating, Slits};
+    /// let g = Grating::infinite(1600.0, 800.0)?;
+    /// assert_eq!(g.slits(), Slits::Infinite);
+    /// // On the grating equation (x = d·u/λ = 1) the envelope S(β); rounding of x only.
+    /// assert!((g.intensity(0.3, 480.0) - g.single_slit(0.3, 480.0)).abs() < 1e-15);
+    /// assert_eq!(g.intensity(0.3, 500.0), 0.0); // anywhere else
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     pub fn infinite(period_nm: f64, slit_width_nm: f64) -> Result<Grating, Error> {
         Grating::with_slits(period_nm, slit_width_nm, Slits::Infinite)
     }
@@ -197,6 +265,15 @@ impl Grating {
     }
 
     /// A grating with an explicit [`Slits`] value.
+    ///
+    /// ```
+    /// use diffraction::{Grating, Slits};
+    /// let g = Grating::with_slits(1600.0, 800.0, Slits::Finite(500))?;
+    /// assert_eq!(g, Grating::new(1600.0, 800.0, 500)?);
+    /// let err = Grating::with_slits(1600.0, 800.0, Slits::Finite(0)).unwrap_err();
+    /// assert_eq!(err.parameter(), "slits");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     pub fn with_slits(period_nm: f64, slit_width_nm: f64, slits: Slits) -> Result<Grating, Error> {
         let d = positive("period_nm", period_nm)?;
         let w = positive("slit_width_nm", slit_width_nm)?;
@@ -221,18 +298,37 @@ impl Grating {
     }
 
     /// The period d, nm.
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// assert_eq!(Grating::new(1600.0, 800.0, 100)?.period_nm(), 1600.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn period_nm(&self) -> f64 {
         self.period_nm
     }
 
     /// The slit width w, nm.
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// assert_eq!(Grating::new(1600.0, 800.0, 100)?.slit_width_nm(), 800.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn slit_width_nm(&self) -> f64 {
         self.slit_width_nm
     }
 
     /// The number of slits N.
+    ///
+    /// ```
+    /// use diffraction::{Grating, Slits};
+    /// assert_eq!(Grating::new(1600.0, 800.0, 100)?.slits(), Slits::Finite(100));
+    /// assert_eq!(Grating::infinite(1600.0, 800.0)?.slits(), Slits::Infinite);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn slits(&self) -> Slits {
         self.slits
@@ -311,6 +407,17 @@ impl Grating {
     }
 
     /// The single-slit envelope S(β) alone, β = π·w·u/λ (0 for λ ≤ 0).
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// use std::f64::consts::PI;
+    /// let g = Grating::new(1600.0, 800.0, 100)?;
+    /// assert_eq!(g.single_slit(0.0, 500.0), 1.0); // β = 0
+    /// // w·u/λ = 1/2 (β = π/2): S = (2/π)², to rounding.
+    /// assert!((g.single_slit(0.3125, 500.0) - 4.0 / (PI * PI)).abs() < 1e-15);
+    /// assert!(g.single_slit(0.625, 500.0) < 1e-30); // β = π: the first zero
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn single_slit(&self, u: f64, lambda_nm: f64) -> f64 {
         if lambda_nm.is_nan() || lambda_nm <= 0.0 {
@@ -324,6 +431,14 @@ impl Grating {
     }
 
     /// The N-slit factor F_N(α) alone, α = π·d·u/λ (0 for λ ≤ 0).
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// let g = Grating::new(1600.0, 800.0, 4)?;
+    /// assert_eq!(g.n_slit(0.625, 1000.0), 1.0); // x = d·u/λ = 1: a principal maximum
+    /// assert!(g.n_slit(0.15625, 1000.0) < 1e-30); // x = 1/N: the first zero
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn n_slit(&self, u: f64, lambda_nm: f64) -> f64 {
         if lambda_nm.is_nan() || lambda_nm <= 0.0 {
@@ -357,6 +472,16 @@ impl Grating {
 
     /// The half-width, in u, of the central (order 0) lobe at wavelength λ: the first zero of
     /// F_N is at |u| = λ/(N·d). Zero for N = ∞.
+    ///
+    /// ```
+    /// use diffraction::Grating;
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let h = g.specular_half_width(500.0);
+    /// assert_eq!(h, 500.0 / (1000.0 * 1600.0)); // λ/(N·d)
+    /// assert!(g.n_slit(h, 500.0) < 1e-20); // F_N's first zero, up to the rounding of x
+    /// assert_eq!(Grating::infinite(1600.0, 800.0)?.specular_half_width(500.0), 0.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn specular_half_width(&self, lambda_nm: f64) -> f64 {
         lambda_nm / (self.slits.as_f64() * self.period_nm)
@@ -475,6 +600,17 @@ fn order_range(q: f64, band: Band) -> (i32, i32) {
 }
 
 /// One grating-equation maximum of a given order (see [`Grating::peaks`]).
+///
+/// ```
+/// use diffraction::{Band, Grating};
+/// let g = Grating::new(1600.0, 800.0, 1000)?;
+/// let p = g.peaks(0.6, Band::VISIBLE).next().unwrap(); // d·u = 960 nm: order 1 is infrared
+/// assert_eq!(p.order, 2);
+/// assert!((p.wavelength_nm - 480.0).abs() < 1e-12); // d·u/m, rounding of d·u only
+/// assert!((p.equivalent_width_nm - 480.0 / (2.0 * 1000.0)).abs() < 1e-12); // λ_m/(|m|·N)
+/// assert!(p.intensity < 1e-30); // w = d/2: the even orders are missing (S(β_2) = 0)
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Peak {
@@ -494,6 +630,16 @@ pub struct Peak {
 }
 
 /// The visible orders for one u, from [`Grating::peaks`].
+///
+/// ```
+/// use diffraction::{Band, Grating};
+/// let g = Grating::new(1600.0, 800.0, 1000)?;
+/// let peaks = g.peaks(0.9, Band::VISIBLE); // d·u = 1440 nm: orders 2, 3 and 4
+/// assert_eq!(peaks.len(), 3);
+/// assert!(!peaks.specular());
+/// assert_eq!(peaks.map(|p| p.order).max(), Some(4));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct Peaks {
     q: f64,
@@ -508,6 +654,18 @@ pub struct Peaks {
 impl Peaks {
     /// Whether u lies inside the central (order 0, mirror) lobe for some wavelength of the band:
     /// |u| < λ_max/(N·d), or u = 0 exactly for N = ∞. There the model shows the white specular.
+    ///
+    /// ```
+    /// use diffraction::{Band, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// // Order 0's half-width at 830 nm is 830/(N·d) ≈ 5.19e-4 in u.
+    /// assert!(g.peaks(5e-4, Band::VISIBLE).specular());
+    /// assert!(!g.peaks(6e-4, Band::VISIBLE).specular());
+    /// let ideal = Grating::infinite(1600.0, 800.0)?; // N = ∞: only u = 0
+    /// assert!(ideal.peaks(0.0, Band::VISIBLE).specular());
+    /// assert!(!ideal.peaks(5e-4, Band::VISIBLE).specular());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn specular(&self) -> bool {
         self.specular
@@ -548,6 +706,17 @@ impl ExactSizeIterator for Peaks {}
 impl core::iter::FusedIterator for Peaks {}
 
 /// One propagating diffracted order (see [`Grating::diffracted_orders`]).
+///
+/// ```
+/// use diffraction::Grating;
+/// use glam::DVec3;
+/// let g = Grating::new(1600.0, 800.0, 100)?;
+/// let mut orders = g.diffracted_orders(DVec3::new(-0.6, 0.0, 0.8), 500.0);
+/// let mirror = orders.find(|o| o.order == 0).unwrap();
+/// assert!((mirror.direction - DVec3::new(0.6, 0.0, 0.8)).length() < 1e-15); // rounding only
+/// assert_eq!(mirror.intensity, 1.0); // S(0)
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DiffractedOrder {
     /// The order m (0 is the mirror direction).
@@ -559,6 +728,16 @@ pub struct DiffractedOrder {
 }
 
 /// The propagating orders for one incidence and wavelength, from [`Grating::diffracted_orders`].
+///
+/// ```
+/// use diffraction::Grating;
+/// use glam::DVec3;
+/// let g = Grating::new(1600.0, 800.0, 100)?;
+/// // Normal incidence, λ/d = 1/2: wo_x = m/2, so |m| = 2 would graze (wo_z = 0) and is skipped.
+/// let orders: Vec<i32> = g.diffracted_orders(DVec3::Z, 800.0).map(|o| o.order).collect();
+/// assert_eq!(orders, [-1, 0, 1]);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct DiffractedOrders {
     wi: DVec3,

@@ -292,6 +292,13 @@ pub mod naive {
     use crate::float::Float;
 
     /// sin²(Nα)/(N² sin²α) evaluated directly in `T`; NaN where sin α = 0.
+    ///
+    /// ```
+    /// use diffraction::kernel::{n_slit, naive};
+    /// // Away from the zeros of sin α the direct formula is accurate.
+    /// assert!((naive::n_slit(0.1f64, 4) - n_slit(0.1f64, 4)).abs() < 1e-14);
+    /// assert!(naive::n_slit(0.0f64, 4).is_nan()); // 0/0 at the principal maximum, where F_N = 1
+    /// ```
     #[inline]
     #[must_use]
     pub fn n_slit<T: Float>(alpha: T, n: u32) -> T {
@@ -303,6 +310,12 @@ pub mod naive {
     }
 
     /// (sin β/β)² evaluated directly in `T`; NaN at β = 0.
+    ///
+    /// ```
+    /// use diffraction::kernel::{naive, single_slit};
+    /// assert!((naive::single_slit(1.0f64) - single_slit(1.0f64)).abs() < 1e-15);
+    /// assert!(naive::single_slit(0.0f64).is_nan()); // 0/0 at β = 0, where S = 1
+    /// ```
     #[inline]
     #[must_use]
     pub fn single_slit<T: Float>(beta: T) -> T {

@@ -122,6 +122,14 @@ const NEAR_LOBES: f64 = 64.0;
 const MAX_LOBES: f64 = 4096.0;
 
 /// How [`Spectral::xyz`] evaluates the spectral integral (see the [module docs](self)).
+///
+/// ```
+/// use diffraction::spectrum::{Strategy, DEFAULT_ACCURACY};
+/// assert_eq!(Strategy::default(), Strategy::Auto { accuracy: DEFAULT_ACCURACY });
+/// let s = Strategy::GaussLegendre { intervals: 64 };
+/// assert_eq!(s.to_string(), "gauss:64");
+/// assert_eq!("gauss:64".parse(), Ok(s));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
@@ -154,6 +162,12 @@ pub enum Strategy {
 }
 
 /// The default accuracy of [`Strategy::Auto`], relative: 10⁻³.
+///
+/// ```
+/// use diffraction::spectrum::{Strategy, DEFAULT_ACCURACY};
+/// assert_eq!(DEFAULT_ACCURACY, 1e-3);
+/// assert_eq!("auto".parse(), Ok(Strategy::Auto { accuracy: DEFAULT_ACCURACY }));
+/// ```
 pub const DEFAULT_ACCURACY: f64 = 1e-3;
 
 impl Default for Strategy {
@@ -179,6 +193,12 @@ impl fmt::Display for Strategy {
 }
 
 /// The error of parsing a [`Strategy`] name.
+///
+/// ```
+/// use diffraction::spectrum::{ParseStrategyError, Strategy};
+/// assert_eq!("simpson".parse::<Strategy>(), Err(ParseStrategyError));
+/// assert_eq!("gauss:0".parse::<Strategy>(), Err(ParseStrategyError)); // K must be positive
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ParseStrategyError;
 
@@ -233,6 +253,17 @@ impl FromStr for Strategy {
 }
 
 /// Spectral integration under one illuminant over 360-830 nm (see the [module docs](self)).
+///
+/// ```
+/// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+/// use diffraction::Grating;
+/// let s = Spectral::new(Illuminant::D65);
+/// let g = Grating::new(1600.0, 800.0, 1000)?;
+/// assert_eq!(s.xyz(&g, 0.0, Strategy::Exact), s.white()); // the mirror direction is white
+/// let first = s.xyz(&g, 0.34, Strategy::Exact); // order 1 at 544 nm
+/// assert!(first.y > 0.0 && first.y < 0.01); // it holds about 1/N of the light
+/// # Ok::<(), diffraction::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spectral {
     illuminant: Illuminant,
@@ -245,6 +276,15 @@ pub struct Spectral {
 
 impl Spectral {
     /// Precomputes the normalisation ∫E·ȳ and the white point for `illuminant`.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// let s = Spectral::new(Illuminant::A);
+    /// assert_eq!(s.illuminant(), Illuminant::A);
+    /// let w = s.white();
+    /// assert_eq!(w.y, 1.0); // normalised
+    /// assert!(w.x > 1.0 && w.z < 0.5); // tungsten light is orange: X ≈ 1.10, Z ≈ 0.36
+    /// ```
     #[must_use]
     pub fn new(illuminant: Illuminant) -> Spectral {
         let e = |i| cie::illuminant_row(illuminant, i);
@@ -260,6 +300,11 @@ impl Spectral {
     }
 
     /// The illuminant.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// assert_eq!(Spectral::new(Illuminant::D65).illuminant(), Illuminant::D65);
+    /// ```
     #[must_use]
     pub fn illuminant(&self) -> Illuminant {
         self.illuminant
@@ -289,6 +334,19 @@ impl Spectral {
     ///
     /// The result is relative to the illuminant's white (a white reflector has Y = 1); every
     /// strategy returns finite, non-negative values for finite u. I is even in u.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::Grating;
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let s = Spectral::new(Illuminant::E);
+    /// let exact = s.xyz(&g, 0.34, Strategy::Exact);
+    /// assert_eq!(exact, s.xyz(&g, -0.34, Strategy::Exact)); // I is even in u
+    /// let auto = s.xyz(&g, 0.34, Strategy::Auto { accuracy: 1e-2 });
+    /// // As requested: the only visible order is the brightest, so the bound is relative to it.
+    /// assert!((auto.y - exact.y).abs() <= 1e-2 * exact.y);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn xyz(&self, grating: &Grating, u: f64, strategy: Strategy) -> Xyz {
         let u = u.abs();
@@ -321,6 +379,17 @@ impl Spectral {
     /// is 3.5/N, and kept with a margin): peak search 8/N, plus 2e-3 of the order-0 light where
     /// order 0's half period reaches into the band (d·|u|/830 nm < ½); `Exact` 1e-7. Where the
     /// band holds at most 64 lobes, `Exact` costs no more than the peak search and is chosen.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::Grating;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let few = Grating::new(1600.0, 800.0, 3)?; // 3 lobes in the band: exact is cheap
+    /// assert_eq!(s.choose(&few, 0.4, 1e-3), Strategy::Exact);
+    /// let many = Grating::new(1600.0, 800.0, 100_000)?; // 8/N = 8e-5 meets 1e-3
+    /// assert_eq!(s.choose(&many, 0.4, 1e-3), Strategy::PeakSearch { refine: false });
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn choose(&self, grating: &Grating, u: f64, accuracy: f64) -> Strategy {
         let n = match grating.slits() {
@@ -549,6 +618,19 @@ impl Spectral {
     /// Hero wavelengths (as in pbrt-v4): one random number `xi` in [0, 1) places the first of
     /// `count` wavelengths uniformly in the band and the others at equal spacing after it,
     /// wrapping around; an unbiased estimate of [`xyz`](Self::xyz). `count` = 0 gives black.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::{color::Xyz, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 3)?;
+    /// let s = Spectral::new(Illuminant::E);
+    /// // xi = 0.5/count puts the wavelengths at the strata midpoints: the uniform rule.
+    /// let hero = s.xyz_hero(&g, 0.4, 0.5 / 8.0, 8);
+    /// let uniform = s.xyz(&g, 0.4, Strategy::Uniform { samples: 8 });
+    /// assert!((hero.y - uniform.y).abs() < 1e-12 * uniform.y); // same wavelengths, rounded apart
+    /// assert_eq!(s.xyz_hero(&g, 0.4, 0.5, 0), Xyz::default()); // no wavelength: black
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn xyz_hero(&self, grating: &Grating, u: f64, xi: f64, count: u32) -> Xyz {
         if count == 0 || !u.is_finite() {
