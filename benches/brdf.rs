@@ -17,31 +17,10 @@ const PERIODS: [f64; 3] = [740.0, 1600.0, 100_000.0];
 
 #[path = "support/rng.rs"]
 mod rng;
-use rng::Rng;
 
 /// The batch for one grating: (wi, wo, λ), every other one near a peak of order 1-4.
 fn samples(period: f64, n: u32) -> Vec<(DVec3, DVec3, f64)> {
-    let mut rng = Rng(0xB4D5 ^ u64::from(n) ^ ((period as u64) << 20));
-    let mut v = Vec::with_capacity(BATCH);
-    while v.len() < BATCH {
-        let wi = rng.direction(0.05);
-        let lambda = 360.0 + 470.0 * rng.next();
-        let mut wo = rng.direction(0.05);
-        if v.len() % 2 == 0 {
-            // u = m·λ/d plus a few lobes λ/(N·d).
-            let m = 1.0 + (rng.next() * 4.0).floor();
-            let off = (rng.next() - 0.5) * 8.0 / f64::from(n);
-            let x = (m + off) * lambda / period - wi.x;
-            let y = 0.3 * (rng.next() - 0.5);
-            let z2 = 1.0 - x * x - y * y;
-            if z2 <= 0.0025 {
-                continue;
-            }
-            wo = DVec3::new(x, y, z2.sqrt());
-        }
-        v.push((wi, wo, lambda));
-    }
-    v
+    rng::near_peak_samples(period, n, BATCH)
 }
 
 /// The textbook formula in `f32`, as a renderer would write it.

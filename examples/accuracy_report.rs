@@ -765,33 +765,10 @@ struct Sample {
 }
 
 fn eval_samples(period: f64, n: u32, count: usize) -> Vec<Sample> {
-    let mut rng = Rng(0xB4D5 ^ (n as u64) ^ ((period as u64) << 20));
-    let mut v = Vec::with_capacity(count);
-    while v.len() < count {
-        let dir = |rng: &mut Rng| {
-            let z: f64 = 0.05 + 0.95 * rng.next();
-            let phi = std::f64::consts::TAU * rng.next();
-            let s = (1.0 - z * z).sqrt();
-            DVec3::new(s * phi.cos(), s * phi.sin(), z)
-        };
-        let wi = dir(&mut rng);
-        let lambda = 360.0 + 470.0 * rng.next();
-        let mut wo = dir(&mut rng);
-        if v.len() % 2 == 0 {
-            // Near a peak: u = m·λ/d + (a few lobes)·λ/(N·d).
-            let m = 1.0 + (rng.next() * 4.0).floor();
-            let off = (rng.next() - 0.5) * 8.0 / n as f64;
-            let x = (m + off) * lambda / period - wi.x;
-            let y = 0.3 * (rng.next() - 0.5);
-            let z2 = 1.0 - x * x - y * y;
-            if z2 <= 0.0025 {
-                continue;
-            }
-            wo = DVec3::new(x, y, z2.sqrt());
-        }
-        v.push(Sample { wi, wo, lambda });
-    }
-    v
+    rng::near_peak_samples(period, n, count)
+        .into_iter()
+        .map(|(wi, wo, lambda)| Sample { wi, wo, lambda })
+        .collect()
 }
 
 /// The naive formula for one wavelength in `f32`, as a renderer would write it.
