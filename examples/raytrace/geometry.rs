@@ -207,8 +207,8 @@ fn in_range(t: f64, t_max: f64) -> bool {
     t > EPSILON && t < t_max
 }
 
-/// The plane y = 0, |x|, |z| ≤ ½. Tangent coordinates p = (x, z).
-fn quad(o: DVec3, d: DVec3, t_max: f64) -> Option<LocalHit> {
+/// The hit of the plane y = 0 at a point `inside` accepts, with tangent coordinates p = (x, z).
+fn y_plane(o: DVec3, d: DVec3, t_max: f64, inside: impl Fn(DVec3) -> bool) -> Option<LocalHit> {
     if d.y.abs() < 1e-300 {
         return None;
     }
@@ -217,7 +217,7 @@ fn quad(o: DVec3, d: DVec3, t_max: f64) -> Option<LocalHit> {
         return None;
     }
     let q = o + d * t;
-    if q.x.abs() > 0.5 || q.z.abs() > 0.5 {
+    if !inside(q) {
         return None;
     }
     Some(LocalHit {
@@ -231,29 +231,17 @@ fn quad(o: DVec3, d: DVec3, t_max: f64) -> Option<LocalHit> {
     })
 }
 
+/// The plane y = 0, |x|, |z| ≤ ½. Tangent coordinates p = (x, z).
+fn quad(o: DVec3, d: DVec3, t_max: f64) -> Option<LocalHit> {
+    y_plane(o, d, t_max, |q| q.x.abs() <= 0.5 && q.z.abs() <= 0.5)
+}
+
 /// The annulus hole ≤ r ≤ ½ in y = 0. Tangent coordinates p = (x, z), so a radial field
 /// centred at (0, 0) follows the tracks.
 fn disc(o: DVec3, d: DVec3, t_max: f64, hole: f64) -> Option<LocalHit> {
-    if d.y.abs() < 1e-300 {
-        return None;
-    }
-    let t = -o.y / d.y;
-    if !in_range(t, t_max) {
-        return None;
-    }
-    let q = o + d * t;
-    let r2 = q.x * q.x + q.z * q.z;
-    if r2 > 0.25 || r2 < hole * hole {
-        return None;
-    }
-    Some(LocalHit {
-        t,
-        normal: DVec3::Y,
-        p: DVec2::new(q.x, q.z),
-        dpdx: DVec3::X,
-        dpdy: DVec3::Z,
-        uv: DVec2::new(q.x + 0.5, q.z + 0.5),
-        part: Part::Face,
+    y_plane(o, d, t_max, |q| {
+        let r2 = q.x * q.x + q.z * q.z;
+        r2 <= 0.25 && r2 >= hole * hole
     })
 }
 
