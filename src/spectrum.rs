@@ -358,9 +358,11 @@ impl Spectral {
             return self.white;
         }
         let [x, y, z] = match strategy {
-            Strategy::Uniform { samples } => self.uniform(grating, u, samples.max(1)),
+            Strategy::Uniform { samples } => {
+                midpoint_rule(samples, &|l| self.integrand(grating, u, l))
+            }
             Strategy::GaussLegendre { intervals } => {
-                self.gauss_legendre(grating, u, intervals.max(1))
+                gauss_legendre_rule(intervals, &|l| self.integrand(grating, u, l))
             }
             Strategy::PeakSearch { refine } => self.peak_search(grating, u, refine),
             Strategy::PaperPeaks => self.paper_peaks(grating, u),
@@ -428,33 +430,6 @@ impl Spectral {
         let i = grating.intensity_f64(u, lambda_nm);
         let w = self.weight(lambda_nm);
         [w[0] * i, w[1] * i, w[2] * i]
-    }
-
-    fn uniform(&self, grating: &Grating, u: f64, k: u32) -> [f64; 3] {
-        let step = BAND.width_nm() / k as f64;
-        let mut acc = [0.0; 3];
-        for j in 0..k {
-            let l = BAND.min_nm() + (j as f64 + 0.5) * step;
-            add_scaled(&mut acc, self.integrand(grating, u, l), step);
-        }
-        acc
-    }
-
-    fn gauss_legendre(&self, grating: &Grating, u: f64, k: u32) -> [f64; 3] {
-        let step = BAND.width_nm() / k as f64;
-        let mut acc = [0.0; 3];
-        for j in 0..k {
-            let a = BAND.min_nm() + j as f64 * step;
-            let (mid, half) = (a + 0.5 * step, 0.5 * step);
-            for (xi, wi) in GL_X.iter().zip(GL_W) {
-                add_scaled(
-                    &mut acc,
-                    self.integrand(grating, u, mid + half * xi),
-                    wi * half,
-                );
-            }
-        }
-        acc
     }
 
     fn peak_search(&self, grating: &Grating, u: f64, refine: bool) -> [f64; 3] {
@@ -704,22 +679,8 @@ impl Spectral {
         };
         let mut acc = [0.0; 3];
         match strategy {
-            Strategy::Uniform { samples } => {
-                let k = samples.max(1);
-                let step = BAND.width_nm() / k as f64;
-                for j in 0..k {
-                    let l = BAND.min_nm() + (j as f64 + 0.5) * step;
-                    add_scaled(&mut acc, f(l), step);
-                }
-            }
-            Strategy::GaussLegendre { intervals } => {
-                let k = intervals.max(1);
-                let step = BAND.width_nm() / k as f64;
-                for j in 0..k {
-                    let a = BAND.min_nm() + j as f64 * step;
-                    gl8(a, a + step, &mut acc, &f);
-                }
-            }
+            Strategy::Uniform { samples } => acc = midpoint_rule(samples, &f),
+            Strategy::GaussLegendre { intervals } => acc = gauss_legendre_rule(intervals, &f),
             Strategy::PeakSearch { .. } => {
                 let summary = brdf.peaks(wi, wo, BAND, &mut |p| {
                     add_scaled(
@@ -959,6 +920,29 @@ impl<'a> Lobes<'a> {
             gl8(lo, b, acc, f);
         }
     }
+}
+
+/// The midpoint rule with `k` (at least 1) wavelengths over the band.
+fn midpoint_rule(k: u32, f: &dyn Fn(f64) -> [f64; 3]) -> [f64; 3] {
+    let k = k.max(1);
+    let step = BAND.width_nm() / k as f64;
+    let mut acc = [0.0; 3];
+    for j in 0..k {
+        add_scaled(&mut acc, f(BAND.min_nm() + (j as f64 + 0.5) * step), step);
+    }
+    acc
+}
+
+/// 8-point Gauss-Legendre on each of `k` (at least 1) equal intervals of the band.
+fn gauss_legendre_rule(k: u32, f: &dyn Fn(f64) -> [f64; 3]) -> [f64; 3] {
+    let k = k.max(1);
+    let step = BAND.width_nm() / k as f64;
+    let mut acc = [0.0; 3];
+    for j in 0..k {
+        let a = BAND.min_nm() + j as f64 * step;
+        gl8(a, a + step, &mut acc, f);
+    }
+    acc
 }
 
 /// 4-point Gauss-Legendre over [a, b] (numpy.polynomial.legendre.leggauss(4)).
