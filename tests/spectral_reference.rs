@@ -157,12 +157,6 @@ fn peak_search_error_bounds_hold() {
             if order0 {
                 // Part of the error not covered by the orders' bound, relative to the colour.
                 let excess = (err - 8.0 / r.n as f64 * scale).max(0.0) / size;
-                if excess > 1e-4 && std::env::var("DEBUG_ROWS").is_ok() {
-                    println!(
-                        "d={} w={} N={} u={} got {:?} want {:?}",
-                        r.d, r.w, r.n, r.u, got, r.xyz
-                    );
-                }
                 e[2] = e[2].max(excess);
             } else {
                 e[i] = e[i].max(err / scale);
