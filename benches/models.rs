@@ -118,7 +118,9 @@ fn bench_xyz(c: &mut Criterion) {
                 b.iter(|| {
                     batch
                         .iter()
-                        .map(|&(wi, wo, _)| model.xyz(black_box(wi), wo, &spectral, strategy).y)
+                        .map(|&(wi, wo, _)| {
+                            spectral.xyz_brdf(&*model, black_box(wi), wo, strategy).y
+                        })
                         .sum::<f64>()
                 })
             });

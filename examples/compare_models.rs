@@ -154,7 +154,7 @@ fn growing_n(spectral: &Spectral) {
         let all = models(n);
         let ys: Vec<String> = all
             .iter()
-            .map(|m| format!("{:.3e}", m.xyz(wi, wo, spectral, Strategy::Exact).y))
+            .map(|m| format!("{:.3e}", spectral.xyz_brdf(&**m, wi, wo, Strategy::Exact).y))
             .collect();
         let mut width = 0.0;
         all[2].peaks(wi, wo, Band::VISIBLE, &mut |p| {
@@ -177,9 +177,9 @@ fn peak_search_error(spectral: &Spectral) {
         let cells: Vec<String> = models(n)
             .iter()
             .map(|m| {
-                let exact = m.xyz(wi, wo, spectral, Strategy::Exact).y;
-                let fast = m
-                    .xyz(wi, wo, spectral, Strategy::PeakSearch { refine: false })
+                let exact = spectral.xyz_brdf(&**m, wi, wo, Strategy::Exact).y;
+                let fast = spectral
+                    .xyz_brdf(&**m, wi, wo, Strategy::PeakSearch { refine: false })
                     .y;
                 format!("{:.1e}", (fast - exact).abs() / exact)
             })
@@ -200,7 +200,11 @@ fn colours(spectral: &Spectral) {
     let reference_wo = outgoing(DVec3::Z, 0.34);
     let scales: Vec<f64> = all
         .iter()
-        .map(|m| 1.0 / m.xyz(DVec3::Z, reference_wo, spectral, Strategy::Exact).y)
+        .map(|m| {
+            1.0 / spectral
+                .xyz_brdf(&**m, DVec3::Z, reference_wo, Strategy::Exact)
+                .y
+        })
         .collect();
     let white = spectral.white();
     for (deg, u, v) in [
@@ -219,7 +223,7 @@ fn colours(spectral: &Spectral) {
         let xyz: Vec<Xyz> = all
             .iter()
             .zip(&scales)
-            .map(|(m, k)| m.xyz(wi, wo, spectral, Strategy::Exact) * *k)
+            .map(|(m, k)| spectral.xyz_brdf(&**m, wi, wo, Strategy::Exact) * *k)
             .collect();
         let lab: Vec<_> = xyz.iter().map(|c| c.to_lab(white)).collect();
         let de: Vec<String> = lab[1..]

@@ -50,6 +50,8 @@ pub enum Requirement {
     Positive,
     /// Finite (not NaN nor infinite).
     Finite,
+    /// Finite and ≥ 0.
+    NonNegative,
     /// At least one.
     AtLeastOne,
     /// 0 < value ≤ the given bound (named in the message).
@@ -127,22 +129,23 @@ impl fmt::Display for Error {
                 value,
                 requirement,
             } => {
-                write!(f, "invalid {name} = {value}: must ")?;
+                write!(f, "invalid {name} = {}: must ", Num(*value))?;
                 match requirement {
                     Requirement::Positive => write!(f, "be finite and > 0"),
                     Requirement::Finite => write!(f, "be finite"),
+                    Requirement::NonNegative => write!(f, "be finite and >= 0"),
                     Requirement::AtLeastOne => write!(f, "be at least 1"),
                     Requirement::AtMost { bound_name, bound } => {
-                        write!(f, "satisfy 0 < {name} <= {bound_name} ({bound})")
+                        write!(f, "satisfy 0 < {name} <= {bound_name} ({})", Num(*bound))
                     }
                     Requirement::AtLeast { bound_name, bound } => {
-                        write!(f, "satisfy {name} >= {bound_name} ({bound})")
+                        write!(f, "satisfy {name} >= {bound_name} ({})", Num(*bound))
                     }
                     Requirement::GreaterThan { bound_name, bound } => {
-                        write!(f, "satisfy {name} > {bound_name} ({bound})")
+                        write!(f, "satisfy {name} > {bound_name} ({})", Num(*bound))
                     }
                     Requirement::Within { min, max } => {
-                        write!(f, "lie in [{min}, {max}]")
+                        write!(f, "lie in [{}, {}]", Num(*min), Num(*max))
                     }
                 }
             }
@@ -151,6 +154,22 @@ impl fmt::Display for Error {
 }
 
 impl core::error::Error for Error {}
+
+/// A number as a person reads it in a message: the shortest round-trip form, in scientific
+/// notation when it is very large or very small (so `f64::MAX` prints as `1.7976931348623157e308`,
+/// not as 309 digits, and a subnormal as `5e-324`).
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a != 0.0 && a.is_finite() && !(1e-4..1e16).contains(&a) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
 
 /// Checks that `value` is finite and > 0.
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, Error> {

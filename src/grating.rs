@@ -1,4 +1,5 @@
-//! Grating parameters, the Agu-Hill intensity, the grating equation and the peak search.
+//! Grating parameters, the Agu-Hill intensity I(u, λ) = S(β)·F_N(α), and its peaks on the grating
+//! equation (the peak search).
 
 use glam::DVec3;
 
@@ -6,6 +7,8 @@ use crate::error::{positive, Error, Requirement};
 use crate::float::Float;
 use crate::kernel::{intensity_cycles, n_slit_cycles, single_slit_cycles};
 use crate::math;
+use crate::orders::{GratingEquation, Orders, Propagating};
+use crate::Band;
 
 /// The number of coherently illuminated slits (periods), N.
 ///
@@ -45,127 +48,6 @@ impl Slits {
             Slits::Finite(n) => n as f64,
             Slits::Infinite => f64::INFINITY,
         }
-    }
-}
-
-/// A wavelength band [min_nm, max_nm], validated: 0 < min < max, both finite.
-///
-/// ```
-/// use diffraction::Band;
-/// assert_eq!(Band::VISIBLE.min_nm(), 360.0);
-/// let b = Band::new(400.0, 700.0)?;
-/// assert!(b.contains(550.0) && !b.contains(750.0));
-/// assert_eq!(Band::new(700.0, 400.0).unwrap_err().parameter(), "max_nm");
-/// # Ok::<(), diffraction::Error>(())
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
-pub struct Band {
-    min_nm: f64,
-    max_nm: f64,
-}
-
-impl Band {
-    /// The band of the CIE 1931 tables, 360-830 nm, over which the crate integrates colour.
-    ///
-    /// ```
-    /// use diffraction::Band;
-    /// assert_eq!((Band::VISIBLE.min_nm(), Band::VISIBLE.max_nm()), (360.0, 830.0));
-    /// assert_eq!(Band::VISIBLE, Band::new(360.0, 830.0)?);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    pub const VISIBLE: Band = Band {
-        min_nm: 360.0,
-        max_nm: 830.0,
-    };
-
-    /// A custom band; rejects non-finite or non-positive ends and `max_nm <= min_nm`.
-    ///
-    /// ```
-    /// use diffraction::Band;
-    /// let b = Band::new(380.0, 780.0)?;
-    /// assert_eq!((b.min_nm(), b.max_nm()), (380.0, 780.0));
-    /// assert_eq!(Band::new(0.0, 780.0).unwrap_err().parameter(), "min_nm");
-    /// assert_eq!(Band::new(500.0, 500.0).unwrap_err().parameter(), "max_nm"); // empty
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    pub fn new(min_nm: f64, max_nm: f64) -> Result<Band, Error> {
-        let min_nm = positive("min_nm", min_nm)?;
-        let max_nm = positive("max_nm", max_nm)?;
-        if max_nm <= min_nm {
-            return Err(Error::invalid(
-                "max_nm",
-                max_nm,
-                Requirement::GreaterThan {
-                    bound_name: "min_nm",
-                    bound: min_nm,
-                },
-            ));
-        }
-        Ok(Band { min_nm, max_nm })
-    }
-
-    /// Shortest wavelength, nm.
-    ///
-    /// ```
-    /// use diffraction::Band;
-    /// assert_eq!(Band::new(400.0, 700.0)?.min_nm(), 400.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn min_nm(self) -> f64 {
-        self.min_nm
-    }
-
-    /// Longest wavelength, nm.
-    ///
-    /// ```
-    /// use diffraction::Band;
-    /// assert_eq!(Band::new(400.0, 700.0)?.max_nm(), 700.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn max_nm(self) -> f64 {
-        self.max_nm
-    }
-
-    /// `max_nm - min_nm`.
-    ///
-    /// ```
-    /// use diffraction::Band;
-    /// assert_eq!(Band::VISIBLE.width_nm(), 470.0);
-    /// assert_eq!(Band::new(400.0, 700.0)?.width_nm(), 300.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn width_nm(self) -> f64 {
-        self.max_nm - self.min_nm
-    }
-
-    /// Whether `min_nm <= lambda_nm <= max_nm`.
-    ///
-    /// ```
-    /// use diffraction::Band;
-    /// let b = Band::VISIBLE;
-    /// assert!(b.contains(360.0) && b.contains(830.0)); // both ends belong to the band
-    /// assert!(!b.contains(830.5) && !b.contains(f64::NAN));
-    /// ```
-    #[must_use]
-    pub fn contains(self, lambda_nm: f64) -> bool {
-        self.min_nm <= lambda_nm && lambda_nm <= self.max_nm
-    }
-}
-
-#[cfg(feature = "serde")]
-impl<'de> serde::Deserialize<'de> for Band {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        #[derive(serde::Deserialize)]
-        struct Raw {
-            min_nm: f64,
-            max_nm: f64,
-        }
-        let raw = Raw::deserialize(d)?;
-        Band::new(raw.min_nm, raw.max_nm).map_err(serde::de::Error::custom)
     }
 }
 
@@ -463,11 +345,21 @@ impl Grating {
     /// ```
     #[must_use]
     pub fn peak_wavelength(&self, u: f64, order: i32) -> Option<f64> {
-        if order == 0 || !u.is_finite() {
-            return None;
-        }
-        let l = self.period_nm * u / order as f64;
-        (l > 0.0 && l.is_finite()).then_some(l)
+        self.equation().wavelength(u, order)
+    }
+
+    /// The grating equation of this grating's period (the orders every model shares).
+    ///
+    /// ```
+    /// use diffraction::{Band, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 10)?;
+    /// assert_eq!(g.equation().period_nm(), 1600.0);
+    /// assert_eq!(g.equation().orders(0.9, Band::VISIBLE).len(), g.peaks(0.9, Band::VISIBLE).len());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn equation(&self) -> GratingEquation {
+        GratingEquation::from_valid_period(self.period_nm)
     }
 
     /// The half-width, in u, of the central (order 0) lobe at wavelength λ: the first zero of
@@ -506,22 +398,12 @@ impl Grating {
     /// ```
     #[must_use]
     pub fn peaks(&self, u: f64, band: Band) -> Peaks {
-        let q = self.period_nm * u.abs();
-        let sign = if u < 0.0 { -1 } else { 1 };
         let specular = match self.slits {
             Slits::Infinite => u == 0.0,
-            Slits::Finite(_) => u.abs() < self.specular_half_width(band.max_nm),
-        };
-        let (first, last) = if q > 0.0 && q.is_finite() {
-            order_range(q, band)
-        } else {
-            (1, 0)
+            Slits::Finite(_) => u.abs() < self.specular_half_width(band.max_nm()),
         };
         Peaks {
-            q,
-            sign,
-            next: first,
-            last,
+            orders: self.equation().orders(u, band),
             duty: self.slit_width_nm / self.period_nm,
             n: self.slits.as_f64(),
             specular,
@@ -548,55 +430,11 @@ impl Grating {
     /// ```
     #[must_use]
     pub fn diffracted_orders(&self, wi: DVec3, lambda_nm: f64) -> DiffractedOrders {
-        let empty = DiffractedOrders {
-            wi,
-            step: 0.0,
-            next: 1,
-            last: 0,
-            duty: 0.0,
-        };
-        if lambda_nm.is_nan() || lambda_nm <= 0.0 || !wi.is_finite() {
-            return empty;
-        }
-        let step = lambda_nm / self.period_nm; // change of wo_x per order
-        let c2 = 1.0 - wi.y * wi.y;
-        if c2.is_nan() || c2 <= 0.0 || !step.is_finite() || step == 0.0 {
-            return empty;
-        }
-        let c = math::sqrt(c2);
-        // Propagating: |m·step − wi_x| < c.
-        let lo = math::ceil((wi.x - c) / step);
-        let hi = math::floor((wi.x + c) / step);
-        let clamp = |v: f64| v.clamp(i32::MIN as f64 + 1.0, i32::MAX as f64 - 1.0) as i32;
         DiffractedOrders {
-            wi,
-            step,
-            next: clamp(lo),
-            last: clamp(hi),
+            orders: self.equation().propagating(wi, lambda_nm),
             duty: self.slit_width_nm / self.period_nm,
         }
     }
-}
-
-/// The first and last |m| ≥ 1 with q/|m| inside the band (q = d·|u| > 0); empty when first > last.
-fn order_range(q: f64, band: Band) -> (i32, i32) {
-    let cap = i32::MAX as f64;
-    let mut first = math::ceil(q / band.max_nm).max(1.0).min(cap);
-    let mut last = math::floor(q / band.min_nm).min(cap);
-    // The divisions round; settle the ends with the exact membership test on λ = q/m.
-    if first > 1.0 && band.contains(q / (first - 1.0)) {
-        first -= 1.0;
-    }
-    if first <= cap && !band.contains(q / first) {
-        first += 1.0;
-    }
-    if last < cap && band.contains(q / (last + 1.0)) {
-        last += 1.0;
-    }
-    if last >= 1.0 && !band.contains(q / last) {
-        last -= 1.0;
-    }
-    (first.min(cap) as i32, last.max(0.0) as i32)
 }
 
 /// One grating-equation maximum of a given order (see [`Grating::peaks`]).
@@ -642,10 +480,7 @@ pub struct Peak {
 /// ```
 #[derive(Debug, Clone)]
 pub struct Peaks {
-    q: f64,
-    sign: i32,
-    next: i32,
-    last: i32,
+    orders: Orders,
     duty: f64,
     n: f64,
     specular: bool,
@@ -677,28 +512,18 @@ impl Iterator for Peaks {
 
     #[inline]
     fn next(&mut self) -> Option<Peak> {
-        if self.next > self.last {
-            return None;
-        }
-        let m = self.next;
-        self.next += 1;
-        let am = m as f64;
-        let lambda = self.q / am;
+        let o = self.orders.next()?;
+        let am = o.order.unsigned_abs() as f64;
         Some(Peak {
-            order: self.sign * m,
-            wavelength_nm: lambda,
+            order: o.order,
+            wavelength_nm: o.wavelength_nm,
             intensity: single_slit_cycles(self.duty * am),
-            equivalent_width_nm: lambda / (am * self.n),
+            equivalent_width_nm: o.wavelength_nm / (am * self.n),
         })
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = if self.next > self.last {
-            0
-        } else {
-            (self.last - self.next) as usize + 1
-        };
-        (n, Some(n))
+        self.orders.size_hint()
     }
 }
 
@@ -740,10 +565,7 @@ pub struct DiffractedOrder {
 /// ```
 #[derive(Debug, Clone)]
 pub struct DiffractedOrders {
-    wi: DVec3,
-    step: f64,
-    next: i32,
-    last: i32,
+    orders: Propagating,
     duty: f64,
 }
 
@@ -751,21 +573,12 @@ impl Iterator for DiffractedOrders {
     type Item = DiffractedOrder;
 
     fn next(&mut self) -> Option<DiffractedOrder> {
-        while self.next <= self.last {
-            let m = self.next;
-            self.next += 1;
-            let ox = m as f64 * self.step - self.wi.x;
-            let oy = -self.wi.y;
-            let z2 = 1.0 - ox * ox - oy * oy;
-            if z2 > 0.0 {
-                return Some(DiffractedOrder {
-                    order: m,
-                    direction: DVec3::new(ox, oy, math::sqrt(z2)),
-                    intensity: single_slit_cycles(self.duty * m as f64),
-                });
-            }
-        }
-        None
+        let (order, direction) = self.orders.next()?;
+        Some(DiffractedOrder {
+            order,
+            direction,
+            intensity: single_slit_cycles(self.duty * order as f64),
+        })
     }
 }
 

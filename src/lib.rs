@@ -38,19 +38,25 @@
 //!
 //! ## Modules
 //!
+//! One concept per file; `ARCHITECTURE.md` in the repository says what flows where.
+//!
 //! * [`kernel`]: the two factors S and F_N, stable in `f32` and `f64`, with stated accuracy.
-//! * [`Grating`], [`Band`], [`Peak`]: parameters, intensity, the grating equation and peak search.
+//! * [`Band`]: a wavelength band.
+//! * [`GratingEquation`], [`Order`]: the grating equation d·u = m·λ, the orders every model
+//!   shares (orders of a u inside a band, propagating directions of an incidence).
+//! * [`Grating`], [`Peak`]: the paper's grating, its intensity I(u, λ) and its peaks.
 //! * [`frame`]: the phase projection and grating-direction fields (constant, twisted, radial
 //!   tracks of a CD, checkerboards).
-//! * [`DiffractionBrdf`], [`AguHill`]: the BRDF interface and the paper's model.
-//! * [`Thorman`]: the baseline the paper improves on, peak directions only, every order equally
-//!   bright (a Gaussian lobe of chosen width around each).
-//! * `Stam`, `Profile`, `stam::bessel_j` (feature `stam`): Stam's Fourier-optics diffraction
-//!   shader for sinusoidal and binary profiles with a finite coherence area.
+//! * [`DiffractionBrdf`]: the interface every model implements; the models [`AguHill`] (the
+//!   paper's), [`Thorman`] (peak directions only, every order equally bright) and, with the
+//!   feature `stam`, `Stam` (Fourier optics for sinusoidal and binary profiles, in [`stam`]).
+//! * [`Illumination`]: the paper's illumination model (eq. 12), ambient + diffuse + diffraction
+//!   around any model.
 //! * [`cie`]: the CIE 1931 2° observer and illuminants E, D65, A at 1 nm (from colour-science).
-//! * [`spectrum`]: the reference colour XYZ of the intensity, by named strategies with stated
-//!   cost and error (uniform, Gauss-Legendre, stratified and hero wavelengths, peak search, the
-//!   paper's peak colours, lobe-exact quadrature, and `Auto` for a requested accuracy).
+//! * [`spectrum`]: the reference colour XYZ of a grating or of any model, by named strategies
+//!   with stated cost and error (uniform, Gauss-Legendre, stratified and hero wavelengths, peak
+//!   search, the paper's peak colours, lobe-exact quadrature, and `Auto` for a requested
+//!   accuracy).
 //! * [`color`]: XYZ, linear and encoded sRGB, Hall's clipping schemes, CIELAB and ΔE2000.
 //!
 //! ## From a hit point to a pixel
@@ -96,7 +102,10 @@
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
 
-mod brdf;
+mod band;
+#[cfg(feature = "stam")]
+mod bessel;
+mod bxdf;
 pub mod cie;
 mod cie_data;
 pub mod color;
@@ -104,22 +113,26 @@ mod error;
 mod float;
 pub mod frame;
 mod grating;
+mod illumination;
 pub mod kernel;
 mod math;
+mod orders;
 pub mod spectrum;
-#[cfg(feature = "stam")]
-pub mod stam;
-mod thorman;
 
-pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
+pub use band::Band;
+pub use bxdf::{AguHill, DiffractionBrdf, GratingResponse, PeakSummary, Thorman};
+#[cfg(feature = "stam")]
+pub use bxdf::{Profile, Stam};
 pub use error::{Error, Requirement};
 pub use float::Float;
+pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
+pub use illumination::Illumination;
+pub use orders::{GratingEquation, Order, Orders, Propagating};
+
 #[cfg(feature = "stam")]
-pub use stam::{Profile, Stam};
-pub use thorman::Thorman;
+pub use bxdf::stam;
+
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
-
-pub use grating::{Band, DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};

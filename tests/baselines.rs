@@ -168,7 +168,7 @@ fn every_strategy_gives_a_colour() {
             let x = u - wi.x;
             let wo = DVec3::new(x, -wi.y, (1.0 - x * x - wi.y * wi.y).sqrt());
             for s in strategies {
-                let c = model.xyz(wi, wo, &spectral, s);
+                let c = spectral.xyz_brdf(&*model, wi, wo, s);
                 assert!(
                     [c.x, c.y, c.z].iter().all(|v| v.is_finite() && *v >= 0.0),
                     "{name} u = {u} {s}: {c:?}"
@@ -182,15 +182,15 @@ fn every_strategy_gives_a_colour() {
     // (24 % here), but does for a narrow lobe (σ = 0.002: 3.2 nm).
     let wo = DVec3::new(0.35 - wi.x, 0.0, (1.0 - (0.35 - wi.x).powi(2)).sqrt());
     let broad = Thorman::new(1600.0, 0.02).unwrap();
-    let exact = broad.xyz(wi, wo, &spectral, Strategy::Exact);
-    let gauss = broad.xyz(wi, wo, &spectral, Strategy::GaussLegendre { intervals: 64 });
+    let exact = spectral.xyz_brdf(&broad, wi, wo, Strategy::Exact);
+    let gauss = spectral.xyz_brdf(&broad, wi, wo, Strategy::GaussLegendre { intervals: 64 });
     assert!(
         (gauss.y - exact.y).abs() < 1e-5 * exact.y,
         "{gauss:?} {exact:?}"
     );
     let narrow = Thorman::new(1600.0, 0.002).unwrap();
-    let exact = narrow.xyz(wi, wo, &spectral, Strategy::Exact);
-    let peaks = narrow.xyz(wi, wo, &spectral, Strategy::PeakSearch { refine: false });
+    let exact = spectral.xyz_brdf(&narrow, wi, wo, Strategy::Exact);
+    let peaks = spectral.xyz_brdf(&narrow, wi, wo, Strategy::PeakSearch { refine: false });
     assert!(
         (peaks.y - exact.y).abs() < 0.01 * exact.y,
         "{peaks:?} {exact:?}"

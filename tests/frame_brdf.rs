@@ -1,7 +1,7 @@
 //! Grating-direction fields, the shading frame and the `DiffractionBrdf` implementation.
 
 use diffraction::frame::{phase_projection, GratingField, ShadingFrame, Tile};
-use diffraction::{AguHill, Band, DiffractionBrdf, Grating, Peak};
+use diffraction::{AguHill, Band, DiffractionBrdf, Grating, Illumination, Peak};
 use glam::{DVec2, DVec3, Vec3};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -17,21 +17,24 @@ fn unit_upper(theta: f64, phi: f64) -> DVec3 {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(500))]
 
-    /// eval is the grating intensity at u = wi.x + wo.x scaled by the coefficient, and eval_f32
-    /// agrees with it to f32 precision of its inputs.
+    /// eval is the grating intensity at u = wi.x + wo.x, the illumination model's diffraction
+    /// term scales it by its coefficient, and eval_f32 agrees with it to f32 precision of its
+    /// inputs.
     #[test]
     fn eval_is_the_scaled_intensity(t1 in 0.0f64..1.5, p1 in 0.0f64..std::f64::consts::TAU, t2 in 0.0f64..1.5,
                                     p2 in 0.0f64..std::f64::consts::TAU, l in 360.0f64..830.0, k in 0.0f64..3.0) {
         let g = Grating::new(1600.0, 800.0, 300).unwrap();
-        let m = AguHill::new(g).with_coefficients(0.0, 0.0, k).unwrap();
+        let m = AguHill::new(g);
+        let shading = Illumination::new(0.0, 0.0, k).unwrap();
         let (wi, wo) = (unit_upper(t1, p1), unit_upper(t2, p2));
         let u = phase_projection(wi, wo, DVec3::X);
         let v = m.eval(wi, wo, l);
-        prop_assert_eq!(v, k * g.intensity(u, l));
+        prop_assert_eq!(v, g.intensity(u, l));
+        prop_assert_eq!(shading.eval(&m, wi, wo, l, 1.0, 1.0), k * v);
         // f32 directions round to 6e-8; |dI/du| ≤ π·N·d/λ bounds the difference.
         let v32 = m.eval_f32(wi.as_vec3(), wo.as_vec3(), l as f32) as f64;
         let slope = PI * 300.0 * 1600.0 / l;
-        prop_assert!((v32 - v).abs() <= k * slope * 2.5e-7 + 1e-6);
+        prop_assert!((v32 - v).abs() <= slope * 2.5e-7 + 1e-6);
     }
 
     /// Reciprocity: u is symmetric in (wi, wo), so eval(wi, wo) = eval(wo, wi).
@@ -48,8 +51,7 @@ proptest! {
     #[test]
     fn visited_peaks_match_eval(t1 in 0.0f64..1.5, p1 in 0.0f64..std::f64::consts::TAU, t2 in 0.0f64..1.5,
                                 p2 in 0.0f64..std::f64::consts::TAU) {
-        let m = AguHill::new(Grating::new(1600.0, 640.0, 2000).unwrap())
-            .with_coefficients(0.0, 0.0, 0.5).unwrap();
+        let m = AguHill::new(Grating::new(1600.0, 640.0, 2000).unwrap());
         let (wi, wo) = (unit_upper(t1, p1), unit_upper(t2, p2));
         let mut seen: Vec<Peak> = vec![];
         let s = m.peaks(wi, wo, Band::VISIBLE, &mut |p| seen.push(p));
@@ -63,9 +65,8 @@ proptest! {
 
 #[test]
 fn below_the_surface_is_dark() {
-    let m = AguHill::new(Grating::new(1600.0, 800.0, 100).unwrap())
-        .with_coefficients(0.2, 0.5, 1.0)
-        .unwrap();
+    let m = AguHill::new(Grating::new(1600.0, 800.0, 100).unwrap());
+    let shading = Illumination::new(0.2, 0.5, 1.0).unwrap();
     let up = DVec3::new(0.0, 0.0, 1.0);
     let down = DVec3::new(0.0, 0.0, -1.0);
     assert_eq!(m.eval(up, down, 500.0), 0.0);
@@ -76,43 +77,33 @@ fn below_the_surface_is_dark() {
     });
     assert_eq!(s.orders, 0);
     // Only the ambient term remains.
-    assert_eq!(m.illumination(down, up, 500.0, 1.0, 1.0), 0.2);
+    assert_eq!(shading.eval(&m, down, up, 500.0, 1.0, 1.0), 0.2);
     assert!(m.cosine_included());
 }
 
 #[test]
 fn order_zero_is_white_specular_in_the_illumination_model() {
-    let m = AguHill::new(Grating::new(1600.0, 800.0, 1000).unwrap())
-        .with_coefficients(0.1, 0.4, 0.8)
-        .unwrap();
+    let m = AguHill::new(Grating::new(1600.0, 800.0, 1000).unwrap());
+    let shading = Illumination::new(0.1, 0.4, 0.8).unwrap();
     let wi = unit_upper(0.5, 0.0);
     let wo = DVec3::new(-wi.x, -wi.y, wi.z); // mirror
     let s = m.peaks(wi, wo, Band::VISIBLE, &mut |_| {});
     assert!(s.specular && s.orders == 0);
     for l in [360.0, 450.0, 600.0, 830.0] {
         let want = 0.1 * 0.3 + 2.0 * (0.4 * wi.z + 0.8);
-        assert!((m.illumination(wi, wo, l, 0.3, 2.0) - want).abs() < 1e-12);
+        assert!((shading.eval(&m, wi, wo, l, 0.3, 2.0) - want).abs() < 1e-12);
     }
 }
 
 #[test]
 fn bad_coefficients_are_named() {
-    let m = AguHill::new(Grating::new(1600.0, 800.0, 10).unwrap());
+    let bad = |a, d, k| Illumination::new(a, d, k).unwrap_err();
+    assert_eq!(bad(-0.1, 0.0, 1.0).parameter(), "ambient");
+    assert_eq!(bad(0.0, f64::NAN, 1.0).parameter(), "diffuse");
+    assert_eq!(bad(0.0, 0.0, f64::INFINITY).parameter(), "diffraction");
     assert_eq!(
-        m.with_coefficients(-0.1, 0.0, 1.0).unwrap_err().parameter(),
-        "ambient"
-    );
-    assert_eq!(
-        m.with_coefficients(0.0, f64::NAN, 1.0)
-            .unwrap_err()
-            .parameter(),
-        "diffuse"
-    );
-    assert_eq!(
-        m.with_coefficients(0.0, 0.0, f64::INFINITY)
-            .unwrap_err()
-            .parameter(),
-        "diffraction"
+        bad(0.0, 0.0, -f64::MAX).to_string(),
+        "invalid diffraction = -1.7976931348623157e308: must be finite and >= 0"
     );
 }
 

@@ -2,7 +2,7 @@
 #![cfg(feature = "serde")]
 
 use diffraction::frame::{GratingField, Tile};
-use diffraction::{AguHill, Band, Grating, Slits};
+use diffraction::{AguHill, Band, Grating, Illumination, Slits};
 
 #[test]
 fn parameter_types_round_trip() {
@@ -12,9 +12,12 @@ fn parameter_types_round_trip() {
     let inf = Grating::infinite(740.0, 370.0).unwrap();
     let back: Grating = serde_json::from_str(&serde_json::to_string(&inf).unwrap()).unwrap();
     assert_eq!(back.slits(), Slits::Infinite);
-    let m = AguHill::new(g).with_coefficients(0.1, 0.4, 1.0).unwrap();
+    let m = AguHill::new(g);
     let back: AguHill = serde_json::from_str(&serde_json::to_string(&m).unwrap()).unwrap();
     assert_eq!(back, m);
+    let i = Illumination::new(0.1, 0.4, 1.0).unwrap();
+    let back: Illumination = serde_json::from_str(&serde_json::to_string(&i).unwrap()).unwrap();
+    assert_eq!(back, i);
     let f = GratingField::checkerboard(0.5, Tile::Plain, Tile::Constant { angle: 0.3 }).unwrap();
     let back: GratingField = serde_json::from_str(&serde_json::to_string(&f).unwrap()).unwrap();
     assert_eq!(back, f);
@@ -37,8 +40,12 @@ fn invalid_values_are_rejected_with_the_parameter_name() {
     .unwrap_err();
     assert!(e.to_string().contains("cell_size"), "{e}");
     let e = serde_json::from_str::<AguHill>(
-        r#"{"grating": {"period_nm": 1600.0, "slit_width_nm": 800.0, "slits": "Infinite"},
-            "ambient": -1.0, "diffuse": 0.0, "diffraction": 1.0}"#,
+        r#"{"grating": {"period_nm": 1600.0, "slit_width_nm": -800.0, "slits": "Infinite"}}"#,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("slit_width_nm"), "{e}");
+    let e = serde_json::from_str::<Illumination>(
+        r#"{"ambient": -1.0, "diffuse": 0.0, "diffraction": 1.0}"#,
     )
     .unwrap_err();
     assert!(e.to_string().contains("ambient"), "{e}");

@@ -102,11 +102,11 @@ impl GratingMaterial {
     /// The diffraction term's colour for local directions `wi`, `wo` (z the normal, x the
     /// grating vector): k_diffraction · exposure · XYZ. Agu-Hill depends on u = wi.x + wo.x only
     /// and takes the lobe-exact paths of `Spectral::xyz`; the other models go through
-    /// `DiffractionBrdf::xyz` (with cos θi for Stam, a BRDF).
+    /// `Spectral::xyz_brdf` (with cos θi for Stam, a BRDF).
     pub fn xyz(&self, spectral: &Spectral, wi: DVec3, wo: DVec3) -> Xyz {
         let xyz = match &self.model {
             Model::AguHill(m) => spectral.xyz(m.grating(), wi.x + wo.x, self.strategy),
-            other => other.brdf().xyz(wi, wo, spectral, self.strategy),
+            other => spectral.xyz_brdf(other.brdf(), wi, wo, self.strategy),
         };
         xyz.scale(self.diffraction * self.exposure)
     }
@@ -186,7 +186,7 @@ pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) ->
             continue;
         }
         let w = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
-        max_y = max_y.max(brdf.xyz(w, w, spectral, strategy).y);
+        max_y = max_y.max(spectral.xyz_brdf(brdf, w, w, strategy).y);
     }
     if max_y > 0.0 && max_y.is_finite() {
         1.0 / max_y

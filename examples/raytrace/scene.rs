@@ -802,10 +802,8 @@ fn build_model(
                 slits,
             )?;
             let grating = Grating::new(period, width, slits as u32).map_err(crate_error)?;
-            let model = AguHill::new(grating)
-                .with_coefficients(ka, kd, kdiff)
-                .map_err(crate_error)?;
-            Ok(Model::AguHill(model))
+            diffraction::Illumination::new(ka, kd, kdiff).map_err(crate_error)?;
+            Ok(Model::AguHill(AguHill::new(grating)))
         }
         "thorman" => Ok(Model::Thorman(
             Thorman::new(period, m.lobe_width.unwrap_or(0.005)).map_err(crate_error)?,

@@ -3,10 +3,10 @@
 
 use glam::DVec3;
 
-use crate::brdf::{DiffractionBrdf, PeakSummary};
+use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary};
 use crate::error::{positive, Error, Requirement};
-use crate::grating::{Band, Grating, Peak, Slits};
 use crate::math;
+use crate::{Band, Grating, GratingEquation, Peak};
 
 /// Lobes are summed out to this many widths σ from their centre: exp(−8.5²/2) = 2·10⁻¹⁶.
 const CUTOFF: f64 = 8.5;
@@ -64,8 +64,8 @@ const MAX_TERMS: f64 = 64.0;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Thorman {
-    /// The grating equation only (slit width = period: no envelope is used).
-    grating: Grating,
+    /// The grating equation of the period.
+    equation: GratingEquation,
     lobe_width: f64,
     brightness: f64,
 }
@@ -85,7 +85,7 @@ impl Thorman {
     /// ```
     pub fn new(period_nm: f64, lobe_width: f64) -> Result<Thorman, Error> {
         let d = positive("period_nm", period_nm)?;
-        let grating = Grating::with_slits(d, d, Slits::Infinite)?;
+        let equation = GratingEquation::new(d)?;
         let sigma = positive("lobe_width", lobe_width)?;
         if sigma > 1.0 {
             return Err(Error::invalid(
@@ -98,7 +98,7 @@ impl Thorman {
             ));
         }
         Ok(Thorman {
-            grating,
+            equation,
             lobe_width: sigma,
             brightness: 1.0,
         })
@@ -146,10 +146,7 @@ impl Thorman {
             Err(Error::invalid(
                 "brightness",
                 brightness,
-                Requirement::Within {
-                    min: 0.0,
-                    max: f64::MAX,
-                },
+                Requirement::NonNegative,
             ))
         }
     }
@@ -163,7 +160,7 @@ impl Thorman {
     /// ```
     #[must_use]
     pub fn period_nm(&self) -> f64 {
-        self.grating.period_nm()
+        self.equation.period_nm()
     }
 
     /// The lobe width σ, in units of u.
@@ -218,11 +215,11 @@ impl DiffractionBrdf for Thorman {
     /// `brightness · Σ_m exp(−½((u − m·λ/d)/σ)²)`, u = `wi.x + wo.x`; 0 below the surface,
     /// for λ ≤ 0 and for non-finite input.
     fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        if !(wi.z > 0.0 && wo.z > 0.0 && lambda_nm > 0.0) {
+        if !(both_above(wi.z, wo.z) && lambda_nm > 0.0) {
             return 0.0;
         }
         let u = wi.x + wo.x;
-        let step = lambda_nm / self.grating.period_nm();
+        let step = lambda_nm / self.equation.period_nm();
         if !(u.is_finite() && step.is_finite() && step > 0.0) {
             return 0.0;
         }
@@ -238,13 +235,13 @@ impl DiffractionBrdf for Thorman {
     /// own lobe's peak; `eval` there also holds the far tails of the other lobes) and equivalent
     /// width √(2π)·σ·d/|m|. Order 0's lobe is seen where |u| < 8.5·σ.
     fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        if !(wi.z > 0.0 && wo.z > 0.0) {
+        if !both_above(wi.z, wo.z) {
             return PeakSummary::default();
         }
         let u = wi.x + wo.x;
-        let width = SQRT_TAU * self.lobe_width * self.grating.period_nm();
+        let width = SQRT_TAU * self.lobe_width * self.equation.period_nm();
         let mut orders = 0;
-        for p in self.grating.peaks(u, band) {
+        for p in self.equation.orders(u, band) {
             visit(Peak {
                 order: p.order,
                 wavelength_nm: p.wavelength_nm,

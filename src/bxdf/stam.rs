@@ -70,13 +70,16 @@
 use core::f64::consts::PI;
 
 use glam::DVec3;
-use num_complex::Complex64;
 
-use crate::brdf::{DiffractionBrdf, PeakSummary};
+pub use crate::bessel::bessel_j;
+pub use crate::bxdf::profile::Profile;
+
+use crate::bessel::bessel_squares;
+use crate::bxdf::profile::binary_coefficient;
+use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary};
 use crate::error::{positive, Error, Requirement};
-use crate::grating::{Band, Grating, Peak, Slits};
-use crate::kernel::sinpi;
 use crate::math;
+use crate::{Band, GratingEquation, Peak};
 
 /// Lobes are summed out to k·σ_c·|Δu| = 6, where exp(−36) = 2.3·10⁻¹⁶.
 const CUTOFF: f64 = 6.0;
@@ -86,292 +89,6 @@ const MAX_DEPTH_NM: f64 = 10_000.0;
 const MIN_WAVELENGTH_NM: f64 = 1.0;
 /// √π.
 const SQRT_PI: f64 = 1.772453850905516;
-/// Rescaling threshold of the backward recurrence (its square and the sums stay finite).
-const BIG: f64 = 1e100;
-/// Below this argument, J_n(x) is the first two terms of its power series.
-const SERIES_X: f64 = 1e-8;
-/// Above this argument, J_0 and J_1 come from Hankel's expansion and J_n by forward recurrence.
-const ASYMPTOTIC_X: f64 = 1e6;
-
-/// The shape of one period of the surface height h(x), x across the grooves.
-///
-/// The Fourier coefficients c_m of p(x) = exp(i·φ·h(x)/h₀) depend on the shape and the phase
-/// φ = k·w·h₀ only; [`Profile::efficiency`] is |c_m(φ)|², the share of order m, and
-/// Σ_m |c_m|² = 1 (Parseval).
-///
-/// ```
-/// use diffraction::Profile;
-/// let sine = Profile::Sine;
-/// let binary = Profile::Binary { fraction: 0.5 };
-/// // A quarter-wave binary grating at normal incidence (φ = π): no order 0, no even order.
-/// assert!(binary.efficiency(0, std::f64::consts::PI) < 1e-30);
-/// assert!(binary.efficiency(2, std::f64::consts::PI) < 1e-30);
-/// assert!((binary.efficiency(1, std::f64::consts::PI) - 4.0 / std::f64::consts::PI.powi(2)).abs() < 1e-15);
-/// let total: f64 = (-60..=60).map(|m| sine.efficiency(m, 7.5)).sum();
-/// assert!((total - 1.0).abs() < 1e-12);
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
-pub enum Profile {
-    /// h(x) = h₀·sin(2πx/d): c_m = J_m(φ) (Jacobi-Anger), so |c_m|² = J_m(φ)².
-    /// h₀ is the amplitude, half the peak-to-valley depth.
-    Sine,
-    /// Grooves of depth h₀ over the fraction `fraction` = a of each period (a rectangular,
-    /// binary profile): h = h₀ on [0, a·d), 0 on the rest. Then
-    /// c_0 = 1 − a + a·e^{iφ} and c_m = (e^{iφ} − 1)·a·sinc(m·a)·e^{−iπma} for m ≠ 0
-    /// (sinc t = sin πt/(πt)), so |c_0|² = 1 − 4a(1 − a)·sin²(φ/2) and
-    /// |c_m|² = 4·sin²(φ/2)·sin²(πma)/(πm)².
-    Binary {
-        /// The fraction a of the period covered by the grooves, 0 < a ≤ 1.
-        fraction: f64,
-    },
-}
-
-impl Profile {
-    /// |c_m(φ)|²: the share of the reflected light in order `order` at phase φ = k·w·h₀
-    /// (radians). Finite and in [0, 1] for finite φ (to rounding).
-    ///
-    /// For [`Profile::Sine`] this is [`bessel_j`]`(m, φ)²`, for [`Profile::Binary`] the
-    /// closed form above, computed from the complex coefficient with e^{iφ} − 1 written as
-    /// 2i·sin(φ/2)·e^{iφ/2} (no cancellation for small φ).
-    ///
-    /// ```
-    /// use diffraction::Profile;
-    /// // Order 1 of a sine profile peaks near φ = 1.84 (the maximum of J₁) at 33.86 %.
-    /// assert!((Profile::Sine.efficiency(1, 1.8411837813406593) - 0.338567139228272).abs() < 1e-15);
-    /// assert_eq!(Profile::Sine.efficiency(3, 0.0), 0.0);
-    /// ```
-    #[must_use]
-    pub fn efficiency(self, order: i32, phase: f64) -> f64 {
-        match self {
-            Profile::Sine => {
-                let j = bessel_j(order, phase);
-                j * j
-            }
-            Profile::Binary { fraction } => binary_coefficient(fraction, order, phase).norm_sqr(),
-        }
-    }
-}
-
-/// The Fourier coefficient c_m of the binary profile (see [`Profile::Binary`]).
-fn binary_coefficient(a: f64, m: i32, phase: f64) -> Complex64 {
-    let (s, c) = (math::sin(0.5 * phase), math::cos(0.5 * phase));
-    // e^{iφ} − 1 = 2i·sin(φ/2)·e^{iφ/2} = −2 sin²(φ/2) + 2i·sin(φ/2)·cos(φ/2).
-    let step = Complex64::new(-2.0 * s * s, 2.0 * s * c);
-    if m == 0 {
-        return Complex64::new(1.0, 0.0) + step * a;
-    }
-    let (sn, cs) = sincospi(m as f64 * a);
-    // a·sinc(m·a) = sin(πma)/(πm).
-    step * Complex64::new(cs, -sn) * (sn / (PI * m as f64))
-}
-
-/// (sin πt, cos πt) with exact reduction of t to [−½, ½].
-fn sincospi(t: f64) -> (f64, f64) {
-    let n = math::rint(t);
-    let r = t - n;
-    let (s, c) = (sinpi(r), sinpi(0.5 - r.abs()));
-    if math::rint(0.5 * n) * 2.0 == n {
-        (s, c)
-    } else {
-        (-s, -c)
-    }
-}
-
-/// The Bessel function of the first kind J_n(x) for integer order n and real x.
-///
-/// J_{−n}(x) = (−1)ⁿ·J_n(x) and J_n(−x) = (−1)ⁿ·J_n(x) reduce it to n, x ≥ 0. Then:
-///
-/// * x < 10⁻⁸: the first two terms of the power series, (x/2)ⁿ/n!·(1 − x²/(4(n + 1)));
-/// * n > 1.443·x + 1100: 0, since |J_n(x)| ≤ (x/2)ⁿ/n! < 2⁻¹⁰⁷⁵ (below the smallest `f64`);
-/// * x ≤ 10⁶: Miller's backward recurrence J_{k−1} = (2k/x)·J_k − J_{k+1}, started at
-///   k = max(n, x) + 10·x^{1/3} + 25 (past the turning point k ≈ x by ten times the width
-///   x^{1/3} of the transition region, where the neglected solution Y has fallen below 10⁻¹⁷
-///   relative) and normalised by J_0² + 2·Σ_k J_k² = 1 (a sum of squares: no cancellation),
-///   its sign from J_0 + 2·Σ_k J_{2k} = 1. Cost: max(n, x) + 10·x^{1/3} + 25 steps;
-/// * x > 10⁶: J_0 and J_1 from Hankel's asymptotic expansion (three terms, error below 10⁻²⁰)
-///   and forward recurrence for n ≤ x, Miller as above for n > x.
-///
-/// **Accuracy**, guaranteed by `tests/baselines.rs` against `mpmath.besselj` at 50 digits
-/// (`tests/data/stam_orders.csv`, 1200 cases): for |x| ≤ 1000 and every order, absolute error
-/// below 10⁻¹⁴ (measured: 2.7·10⁻¹⁶), and relative error below 10⁻¹³ where J_n decays
-/// (|n| > |x| + 5; measured 9·10⁻¹⁵); at x = 1.5·10⁶ and 2·10⁷ (the asymptotic path, |J| ≈ 10⁻³)
-/// absolute error below 10⁻¹⁷. Non-finite x gives NaN.
-///
-/// ```
-/// use diffraction::stam::bessel_j;
-/// assert_eq!(bessel_j(0, 0.0), 1.0);
-/// assert!((bessel_j(0, 2.404825557695773)).abs() < 1e-15); // the first zero of J₀
-/// assert!((bessel_j(1, 1.0) - 0.44005058574493355).abs() < 1e-15);
-/// assert_eq!(bessel_j(-3, 2.0), -bessel_j(3, 2.0));
-/// assert!((bessel_j(2, 100.0) + 0.021528757344505366).abs() < 1e-15);
-/// ```
-#[must_use]
-pub fn bessel_j(order: i32, x: f64) -> f64 {
-    if !x.is_finite() {
-        return f64::NAN;
-    }
-    let n = order.unsigned_abs();
-    let odd = n % 2 == 1;
-    let flip = odd && ((order < 0) != (x < 0.0));
-    let j = bessel_j_nonnegative(n, x.abs());
-    if flip {
-        -j
-    } else {
-        j
-    }
-}
-
-/// J_n(x) for n ≥ 0, finite x ≥ 0.
-fn bessel_j_nonnegative(n: u32, x: f64) -> f64 {
-    if x < SERIES_X {
-        return series(n, x);
-    }
-    let nf = n as f64;
-    if nf > 1.443 * x + 1100.0 {
-        return 0.0;
-    }
-    if x > ASYMPTOTIC_X && nf <= x {
-        return forward(n, x);
-    }
-    let mut at_n = 0.0;
-    let norm = miller(x, start_index(nf, x), &mut |k, jk, rescale| {
-        at_n *= rescale;
-        if k == n {
-            at_n = jk;
-        }
-    });
-    at_n * norm
-}
-
-/// (x/2)ⁿ/n!·(1 − x²/(4(n + 1))) for x < 10⁻⁸ (the next term is below 10⁻³³ relative).
-fn series(n: u32, x: f64) -> f64 {
-    if x == 0.0 {
-        return if n == 0 { 1.0 } else { 0.0 };
-    }
-    let mut t = 1.0;
-    let mut k = 1;
-    while k <= n && t != 0.0 {
-        t *= 0.5 * x / k as f64;
-        k += 1;
-    }
-    t * (1.0 - x * x / (4.0 * (n as f64 + 1.0)))
-}
-
-/// The start of the backward recurrence for orders up to `n` at x.
-fn start_index(n: f64, x: f64) -> u32 {
-    let k = n.max(x) + 10.0 * math::cbrt(x.max(1.0)) + 25.0;
-    math::ceil(k).min(u32::MAX as f64 - 1.0) as u32
-}
-
-/// Miller's backward recurrence from `top` down to 0 at x > 0. Calls `visit(k, J̃_k, rescale)`
-/// for every k (J̃ the unnormalised values, already multiplied by every rescaling factor so far;
-/// `rescale` is the factor applied to earlier values at this step, 1 if none) and returns the
-/// normalisation s with J_k = s·J̃_k.
-fn miller(x: f64, top: u32, visit: &mut dyn FnMut(u32, f64, f64)) -> f64 {
-    let mut above = 0.0; // J̃_{k+1}
-    let mut cur = 1.0; // J̃_k
-    let mut squares = 0.0; // 2·Σ_{j>k} J̃_j²
-    let mut even = 0.0; // 2·Σ_{j>k, j even} J̃_j
-    let mut k = top;
-    let mut rescale = 1.0;
-    loop {
-        visit(k, cur, rescale);
-        if k == 0 {
-            squares += cur * cur;
-            even += cur;
-            break;
-        }
-        squares += 2.0 * cur * cur;
-        if k % 2 == 0 {
-            even += 2.0 * cur;
-        }
-        let below = (2.0 * k as f64 / x) * cur - above;
-        above = cur;
-        cur = below;
-        k -= 1;
-        rescale = 1.0;
-        if cur.abs() > BIG {
-            rescale = 1.0 / BIG;
-            cur *= rescale;
-            above *= rescale;
-            squares *= rescale * rescale;
-            even *= rescale;
-        }
-    }
-    let s = 1.0 / math::sqrt(squares);
-    if even < 0.0 {
-        -s
-    } else {
-        s
-    }
-}
-
-/// J_n(x) for x > 10⁶, n ≤ x: Hankel's expansion for J_0 and J_1, then forward recurrence.
-fn forward(n: u32, x: f64) -> f64 {
-    let (s, c) = (math::sin(x), math::cos(x));
-    let z = 8.0 * x;
-    let hankel = |mu: f64, cos_chi: f64, sin_chi: f64| {
-        let p = 1.0 - (mu - 1.0) * (mu - 9.0) / (2.0 * z * z);
-        let q = (mu - 1.0) / z - (mu - 1.0) * (mu - 9.0) * (mu - 25.0) / (6.0 * z * z * z);
-        math::sqrt(2.0 / (PI * x)) * (p * cos_chi - q * sin_chi)
-    };
-    let r = core::f64::consts::FRAC_1_SQRT_2;
-    // χ₀ = x − π/4, χ₁ = x − 3π/4, by the addition formulas (no rounding of x − π/4).
-    let j0 = hankel(0.0, r * (c + s), r * (s - c));
-    if n == 0 {
-        return j0;
-    }
-    let j1 = hankel(4.0, r * (s - c), -r * (s + c));
-    let (mut prev, mut cur) = (j0, j1);
-    for k in 1..n {
-        let next = (2.0 * k as f64 / x) * cur - prev;
-        prev = cur;
-        cur = next;
-    }
-    cur
-}
-
-/// Σ_{m=lo}^{hi} J_m(x)²·weight(m) for x ≥ 0, in one backward recurrence.
-fn bessel_squares(x: f64, lo: i64, hi: i64, weight: &mut dyn FnMut(i64) -> f64) -> f64 {
-    if lo > hi {
-        return 0.0;
-    }
-    let nearest = if lo <= 0 && hi >= 0 {
-        0
-    } else {
-        lo.abs().min(hi.abs())
-    };
-    if nearest as f64 > 1.443 * x + 1100.0 {
-        return 0.0;
-    }
-    if !(SERIES_X..=ASYMPTOTIC_X).contains(&x) || hi - lo > 4096 {
-        let mut sum = 0.0;
-        for m in lo..=hi.min(lo + 4096) {
-            if let Ok(m32) = i32::try_from(m) {
-                let j = bessel_j(m32, x);
-                if j != 0.0 {
-                    sum += j * j * weight(m);
-                }
-            }
-        }
-        return sum;
-    }
-    let farthest = lo.abs().max(hi.abs()) as f64;
-    let mut acc = 0.0;
-    let norm = miller(x, start_index(farthest, x), &mut |k, jk, rescale| {
-        acc *= rescale * rescale;
-        let k = k as i64;
-        let sq = jk * jk;
-        if (lo..=hi).contains(&k) {
-            acc += sq * weight(k);
-        }
-        if k != 0 && (lo..=hi).contains(&-k) {
-            acc += sq * weight(-k);
-        }
-    });
-    acc * norm * norm
-}
 
 /// Stam's diffraction shader for a one-dimensional periodic surface (see the
 /// [module docs](self) for the derivation and every assumption).
@@ -404,8 +121,8 @@ fn bessel_squares(x: f64, lo: i64, hi: i64, weight: &mut dyn FnMut(i64) -> f64) 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stam {
     profile: Profile,
-    /// The grating equation (slit width = period: no envelope is used).
-    grating: Grating,
+    /// The grating equation of the period.
+    equation: GratingEquation,
     depth_nm: f64,
     coherence_nm: f64,
     reflectance: f64,
@@ -439,7 +156,7 @@ impl Stam {
         coherence_nm: f64,
     ) -> Result<Stam, Error> {
         let d = positive("period_nm", period_nm)?;
-        let grating = Grating::with_slits(d, d, Slits::Infinite)?;
+        let equation = GratingEquation::new(d)?;
         if !(depth_nm.is_finite() && (0.0..=MAX_DEPTH_NM).contains(&depth_nm)) {
             return Err(Error::invalid(
                 "depth_nm",
@@ -476,7 +193,7 @@ impl Stam {
         }
         Ok(Stam {
             profile,
-            grating,
+            equation,
             depth_nm,
             coherence_nm: sigma,
             reflectance: 1.0,
@@ -533,7 +250,7 @@ impl Stam {
     /// ```
     #[must_use]
     pub fn period_nm(&self) -> f64 {
-        self.grating.period_nm()
+        self.equation.period_nm()
     }
 
     /// The height h₀, nm: the sine's amplitude or the binary grooves' depth.
@@ -610,7 +327,7 @@ impl DiffractionBrdf for Stam {
     /// The formula of [`Stam`]; 0 below the surface, for λ < 1 nm (outside optics) and for
     /// non-finite input.
     fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        if !(wi.z > 0.0 && wo.z > 0.0 && lambda_nm >= MIN_WAVELENGTH_NM) {
+        if !(both_above(wi.z, wo.z) && lambda_nm >= MIN_WAVELENGTH_NM) {
             return 0.0;
         }
         if !(wi.is_finite() && wo.is_finite() && lambda_nm.is_finite()) {
@@ -622,7 +339,7 @@ impl DiffractionBrdf for Stam {
         if v.abs() >= reach {
             return 0.0;
         }
-        let step = lambda_nm / self.grating.period_nm();
+        let step = lambda_nm / self.equation.period_nm();
         let lo = math::ceil((u - reach) / step);
         let hi = math::floor((u + reach) / step);
         // σ_c ≥ d keeps the range to at most 2·6/(2π) + 1 ≤ 3 orders.
@@ -658,15 +375,15 @@ impl DiffractionBrdf for Stam {
     /// 10⁻¹⁶ of their peaks) and the equivalent width λ_m·d/(2√π·σ_c·|m|). Order 0's lobe is
     /// seen where k·σ_c·√(u² + v²) < 6 at the band's longest wavelength.
     fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        if !(wi.z > 0.0 && wo.z > 0.0 && wi.is_finite() && wo.is_finite()) {
+        if !(both_above(wi.z, wo.z) && wi.is_finite() && wo.is_finite()) {
             return PeakSummary::default();
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        let d = self.grating.period_nm();
+        let d = self.equation.period_nm();
         let sigma = self.coherence_nm;
         let geometry = self.geometry(wi, wo);
         let mut orders = 0;
-        for p in self.grating.peaks(u, band) {
+        for p in self.equation.orders(u, band) {
             let l = p.wavelength_nm;
             let ks = 2.0 * PI * sigma / l;
             let ks2 = ks * ks;

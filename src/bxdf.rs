@@ -1,0 +1,199 @@
+//! The interface every diffraction model of the crate implements, and the models: the paper's
+//! Agu-Hill grating ([`AguHill`]), and the related work it argues against ([`Thorman`], and
+//! `Stam` with the feature `stam`). One file per model; add a model by adding a file here that
+//! implements [`DiffractionBrdf`].
+
+use glam::{DVec3, Vec3};
+
+use crate::{Band, Grating, Peak};
+
+mod agu_hill;
+#[cfg(feature = "stam")]
+pub(crate) mod profile;
+#[cfg(feature = "stam")]
+pub mod stam;
+mod thorman;
+
+pub use agu_hill::AguHill;
+#[cfg(feature = "stam")]
+pub use profile::Profile;
+#[cfg(feature = "stam")]
+pub use stam::Stam;
+pub use thorman::Thorman;
+
+/// What [`DiffractionBrdf::peaks`] found besides the peaks it visited.
+///
+/// ```
+/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+/// use glam::DVec3;
+/// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+/// // The mirror direction (u = 0): inside the order-0 lobe, and no order m ≠ 0.
+/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8));
+/// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |_| {});
+/// assert_eq!((summary.orders, summary.specular), (0, true));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub struct PeakSummary {
+    /// How many orders m ≠ 0 were visited.
+    pub orders: u32,
+    /// Whether (wi, wo) lies inside the central order-0 (mirror) lobe for some wavelength of the
+    /// band. There the model's light is the white specular, spread over every wavelength, and is
+    /// not a peak at one wavelength.
+    pub specular: bool,
+}
+
+/// A spectral diffraction BRDF in the local shading frame.
+///
+/// Shaped like the BxDF interfaces of pbrt-v4 and Mitsuba: directions are unit vectors in the
+/// local frame where `z` is the normal and `x` the grating vector t (`y` runs along the grooves);
+/// `wi` points toward the light and `wo` toward the viewer. Both must be in the upper hemisphere
+/// (z > 0); below it every method returns 0 / nothing.
+///
+/// The light reflected toward `wo` from a point light of spectral intensity E(λ) in direction
+/// `wi` is `E(λ) · eval(wi, wo, λ)`, multiplied by cos θi = `wi.z` **only if**
+/// [`cosine_included`](Self::cosine_included) is `false`. The paper's model does not apply a
+/// cosine to its diffraction term, so [`AguHill`] reports `true`.
+///
+/// Later versions may add importance sampling (`sample`, `pdf`) as provided methods with
+/// defaults, which is not a breaking change for implementors.
+///
+/// ```
+/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+/// use glam::DVec3;
+/// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+/// let wi = DVec3::Z;
+/// let wo = DVec3::new(0.3, 0.0, (1.0f64 - 0.09).sqrt());
+/// // u = 0.3: first order at 480 nm.
+/// let mut seen = vec![];
+/// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |p| seen.push(p.wavelength_nm));
+/// assert_eq!(summary.orders, 1);
+/// assert!((seen[0] - 480.0).abs() < 1e-9);
+/// assert!(brdf.eval(wi, wo, 480.0) > 100.0 * brdf.eval(wi, wo, 500.0));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+pub trait DiffractionBrdf {
+    /// The spectral value at wavelength `lambda_nm` (nm) for local directions `wi`, `wo`.
+    /// Finite and ≥ 0 for finite input.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// use glam::DVec3;
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8));
+    /// assert_eq!(brdf.eval(wi, wo, 550.0), 1.0); // the mirror direction: S(0)·F_N(0) = 1
+    /// assert_eq!(brdf.eval(-wi, wo, 550.0), 0.0); // light below the surface
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64;
+
+    /// [`eval`](Self::eval) for `f32` callers. Implementations may override it with a faster
+    /// path; the default widens to `f64`.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// use glam::Vec3;
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// let (wi, wo) = (Vec3::Z, Vec3::new(0.3, 0.0, 0.91f32.sqrt())); // near order 1 at 480 nm
+    /// let wide = brdf.eval(wi.as_dvec3(), wo.as_dvec3(), 480.0);
+    /// assert_eq!(brdf.eval_f32(wi, wo, 480.0), wide as f32); // the f64 value, rounded once
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn eval_f32(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
+        self.eval(wi.as_dvec3(), wo.as_dvec3(), lambda_nm as f64) as f32
+    }
+
+    /// Visits every narrow peak (order m ≠ 0 on the grating equation inside `band`) that
+    /// (wi, wo) sees, in order of increasing |m|, with its value of `eval` at the peak and its
+    /// equivalent width; returns the count and whether the order-0 lobe is seen.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+    /// use glam::DVec3;
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.9, 0.0, 0.19f64.sqrt())); // u = 0.9, d·u = 1440 nm
+    /// let mut orders = vec![];
+    /// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |p| orders.push(p.order));
+    /// assert_eq!(orders, [2, 3, 4]); // 720, 480 and 360 nm
+    /// assert_eq!((summary.orders, summary.specular), (3, false));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary;
+
+    /// Whether `eval` already contains the cosine cos θi (see the trait docs).
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
+    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
+    /// assert!(brdf.cosine_included()); // the paper applies no cos θi to its diffraction term
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn cosine_included(&self) -> bool;
+
+    /// What this model is in terms of the Agu-Hill intensity, where it is a multiple of it:
+    /// `Some(r)` when, at these directions, `eval(wi, wo, λ)` (times cos θi when
+    /// [`cosine_included`](Self::cosine_included) is `false`) equals
+    /// `r.scale · r.grating.intensity(r.u, λ)` for every λ. The colour integrator
+    /// ([`Spectral::xyz_brdf`](crate::spectrum::Spectral::xyz_brdf)) then takes the lobe-exact
+    /// paths it has for gratings, with the same error bounds. Optics only: it says what the
+    /// model is, not how to integrate it. The default is `None` (a model of another shape).
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
+    /// use glam::DVec3;
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.34, 0.0, (1.0f64 - 0.34 * 0.34).sqrt()));
+    /// let r = AguHill::new(g).grating_response(wi, wo).unwrap();
+    /// assert_eq!((r.grating, r.u, r.scale), (g, 0.34, 1.0));
+    /// assert!(AguHill::new(g).grating_response(-wi, wo).is_none()); // below the surface
+    /// assert!(Thorman::new(1600.0, 0.003)?.grating_response(wi, wo).is_none());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn grating_response(&self, wi: DVec3, wo: DVec3) -> Option<GratingResponse> {
+        let _ = (wi, wo);
+        None
+    }
+}
+
+/// A model's value as a multiple of the Agu-Hill intensity of a grating (see
+/// [`DiffractionBrdf::grating_response`]).
+///
+/// ```
+/// use diffraction::{Grating, GratingResponse};
+/// let r = GratingResponse::new(Grating::new(1600.0, 800.0, 100)?, 0.3, 2.0);
+/// assert_eq!((r.u, r.scale), (0.3, 2.0));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct GratingResponse {
+    /// The grating whose intensity I(u, λ) the model is a multiple of.
+    pub grating: Grating,
+    /// The phase projection u = (wi + wo)·t of the directions.
+    pub u: f64,
+    /// The factor k ≥ 0, the same at every wavelength.
+    pub scale: f64,
+}
+
+impl GratingResponse {
+    /// `scale · grating.intensity(u, λ)`.
+    ///
+    /// ```
+    /// use diffraction::{Grating, GratingResponse};
+    /// let r = GratingResponse::new(Grating::new(1600.0, 800.0, 100)?, -0.3, 0.5);
+    /// assert_eq!(r.u, -0.3);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn new(grating: Grating, u: f64, scale: f64) -> GratingResponse {
+        GratingResponse { grating, u, scale }
+    }
+}
+
+/// Whether both directions are strictly above the surface (false for NaN): the one test every
+/// model of the crate applies before it reflects light.
+#[inline]
+pub(crate) fn both_above(zi: f64, zo: f64) -> bool {
+    zi > 0.0 && zo > 0.0
+}

@@ -1,0 +1,104 @@
+//! The paper's model: the Agu-Hill intensity I(u, λ) = S(β)·F_N(α) of a grating as a spectral
+//! reflectance model (eq. 8 with I₀ = 1).
+
+use glam::{DVec3, Vec3};
+
+use crate::bxdf::{both_above, DiffractionBrdf, GratingResponse, PeakSummary};
+use crate::{Band, Grating, Peak};
+
+/// The paper's model: the unitless Agu-Hill intensity of a grating, S(β)·F_N(α) at
+/// u = (wi + wo)·t = `wi.x + wo.x` (eq. 8, 13), peak 1 at every order's maximum.
+///
+/// At u ≈ 0 (order 0, step 6) this is the white specular, since F_N(0) = S(0) = 1 at every λ.
+/// It is the paper's diffraction term, not a radiometric BRDF: its peaks are 1 whatever N is,
+/// so the light an order carries falls as 1/N. The paper's illumination model (eq. 12), which
+/// adds ambient and diffuse terms and a diffraction coefficient, is
+/// [`Illumination`](crate::Illumination).
+///
+/// ```
+/// use diffraction::{AguHill, DiffractionBrdf, Grating};
+/// use glam::DVec3;
+/// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
+/// let wi = DVec3::new(-0.6, 0.0, 0.8);
+/// let wo = DVec3::new(0.6, 0.0, 0.8); // mirror: order 0
+/// assert_eq!(m.eval(wi, wo, 550.0), 1.0);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct AguHill {
+    grating: Grating,
+}
+
+impl AguHill {
+    /// The paper's model of `grating`.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 100)?;
+    /// assert_eq!(AguHill::new(g).grating(), &g);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn new(grating: Grating) -> AguHill {
+        AguHill { grating }
+    }
+
+    /// The grating.
+    ///
+    /// ```
+    /// use diffraction::{AguHill, Grating};
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert_eq!(m.grating().period_nm(), 1600.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn grating(&self) -> &Grating {
+        &self.grating
+    }
+}
+
+impl DiffractionBrdf for AguHill {
+    #[inline]
+    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
+        if !both_above(wi.z, wo.z) {
+            return 0.0;
+        }
+        self.grating.intensity_f64(wi.x + wo.x, lambda_nm)
+    }
+
+    #[inline]
+    fn eval_f32(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
+        if !both_above(wi.z as f64, wo.z as f64) {
+            return 0.0;
+        }
+        let u = wi.x as f64 + wo.x as f64;
+        self.grating.intensity_f64(u, lambda_nm as f64) as f32
+    }
+
+    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
+        if !both_above(wi.z, wo.z) {
+            return PeakSummary::default();
+        }
+        let peaks = self.grating.peaks(wi.x + wo.x, band);
+        let specular = peaks.specular();
+        let mut orders = 0;
+        for p in peaks {
+            visit(p);
+            orders += 1;
+        }
+        PeakSummary { orders, specular }
+    }
+
+    fn cosine_included(&self) -> bool {
+        true
+    }
+
+    /// The grating itself, at u = `wi.x + wo.x`, with scale 1 (`None` below the surface).
+    fn grating_response(&self, wi: DVec3, wo: DVec3) -> Option<GratingResponse> {
+        if !both_above(wi.z, wo.z) {
+            return None;
+        }
+        Some(GratingResponse::new(self.grating, wi.x + wo.x, 1.0))
+    }
+}

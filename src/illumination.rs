@@ -1,0 +1,146 @@
+//! The paper's illumination model (eq. 12): I = ambient + diffuse + diffraction, a shading model
+//! around any diffraction model, not a BRDF itself.
+
+use glam::DVec3;
+
+use crate::bxdf::{both_above, DiffractionBrdf};
+use crate::error::{Error, Requirement};
+
+/// The coefficients of the paper's eq. 12, I = ambient + diffuse + diffraction, with Phong's
+/// ambient and diffuse terms and a diffraction model in place of the specular one:
+///
+/// * ambient: `ambient · ambient_light`;
+/// * diffuse (Lambert, as Phong): `diffuse · cos θi · light`;
+/// * diffraction: `diffraction · eval(wi, wo, λ) · light` for any [`DiffractionBrdf`]
+///   (times cos θi when the model's [`cosine_included`](DiffractionBrdf::cosine_included) is
+///   `false`).
+///
+/// ```
+/// use diffraction::{AguHill, Grating, Illumination};
+/// use glam::DVec3;
+/// let model = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
+/// let shading = Illumination::new(0.1, 0.3, 1.0)?;
+/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8)); // mirror: order 0
+/// let i = shading.eval(&model, wi, wo, 550.0, 1.0, 1.0);
+/// assert!((i - (0.1 + 0.3 * 0.8 + 1.0)).abs() < 1e-12);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Illumination {
+    ambient: f64,
+    diffuse: f64,
+    diffraction: f64,
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Illumination {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Raw {
+            ambient: f64,
+            diffuse: f64,
+            diffraction: f64,
+        }
+        let r = Raw::deserialize(d)?;
+        Illumination::new(r.ambient, r.diffuse, r.diffraction).map_err(serde::de::Error::custom)
+    }
+}
+
+impl Default for Illumination {
+    /// The diffraction term alone: ambient = diffuse = 0, diffraction = 1.
+    ///
+    /// ```
+    /// use diffraction::Illumination;
+    /// assert_eq!(Illumination::default().coefficients(), (0.0, 0.0, 1.0));
+    /// ```
+    fn default() -> Self {
+        Illumination {
+            ambient: 0.0,
+            diffuse: 0.0,
+            diffraction: 1.0,
+        }
+    }
+}
+
+impl Illumination {
+    /// The coefficients (ambient, diffuse, diffraction); each must be finite and ≥ 0.
+    ///
+    /// ```
+    /// use diffraction::Illumination;
+    /// assert_eq!(Illumination::new(0.1, 0.5, 2.0)?.coefficients(), (0.1, 0.5, 2.0));
+    /// let err = Illumination::new(0.1, -0.5, 2.0).unwrap_err();
+    /// assert_eq!(err.parameter(), "diffuse");
+    /// assert_eq!(err.to_string(), "invalid diffuse = -0.5: must be finite and >= 0");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn new(ambient: f64, diffuse: f64, diffraction: f64) -> Result<Illumination, Error> {
+        let check = |name: &'static str, v: f64| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(v)
+            } else {
+                Err(Error::invalid(name, v, Requirement::NonNegative))
+            }
+        };
+        Ok(Illumination {
+            ambient: check("ambient", ambient)?,
+            diffuse: check("diffuse", diffuse)?,
+            diffraction: check("diffraction", diffraction)?,
+        })
+    }
+
+    /// The coefficients (ambient, diffuse, diffraction).
+    ///
+    /// ```
+    /// use diffraction::Illumination;
+    /// let (ambient, diffuse, diffraction) = Illumination::new(0.2, 0.0, 1.5)?.coefficients();
+    /// assert_eq!((ambient, diffuse, diffraction), (0.2, 0.0, 1.5));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn coefficients(&self) -> (f64, f64, f64) {
+        (self.ambient, self.diffuse, self.diffraction)
+    }
+
+    /// Eq. 12 at one wavelength: `ambient·ambient_light + light·(diffuse·cos θi +
+    /// diffraction·value)`, where `value` is the model's `eval` (times cos θi when the model
+    /// does not include it); the light terms are 0 when either direction is below the surface.
+    ///
+    /// The sum overflows to ∞ only when the caller's own coefficients and lights are so large
+    /// that their products do (each term is a product of the caller's finite numbers and a model
+    /// value that is finite).
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating, Illumination};
+    /// use glam::DVec3;
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
+    /// let shading = Illumination::new(0.1, 0.3, 1.0)?;
+    /// // u = 0.3: order 1 at 480 nm.
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()));
+    /// let i = shading.eval(&m, wi, wo, 480.0, 2.0, 1.0);
+    /// let expected = 0.1 * 2.0 + 0.3 * 1.0 + m.eval(wi, wo, 480.0);
+    /// assert!((i - expected).abs() < 1e-12); // the order of the additions only
+    /// // Light from below the surface: only the ambient term remains.
+    /// assert_eq!(shading.eval(&m, -wi, wo, 480.0, 2.0, 1.0), 0.1 * 2.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn eval<B: DiffractionBrdf + ?Sized>(
+        &self,
+        model: &B,
+        wi: DVec3,
+        wo: DVec3,
+        lambda_nm: f64,
+        ambient_light: f64,
+        light: f64,
+    ) -> f64 {
+        let mut i = self.ambient * ambient_light;
+        if both_above(wi.z, wo.z) {
+            let cos = if model.cosine_included() { 1.0 } else { wi.z };
+            let value = model.eval(wi, wo, lambda_nm) * cos;
+            i += light * (self.diffuse * wi.z + self.diffraction * value);
+        }
+        i
+    }
+}

@@ -1,0 +1,58 @@
+//! `Exact`: lobe-exact quadrature of the reference colour, the crate's reference.
+
+use glam::DVec3;
+
+use super::lobes::Lobes;
+use super::{Spectral, BAND};
+use crate::math::{ceil, floor};
+use crate::{Grating, Slits};
+
+/// Lobes integrated exactly around every integer x and band end by `Exact` in its hybrid mode.
+pub(super) const NEAR_LOBES: f64 = 64.0;
+/// Above this many lobes in the band, `Exact` switches to its hybrid mode.
+pub(super) const MAX_LOBES: f64 = 4096.0;
+
+impl Spectral {
+    pub(super) fn exact(&self, grating: &Grating, u: f64) -> DVec3 {
+        let n = match grating.slits() {
+            Slits::Finite(n) => n as f64,
+            Slits::Infinite => return DVec3::ZERO,
+        };
+        let q = grating.period_nm() * u;
+        let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
+        let lobes = Lobes::new(self, grating, q, n);
+        if n * (x_hi - x_lo) <= MAX_LOBES {
+            return lobes.lobes(x_lo, x_hi);
+        }
+        // Hybrid: lobe-exact within NEAR_LOBES lobes of every integer x and of the band ends
+        // (aligned to lobe boundaries), the envelope with sin² → ½ elsewhere.
+        let k = NEAR_LOBES / n;
+        let start_end = (ceil((x_lo + k) * n) / n).min(x_hi);
+        let end_start = (floor((x_hi - k) * n) / n).max(x_lo);
+        let mut acc = DVec3::ZERO;
+        let mut cursor = x_lo;
+        while cursor < x_hi {
+            let m_prev = floor(cursor);
+            let m_next = m_prev + 1.0;
+            let (near, until) = if cursor < start_end {
+                (true, start_end)
+            } else if cursor >= end_start {
+                (true, x_hi)
+            } else if cursor < m_prev + k {
+                (true, m_prev + k)
+            } else if cursor >= m_next - k {
+                (true, m_next + k)
+            } else {
+                (false, (m_next - k).min(end_start))
+            };
+            let until = until.min(x_hi);
+            if near {
+                acc += lobes.lobes(cursor, until);
+            } else {
+                acc += lobes.envelope(cursor, until, true);
+            }
+            cursor = until;
+        }
+        acc
+    }
+}

@@ -1,0 +1,163 @@
+//! The lobe walker: quadrature of the Agu-Hill integrand in the phase x = d·|u|/λ, one lobe of
+//! F_N (between its zeros x = k/N) at a time, the building block of the peak searches and of
+//! `Exact`.
+
+use glam::DVec3;
+
+use super::rules::{gl4, gl8, GL_W, GL_X};
+use super::Spectral;
+use crate::kernel::{single_slit_cycles, sinpi};
+use crate::math::{ceil, floor, rint};
+use crate::Grating;
+
+/// Largest wavelength span of one 4-point Gauss-Legendre piece in the peak searches' treatment
+/// of order 0.
+pub(super) const COARSE_SPAN_NM: f64 = 16.0;
+
+/// A quadrature rule applied to one piece [a, b] of a [`Lobes`] integral.
+pub(super) type PieceRule<'a> = fn(&Lobes<'a>, f64, f64, &mut DVec3, &dyn Fn(f64) -> DVec3);
+
+/// Quadrature in the phase x = q/λ (q = d·|u|) of E·S·cmf·F_N·norm·q/x².
+pub(super) struct Lobes<'a> {
+    s: &'a Spectral,
+    q: f64,
+    n: f64,
+    n_int: u32,
+    duty: f64,
+}
+
+impl<'a> Lobes<'a> {
+    pub(super) fn new(s: &'a Spectral, grating: &Grating, q: f64, n: f64) -> Lobes<'a> {
+        Lobes {
+            s,
+            q,
+            n,
+            n_int: n as u32,
+            duty: grating.slit_width_nm() / grating.period_nm(),
+        }
+    }
+
+    /// E·S·cmf·norm·|dλ/dx| at phase x, without F_N.
+    #[inline]
+    fn envelope_at(&self, x: f64) -> DVec3 {
+        let l = self.q / x;
+        let jac = l / x;
+        let s = single_slit_cycles(self.duty * x);
+        let w = self.s.weight(l);
+        let k = s * jac;
+        w * k
+    }
+
+    /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables (8-point rule).
+    pub(super) fn lobes(&self, a: f64, b: f64) -> DVec3 {
+        self.lobes_by(a, b, Self::split_at_rows)
+    }
+
+    /// ∫ over [a, b] lobe by lobe, each lobe in pieces of at most COARSE_SPAN_NM, 4-point
+    /// Gauss-Legendre, not split at the table rows.
+    pub(super) fn coarse_lobes(&self, a: f64, b: f64) -> DVec3 {
+        self.lobes_by(a, b, Self::coarse)
+    }
+
+    /// ∫ over [a, b] of the full integrand, one lobe (between zeros x = k/N) at a time, each
+    /// lobe handed to `rule`.
+    fn lobes_by(&self, a: f64, b: f64, rule: PieceRule<'a>) -> DVec3 {
+        let mut acc = DVec3::ZERO;
+        if b.is_nan() || a.is_nan() || b <= a {
+            return acc;
+        }
+        let integrand = |x: f64| {
+            let f = crate::kernel::n_slit_cycles(x, self.n_int);
+            let e = self.envelope_at(x);
+            e * f
+        };
+        let mut k = floor(a * self.n) + 1.0;
+        let mut lo = a;
+        while lo < b {
+            let hi = (k / self.n).min(b);
+            if hi > lo {
+                rule(self, lo, hi, &mut acc, &integrand);
+            }
+            lo = hi;
+            k += 1.0;
+        }
+        acc
+    }
+
+    /// 4-point Gauss-Legendre on pieces of [a, b] spanning at most COARSE_SPAN_NM.
+    fn coarse(&self, a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+        let span = self.q / a - self.q / b;
+        let pieces = ceil(span / COARSE_SPAN_NM).max(1.0);
+        let step = (b - a) / pieces;
+        let count = pieces as u32;
+        let mut t = a;
+        for j in 1..=count {
+            let e = if j == count { b } else { a + j as f64 * step };
+            gl4(t, e, acc, f);
+            t = e;
+        }
+    }
+
+    /// ∫ F_N dr over [−h, h] (lobe-exact Gauss-Legendre), h a whole number of lobes.
+    pub(super) fn kernel_mass(&self, h: f64) -> f64 {
+        let mut sum = 0.0;
+        let lobes = rint(h * self.n) as u32;
+        let width = 1.0 / self.n;
+        for j in 0..lobes {
+            let (mid, half) = ((j as f64 + 0.5) * width, 0.5 * width);
+            for (xi, wi) in GL_X.iter().zip(GL_W) {
+                sum += wi * half * crate::kernel::n_slit_cycles(mid + half * xi, self.n_int);
+            }
+        }
+        2.0 * sum
+    }
+
+    /// ∫ over [a, b] (away from integers) with sin²(πNx) replaced by its mean ½, on a grid
+    /// where the distance to the nearest integer changes by at most a factor 2 per piece.
+    pub(super) fn envelope(&self, a: f64, b: f64, split_rows: bool) -> DVec3 {
+        let mut acc = DVec3::ZERO;
+        let mut lo = a;
+        while lo < b {
+            let m = floor(lo);
+            let mid = m + 0.5;
+            let hi = if lo < mid {
+                (lo + (lo - m)).min(mid)
+            } else {
+                lo + 0.5 * (m + 1.0 - lo)
+            };
+            let hi = if hi > lo { hi.min(b) } else { b };
+            let f = |x: f64| {
+                let den = self.n * sinpi(x - rint(x));
+                let f = 0.5 / (den * den);
+                let e = self.envelope_at(x);
+                e * f
+            };
+            if split_rows {
+                self.split_at_rows(lo, hi, &mut acc, &f);
+            } else {
+                self.coarse(lo, hi, &mut acc, &f);
+            }
+            lo = hi;
+        }
+        acc
+    }
+
+    /// Gauss-Legendre over [a, b] split where λ = q/x crosses an integer nanometre.
+    fn split_at_rows(&self, a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+        // λ runs from q/a down to q/b; rows j with q/b < j < q/a sit at x = q/j.
+        let mut lo = a;
+        let mut j = ceil(self.q / a) - 1.0;
+        let j_end = self.q / b;
+        while j > j_end && lo < b {
+            let x = (self.q / j).min(b);
+            if x > lo {
+                gl8(lo, x, acc, f);
+                lo = x;
+            }
+            j -= 1.0;
+        }
+        if b > lo {
+            gl8(lo, b, acc, f);
+        }
+    }
+}
