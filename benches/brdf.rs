@@ -6,7 +6,6 @@
 //! Gratings: N ∈ {1, 30, 1000, 10⁶} slits, periods 740, 1600 and 100 000 nm, slit width d/2.
 
 use criterion::{black_box, BenchmarkId, Criterion, Throughput};
-use diffraction::kernel::naive;
 use diffraction::{AguHill, DiffractionBrdf, Grating};
 use glam::{DVec3, Vec3};
 use std::time::Duration;
@@ -15,32 +14,15 @@ const BATCH: usize = 1024;
 const SLITS: [u32; 4] = [1, 30, 1000, 1_000_000];
 const PERIODS: [f64; 3] = [740.0, 1600.0, 100_000.0];
 
+#[path = "support/naive.rs"]
+mod naive_formula;
+use naive_formula::{naive_f32, naive_f64};
 #[path = "support/rng.rs"]
 mod rng;
 
 /// The batch for one grating: (wi, wo, λ), every other one near a peak of order 1-4.
 fn samples(period: f64, n: u32) -> Vec<(DVec3, DVec3, f64)> {
     rng::near_peak_samples(period, n, BATCH)
-}
-
-/// The textbook formula in `f32`, as a renderer would write it.
-#[inline]
-fn naive_f32(d: f32, w: f32, n: u32, wi: Vec3, wo: Vec3, lambda: f32) -> f32 {
-    if wi.z <= 0.0 || wo.z <= 0.0 {
-        return 0.0;
-    }
-    let k = std::f32::consts::PI * (wi.x + wo.x) / lambda;
-    naive::single_slit(k * w) * naive::n_slit(k * d, n)
-}
-
-/// The textbook formula in `f64`.
-#[inline]
-fn naive_f64(d: f64, w: f64, n: u32, wi: DVec3, wo: DVec3, lambda: f64) -> f64 {
-    if wi.z <= 0.0 || wo.z <= 0.0 {
-        return 0.0;
-    }
-    let k = std::f64::consts::PI * (wi.x + wo.x) / lambda;
-    naive::single_slit(k * w) * naive::n_slit(k * d, n)
 }
 
 fn bench_eval(c: &mut Criterion) {

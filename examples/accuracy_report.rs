@@ -39,8 +39,6 @@ const PERIODS: [f64; 4] = [740.0, 1600.0, 10_000.0, 100_000.0];
 const SLITS: [u32; 9] = [1, 2, 5, 30, 300, 1000, 3000, 30_000, 1_000_000];
 /// The shortest wavelength of the band: d·|u| below it diffracts no order into the band.
 const BAND_MIN_NM: f64 = 360.0;
-/// ∫ȳ dλ over the band: the floor of the exposure is an ideal first order at 555 nm.
-const YBAR_INTEGRAL: f64 = 106.857;
 
 /// What is evaluated at each u.
 #[derive(Clone, Copy)]
@@ -163,6 +161,9 @@ fn u_grid(quick: bool) -> Vec<f64> {
         .collect()
 }
 
+#[path = "../benches/support/naive.rs"]
+mod naive_formula;
+use naive_formula::{naive_f32, naive_f64};
 #[path = "../benches/support/rng.rs"]
 mod rng;
 use rng::Rng;
@@ -206,7 +207,7 @@ fn time_ns<T: Copy>(inputs: &[T], budget: Duration, mut f: impl FnMut(T) -> f64)
 
 /// The exposure scale Y_brightest of a grating from its reference colours on the u grid.
 fn brightest(period: f64, n: u32, us: &[f64], refs: &[Xyz]) -> f64 {
-    let floor = 555.0 / (n as f64 * YBAR_INTEGRAL);
+    let floor = 555.0 / (n as f64 * diffraction::cie::cmf_areas()[1]);
     us.iter()
         .zip(refs)
         .filter(|(u, _)| period * u.abs() >= BAND_MIN_NM)
@@ -769,28 +770,6 @@ fn eval_samples(period: f64, n: u32, count: usize) -> Vec<Sample> {
         .into_iter()
         .map(|(wi, wo, lambda)| Sample { wi, wo, lambda })
         .collect()
-}
-
-/// The naive formula for one wavelength in `f32`, as a renderer would write it.
-#[inline]
-fn naive_f32(d: f32, w: f32, n: u32, wi: Vec3, wo: Vec3, lambda: f32) -> f32 {
-    if wi.z <= 0.0 || wo.z <= 0.0 {
-        return 0.0;
-    }
-    let u = wi.x + wo.x;
-    let k = std::f32::consts::PI * u / lambda;
-    naive::single_slit(k * w) * naive::n_slit(k * d, n)
-}
-
-/// The naive formula in `f64`.
-#[inline]
-fn naive_f64(d: f64, w: f64, n: u32, wi: DVec3, wo: DVec3, lambda: f64) -> f64 {
-    if wi.z <= 0.0 || wo.z <= 0.0 {
-        return 0.0;
-    }
-    let u = wi.x + wo.x;
-    let k = std::f64::consts::PI * u / lambda;
-    naive::single_slit(k * w) * naive::n_slit(k * d, n)
 }
 
 fn print_eval(budget: Duration) {

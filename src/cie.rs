@@ -202,3 +202,21 @@ pub(crate) fn illuminant_row(ill: Illuminant, i: usize) -> f64 {
 pub(crate) fn cmf_row(i: usize, c: usize) -> f64 {
     CIE1931_2DEG[i][c]
 }
+
+/// The areas ∫x̄, ∫ȳ, ∫z̄ dλ of the colour-matching functions over 360-830 nm, exact for their
+/// linear interpolation between the 1 nm rows (about 106.86, 106.86, 106.77 nm): ∫ȳ is the
+/// normalisation of illuminant E's white and the scale of a grating's brightest order
+/// (about 555 nm/(N·∫ȳ) for N slits).
+///
+/// ```
+/// use diffraction::cie::cmf_areas;
+/// let [x, y, z] = cmf_areas();
+/// assert!((y - 106.857).abs() < 1e-3);
+/// // The equal-energy white has nearly equal X, Y, Z.
+/// assert!((x / y - 1.0).abs() < 1e-3 && (z / y - 1.0).abs() < 2e-3);
+/// ```
+#[must_use]
+pub fn cmf_areas() -> [f64; 3] {
+    let channel = |c| integrate_product_of_rows(|_| 1.0, |i| cmf_row(i, c));
+    [channel(0), channel(1), channel(2)]
+}

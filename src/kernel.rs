@@ -94,17 +94,6 @@ pub(crate) fn sinpi(z: f64) -> f64 {
     }
 }
 
-/// sin(πz)/(πz) for |z| ≤ ½, with the limit 1 at z = 0.
-#[inline]
-fn sinc_pi(z: f64) -> f64 {
-    if z.abs() < 1e-12 {
-        // 1 − (πz)²/6 differs from 1 by less than 2e-24 here.
-        1.0
-    } else {
-        sinpi(z) / (core::f64::consts::PI * z)
-    }
-}
-
 /// Reduces a phase in radians modulo π and returns it in cycles: r with α ≡ π·r (mod π), |r| ≤ ½.
 #[inline]
 fn reduce_radians(alpha: f64) -> f64 {
@@ -124,48 +113,21 @@ fn reduce_radians(alpha: f64) -> f64 {
     }
 }
 
-/// F_N for a phase already reduced to |r| ≤ ½ cycles (f64 core).
-#[inline]
-fn n_slit_reduced(r: f64, n: u32) -> f64 {
-    if n <= 1 {
-        return if n == 0 { 0.0 } else { 1.0 };
-    }
-    let nf = n as f64;
-    // N·r = N·r_hi + N·r_lo, with N·r_hi exact.
-    const SPLIT: f64 = 2_097_152.0; // 2^21
-    let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
-    let r_lo = r - r_hi;
-    let p_hi = nf * r_hi;
-    let s = (p_hi - rint(p_hi)) + nf * r_lo;
-    let s = s - rint(s);
-    let f = if (nf * r).abs() <= 0.5 {
-        // No wrap: s = N·r. Near the peak, F = (sinc(πNr)/sinc(πr))².
-        sinc_pi(s) / sinc_pi(r)
-    } else {
-        sinpi(s) / (nf * sinpi(r))
-    };
-    let f = f * f;
-    if f > 1.0 {
-        1.0
-    } else {
-        f
-    }
-}
+/// N·r = N·r_hi + N·r_lo is split at 2⁻²¹ so that N·r_hi is exact for every N < 2³²: r_hi has
+/// at most 21 fraction bits below ½, so N·r_hi needs at most 53 bits.
+const SPLIT: f64 = 2_097_152.0; // 2^21
 
-/// S(y)·F_N(x) with one division: the grating intensity for phases in cycles (x = d·u/λ,
-/// y = w·u/λ), `n` ≥ 2. Same accuracy as the product of [`single_slit_cycles`] and
-/// [`n_slit_cycles`] (a few ulp of each factor), about half the cost.
+/// F_N = (num/den)² at a phase reduced to |r| ≤ ½ cycles, `n` ≥ 2: the numerator and denominator
+/// of sin(πNr)/(N·sin(πr)), with N·r reduced exactly and the limit at the peak guarded.
 #[inline]
-pub(crate) fn intensity_cycles(x: f64, y: f64, n: u32) -> f64 {
-    // F_N = (f_num/f_den)², as in `n_slit_reduced`.
-    let r = x - rint(x);
+fn n_slit_ratio(r: f64, n: u32) -> (f64, f64) {
     let nf = n as f64;
-    const SPLIT: f64 = 2_097_152.0; // 2^21
     let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
     let p_hi = nf * r_hi;
     let s = (p_hi - rint(p_hi)) + nf * (r - r_hi);
     let s = s - rint(s);
-    let (f_num, f_den) = if (nf * r).abs() <= 0.5 {
+    if (nf * r).abs() <= 0.5 {
+        // No wrap: s = N·r. Near the peak F = (sinc(πs)/sinc(πr))².
         if s.abs() < 1e-12 {
             (1.0, 1.0) // F = 1 − O((πs)²) = 1 in f64
         } else {
@@ -174,7 +136,26 @@ pub(crate) fn intensity_cycles(x: f64, y: f64, n: u32) -> f64 {
         }
     } else {
         (sinpi(s), nf * sinpi(r))
-    };
+    }
+}
+
+/// F_N for a phase already reduced to |r| ≤ ½ cycles (f64 core).
+#[inline]
+fn n_slit_reduced(r: f64, n: u32) -> f64 {
+    if n <= 1 {
+        return if n == 0 { 0.0 } else { 1.0 };
+    }
+    let (num, den) = n_slit_ratio(r, n);
+    let f = num / den;
+    (f * f).min(1.0)
+}
+
+/// S(y)·F_N(x) with one division: the grating intensity for phases in cycles (x = d·u/λ,
+/// y = w·u/λ), `n` ≥ 2. Same accuracy as the product of [`single_slit_cycles`] and
+/// [`n_slit_cycles`] (a few ulp of each factor), about half the cost.
+#[inline]
+pub(crate) fn intensity_cycles(x: f64, y: f64, n: u32) -> f64 {
+    let (f_num, f_den) = n_slit_ratio(x - rint(x), n);
     // S = (s_num/s_den)², as in `single_slit_core`.
     let (s_num, s_den) = if y.abs() < 1e-8 {
         (1.0, 1.0) // 1 − (πy)²/3 = 1 to 3e-16

@@ -148,7 +148,7 @@ impl Spectral {
         let e = |i| cie::illuminant_row(illuminant, i);
         let channel = |c| cie::integrate_product_of_rows(e, |i| cie::cmf_row(i, c));
         let (x, y, z) = (channel(0), channel(1), channel(2));
-        let ybar = cie::integrate_product_of_rows(|_| 1.0, |i| cie::cmf_row(i, 1));
+        let ybar = cie::cmf_areas()[1];
         Spectral {
             illuminant,
             norm: 1.0 / y,

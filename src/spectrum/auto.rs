@@ -5,6 +5,30 @@ use crate::kernel::sinpi;
 use crate::math::rint;
 use crate::{Grating, Slits};
 
+/// The peak search's error bound is `PEAK_SEARCH_BOUND_N / N` of the brightest order. Its
+/// leading error is the far tails of each order (the mass of F_N spread over the period, with
+/// E·S·cmf not constant there), which falls as 1/N; the worst measured over the grid of
+/// `tests/spectral_reference.rs` (d = 400-100 000 nm, N = 1-10⁶, both illuminants) is 3.5/N, and
+/// 8 keeps a margin above it.
+const PEAK_SEARCH_BOUND_N: f64 = 8.0;
+
+/// The peak search integrates order 0's light coarsely (4-point Gauss-Legendre over pieces of
+/// at most 16 nm, sin²(Nα) → ½ over narrow lobes): its error is below this fraction of order 0's
+/// own colour (measured over the same grid).
+const ORDER0_RELATIVE_ERROR: f64 = 2e-3;
+
+/// N times the Y of the brightest order: an order at λ_m carries about
+/// S·E(λ_m)·ȳ(λ_m)·λ_m/(|m|·N)/∫E·ȳ (its peak value times its equivalent width), which is largest
+/// for the first order at the peak of ȳ (555 nm, ȳ = 1, S ≤ 1, flat E):
+/// 555 nm/∫ȳ dλ = 555/106.857 ≈ 5.2. It converts errors of order 0's light into the
+/// brightest-order scale of the bounds.
+const BRIGHTEST_ORDER_Y_TIMES_N: f64 = 5.2;
+
+/// Where the band holds at most this many lobes of F_N, `Exact` (which integrates every lobe
+/// with an 8-point rule) costs no more than the peak search's treatment of the band ends, and
+/// is chosen whatever the accuracy.
+const EXACT_BELOW_LOBES: f64 = 64.0;
+
 impl Spectral {
     /// The strategy [`Strategy::Auto`] picks for `accuracy`: the cheapest whose error bound,
     /// relative to the XYZ of the brightest order of this grating, is within it.
@@ -37,19 +61,21 @@ impl Spectral {
         } else {
             DEFAULT_ACCURACY
         };
-        // Order 0's half period in the band: the peak search integrates it coarsely (2e-3 of
-        // its own colour). Its colour is at most F_N(x_lo) of the white, and the brightest
-        // order is about Y₁ = 555 nm/(N·∫ȳ) ≈ 5.2/N.
+        // Order 0's half period in the band: its colour is at most F_N(x_lo) ≤ 1/(N·sin πx_lo)²
+        // of the white (Y = 1), integrated to ORDER0_RELATIVE_ERROR of itself; on the scale of
+        // the brightest order (Y ≈ BRIGHTEST_ORDER_Y_TIMES_N / N) that error is
+        // ORDER0_RELATIVE_ERROR · F_N(x_lo) · N / BRIGHTEST_ORDER_Y_TIMES_N.
         let x_lo = q / BAND.max_nm();
+        let to_brightest = ORDER0_RELATIVE_ERROR * n / BRIGHTEST_ORDER_Y_TIMES_N;
         let order0 = if x_lo >= 0.5 {
             0.0
         } else if x_lo * n < 1.0 {
-            2e-3 * n / 5.2
+            to_brightest
         } else {
             let f = 1.0 / (n * sinpi(x_lo - rint(x_lo)));
-            2e-3 * f * f * n / 5.2
+            f * f * to_brightest
         };
-        if lobes > 64.0 && 8.0 / n + order0 <= accuracy {
+        if lobes > EXACT_BELOW_LOBES && PEAK_SEARCH_BOUND_N / n + order0 <= accuracy {
             Strategy::PeakSearch { refine: false }
         } else {
             Strategy::Exact

@@ -10,6 +10,25 @@ use crate::color::Xyz;
 use crate::math::{ceil, floor};
 use crate::DiffractionBrdf;
 
+/// Where a model's order-0 lobe is seen, the peak search integrates the whole band with 8-point
+/// Gauss-Legendre on this many equal intervals (29.4 nm each): order 0's light is broad in
+/// wavelength (its lobe spans the band near the mirror direction), and 128 evaluations resolve
+/// the tables' variation to the peak search's accuracy.
+const ORDER0_INTERVALS: u32 = 16;
+
+/// `Exact` resolves a peak over ±`PEAK_WINDOW_WIDTHS` equivalent widths around it: the mass of an
+/// F_N-shaped lobe beyond k widths is about 1/(π²k) of the order, and the 1 nm rule outside
+/// integrates that smooth tail.
+const PEAK_WINDOW_WIDTHS: f64 = 64.0;
+
+/// Pieces of the peak window, each integrated with 8 points: the main lobe (two equivalent
+/// widths) gets 4 pieces, 32 points.
+const PEAK_WINDOW_PIECES: u32 = 128;
+
+/// Peaks at least this wide (nm) are left to the 1 nm rule: 8 points per nanometre resolve a lobe
+/// of half a nanometre to `Exact`'s bound.
+const RESOLVED_WIDTH_NM: f64 = 0.5;
+
 impl Spectral {
     /// The reference colour of any [`DiffractionBrdf`] at (wi, wo): ∫E·f·cmf/∫E·ȳ with f the
     /// model's `eval`, multiplied by cos θi when the model does not include it.
@@ -74,8 +93,8 @@ impl Spectral {
                     acc += self.weight(p.wavelength_nm) * p.intensity * cos * p.equivalent_width_nm;
                 });
                 if summary.specular {
-                    let step = BAND.width_nm() / 16.0;
-                    for j in 0..16 {
+                    let step = BAND.width_nm() / ORDER0_INTERVALS as f64;
+                    for j in 0..ORDER0_INTERVALS {
                         let a = BAND.min_nm() + j as f64 * step;
                         gl8(a, a + step, &mut acc, &f);
                     }
@@ -89,10 +108,11 @@ impl Spectral {
                 });
                 if summary.specular {
                     let mut mean = 0.0;
-                    for j in 0..16 {
-                        mean += brdf.eval(wi, wo, BAND.min_nm() + (j as f64 + 0.5) * 29.375);
+                    let step = BAND.width_nm() / ORDER0_INTERVALS as f64;
+                    for j in 0..ORDER0_INTERVALS {
+                        mean += brdf.eval(wi, wo, BAND.min_nm() + (j as f64 + 0.5) * step);
                     }
-                    let k = mean / 16.0 * cos;
+                    let k = mean / ORDER0_INTERVALS as f64 * cos;
                     acc += DVec3::new(self.white.x, self.white.y, self.white.z) * k;
                 }
             }
@@ -103,25 +123,25 @@ impl Spectral {
                     gl8(l, l + 1.0, &mut acc, &f);
                     l += 1.0;
                 }
-                // Resolve each narrow peak: over the whole 1 nm steps around ±64 equivalent
-                // widths, replace the 1 nm rule by 128 pieces (split at the table rows). Peaks come
+                // Resolve each narrow peak: over the whole 1 nm steps around ±PEAK_WINDOW_WIDTHS
+                // equivalent widths, replace the 1 nm rule by PEAK_WINDOW_PIECES pieces (split at the table rows). Peaks come
                 // in order of decreasing wavelength; each window stops where the previous began,
                 // so windows never overlap.
                 let mut previous_start = hi;
                 brdf.peaks(wi, wo, BAND, &mut |p| {
                     let w = p.equivalent_width_nm;
-                    if w.is_nan() || w <= 0.0 || w >= 0.5 {
+                    if w.is_nan() || w <= 0.0 || w >= RESOLVED_WIDTH_NM {
                         return;
                     }
-                    let a = floor(p.wavelength_nm - 64.0 * w).max(lo);
-                    let b = ceil(p.wavelength_nm + 64.0 * w).min(previous_start);
+                    let a = floor(p.wavelength_nm - PEAK_WINDOW_WIDTHS * w).max(lo);
+                    let b = ceil(p.wavelength_nm + PEAK_WINDOW_WIDTHS * w).min(previous_start);
                     if b.is_nan() || b <= a {
                         return;
                     }
                     previous_start = a;
                     let (c0, c1) = (
-                        (p.wavelength_nm - 64.0 * w).max(a),
-                        (p.wavelength_nm + 64.0 * w).min(b),
+                        (p.wavelength_nm - PEAK_WINDOW_WIDTHS * w).max(a),
+                        (p.wavelength_nm + PEAK_WINDOW_WIDTHS * w).min(b),
                     );
                     let mut coarse = DVec3::ZERO;
                     let mut fine = DVec3::ZERO;
@@ -140,8 +160,8 @@ impl Spectral {
                     };
                     by_rows(a, c0, &mut fine);
                     by_rows(c1, b, &mut fine);
-                    let piece = (c1 - c0) / 128.0;
-                    for j in 0..128 {
+                    let piece = (c1 - c0) / PEAK_WINDOW_PIECES as f64;
+                    for j in 0..PEAK_WINDOW_PIECES {
                         let s0 = c0 + j as f64 * piece;
                         by_rows(s0, s0 + piece, &mut fine);
                     }
