@@ -235,8 +235,8 @@ impl Grating {
     /// integer (the roundings of forming x), 0 elsewhere. Renderers want the peak search
     /// ([`Grating::peaks`]) for that case.
     ///
-    /// Evaluated in `f64` for either argument type; x = d·u/λ is formed with one rounding and
-    /// then reduced exactly (see [`kernel`](crate::kernel) for the accuracy of the factors).
+    /// Evaluated in `f64` for either argument type; x = d·(u/λ) is formed with two roundings
+    /// and then reduced exactly (see [`kernel`](crate::kernel) for the accuracy of the factors).
     /// Returns 0 for λ ≤ 0 and where the phase overflows (|d·u/λ| not finite), never NaN for
     /// finite input.
     ///

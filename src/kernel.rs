@@ -10,7 +10,7 @@
 //! # Accuracy
 //!
 //! Every function here evaluates in `f64` whatever its argument type and rounds once to the
-//! caller's precision. Measured against 50-digit mpmath values of the exact function *at the
+//! caller's precision. Measured against 100-digit mpmath values of the exact function *at the
 //! given floating-point argument* (`tests/kernel_reference.rs`, data from `python_ref/`):
 //!
 //! | function | bound (absolute) | range |
