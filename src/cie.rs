@@ -14,6 +14,7 @@
 //!   agree with the CIE's six-digit 5 nm table to 3.8e-6 relative over 360-780 nm.
 
 use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+use crate::ParseError;
 
 /// First wavelength of the tables, nm (360).
 ///
@@ -163,36 +164,26 @@ impl core::fmt::Display for Illuminant {
     }
 }
 
-/// The error of parsing an [`Illuminant`] name.
+/// The error of parsing an [`Illuminant`]: the crate's shared [`ParseError`], under the name it
+/// had before all parsers shared one error type.
 ///
 /// ```
 /// use diffraction::cie::{Illuminant, ParseIlluminantError};
-/// assert_eq!("D50".parse::<Illuminant>(), Err(ParseIlluminantError));
-/// assert_eq!(
-///     ParseIlluminantError.to_string(),
-///     "unknown illuminant: expected one of E, D65, A"
-/// );
+/// let err: ParseIlluminantError = "D50".parse::<Illuminant>().unwrap_err();
+/// assert_eq!(err.to_string(), "unknown illuminant: expected one of E, D65, A");
 /// ```
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ParseIlluminantError;
-
-impl core::fmt::Display for ParseIlluminantError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str("unknown illuminant: expected one of E, D65, A")
-    }
-}
-
-impl core::error::Error for ParseIlluminantError {}
+pub type ParseIlluminantError = ParseError;
 
 impl core::str::FromStr for Illuminant {
-    type Err = ParseIlluminantError;
+    type Err = ParseError;
 
+    /// Parses `E`, `D65` or `A`, upper or lower case.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s {
             "E" | "e" => Ok(Illuminant::E),
             "D65" | "d65" => Ok(Illuminant::D65),
             "A" | "a" => Ok(Illuminant::A),
-            _ => Err(ParseIlluminantError),
+            _ => Err(ParseError::new("illuminant", "one of E, D65, A")),
         }
     }
 }

@@ -106,6 +106,7 @@ pub mod frame;
 mod grating;
 pub mod kernel;
 mod math;
+mod parse;
 pub mod spectrum;
 #[cfg(feature = "stam")]
 pub mod stam;
@@ -114,6 +115,7 @@ mod thorman;
 pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
 pub use error::{Error, Requirement};
 pub use float::Float;
+pub use parse::ParseError;
 #[cfg(feature = "stam")]
 pub use stam::{Profile, Stam};
 pub use thorman::Thorman;

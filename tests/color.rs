@@ -3,8 +3,10 @@
 
 use approx::assert_abs_diff_eq;
 use diffraction::color::{
-    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, ParseClipError, Srgb, Xyz,
+    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, Xyz,
 };
+use diffraction::cie::Illuminant;
+use diffraction::ParseError;
 use proptest::prelude::*;
 
 /// Tolerances, each with the reason for its size.
@@ -334,12 +336,30 @@ fn clip_names() {
     assert_eq!("clamp".parse::<Clip>(), Ok(Clip::Clamp));
     assert_eq!("intensity".parse::<Clip>(), Ok(Clip::Intensity));
     assert_eq!("constant".parse::<Clip>(), Ok(Clip::ConstantIntensity));
-    let err: ParseClipError = "Clamp".parse::<Clip>().unwrap_err();
+    let err: ParseError = "Clamp".parse::<Clip>().unwrap_err();
+    assert_eq!(err.what(), "clipping scheme");
     let msg = err.to_string();
     for name in ["clamp", "intensity", "constant"] {
         assert!(msg.contains(name), "{msg}");
     }
     assert!("".parse::<Clip>().is_err());
+}
+
+#[test]
+fn clip_and_illuminant_share_one_parse_error() {
+    let clip = "gamma".parse::<Clip>().unwrap_err();
+    let illuminant = "D50".parse::<Illuminant>().unwrap_err();
+    for (err, what) in [(clip, "clipping scheme"), (illuminant, "illuminant")] {
+        assert_eq!(err.what(), what);
+        assert_eq!(
+            err.to_string(),
+            format!("unknown {what}: expected {}", err.expected())
+        );
+    }
+    for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
+        assert!(illuminant.expected().contains(ill.name()));
+        assert_eq!(ill.name().parse::<Illuminant>(), Ok(ill));
+    }
 }
 
 fn in_unit_cube(c: LinearSrgb) -> bool {

@@ -5,6 +5,7 @@ use core::str::FromStr;
 
 use super::srgb::clamp01;
 use super::LinearSrgb;
+use crate::ParseError;
 
 impl LinearSrgb {
     /// Brings the colour into the gamut [0, 1]³ with the given scheme (see [`Clip`] for what each
@@ -97,7 +98,7 @@ impl LinearSrgb {
 /// assert_eq!(c, Clip::ConstantIntensity);
 /// assert_eq!(c.to_string(), "constant");
 /// assert!("gamma".parse::<Clip>().is_err());
-/// # Ok::<(), diffraction::color::ParseClipError>(())
+/// # Ok::<(), diffraction::ParseError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -181,38 +182,29 @@ impl fmt::Display for Clip {
 }
 
 impl FromStr for Clip {
-    type Err = ParseClipError;
+    type Err = ParseError;
 
     /// Parses `"clamp"`, `"intensity"` or `"constant"` (exactly, lower case).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Clip::ALL
             .into_iter()
             .find(|c| c.name() == s)
-            .ok_or(ParseClipError { _private: () })
+            .ok_or(ParseError::new(
+                "clipping scheme",
+                "one of \"clamp\", \"intensity\", \"constant\"",
+            ))
     }
 }
 
-/// The error of parsing a [`Clip`] from a string that is not one of its names.
+/// The error of parsing a [`Clip`]: the crate's shared [`ParseError`], under the name it had
+/// before all parsers shared one error type.
 ///
 /// ```
-/// use diffraction::color::Clip;
-/// let err = "hard".parse::<Clip>().unwrap_err();
+/// use diffraction::color::{Clip, ParseClipError};
+/// let err: ParseClipError = "hard".parse::<Clip>().unwrap_err();
 /// assert_eq!(
 ///     err.to_string(),
 ///     "unknown clipping scheme: expected one of \"clamp\", \"intensity\", \"constant\""
 /// );
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ParseClipError {
-    _private: (),
-}
-
-impl fmt::Display for ParseClipError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(
-            "unknown clipping scheme: expected one of \"clamp\", \"intensity\", \"constant\"",
-        )
-    }
-}
-
-impl core::error::Error for ParseClipError {}
+pub type ParseClipError = ParseError;
