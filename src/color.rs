@@ -81,6 +81,6 @@ mod tests;
 mod xyz;
 
 pub use clip::{Clip, ParseClipError};
-pub use lab::{delta_e2000, Lab};
+pub use lab::{delta_e2000, Lab, WhitePoint};
 pub use srgb::{srgb_decode, srgb_encode, LinearSrgb, Srgb};
 pub use xyz::Xyz;

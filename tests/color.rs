@@ -2,10 +2,10 @@
 //! clipping schemes and ΔE2000 (including the 34 test pairs of Sharma, Wu & Dalal 2005).
 
 use approx::assert_abs_diff_eq;
-use diffraction::color::{
-    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, Xyz,
-};
 use diffraction::cie::Illuminant;
+use diffraction::color::{
+    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz,
+};
 use diffraction::ParseError;
 use proptest::prelude::*;
 
@@ -113,7 +113,14 @@ fn chromaticity() {
     assert_eq!(Xyz::new(1.0, -1.0, 0.0).chromaticity(), None);
     assert_eq!(Xyz::new(f64::INFINITY, 1.0, 0.0).chromaticity(), None);
     assert_eq!(Xyz::new(f64::NAN, 1.0, 0.0).chromaticity(), None);
-    assert_eq!(Xyz::new(f64::MAX, f64::MAX, 0.0).chromaticity(), None); // the sum overflows
+    // The sum would overflow: the components are scaled by 2^-64 first (exact).
+    assert_eq!(
+        Xyz::new(f64::MAX, f64::MAX, 0.0).chromaticity(),
+        Some((0.5, 0.5))
+    );
+    // A non-physical colour whose sum nearly cancels: the coordinates would exceed f64::MAX.
+    let e = f64::EPSILON;
+    assert_eq!(Xyz::new(1.0 - e, -(1.0 - e), -5e-324).chromaticity(), None);
 }
 
 #[test]
@@ -134,20 +141,21 @@ fn xyz_arithmetic() {
 #[test]
 fn lab_of_white_and_of_colour_science_example() {
     let white = Xyz::new(0.3127 / 0.3290, 1.0, (1.0 - 0.3127 - 0.3290) / 0.3290);
-    let lab = white.to_lab(white);
+    let lab_white = WhitePoint::new(white).unwrap();
+    let lab = white.to_lab(lab_white);
     assert_abs_diff_eq!(lab.l, 100.0, epsilon = 1e-12);
     assert_abs_diff_eq!(lab.a, 0.0, epsilon = 1e-12);
     assert_abs_diff_eq!(lab.b, 0.0, epsilon = 1e-12);
     // The docstring example of colour.XYZ_to_Lab (printed there to 7 decimals).
-    let lab = Xyz::new(0.20654008, 0.12197225, 0.05136952).to_lab(white);
+    let lab = Xyz::new(0.20654008, 0.12197225, 0.05136952).to_lab(lab_white);
     assert_abs_diff_eq!(lab.l, 41.527_875_29, epsilon = 5e-8);
     assert_abs_diff_eq!(lab.a, 52.638_583_04, epsilon = 5e-8);
     assert_abs_diff_eq!(lab.b, 26.923_179_22, epsilon = 5e-8);
     // Black, and the linear segment below ε = 216/24389 (L* = κ·Y there, κ = 24389/27).
-    assert_eq!(Xyz::default().to_lab(white).l, 0.0);
+    assert_eq!(Xyz::default().to_lab(lab_white).l, 0.0);
     let y = 0.001;
     assert_abs_diff_eq!(
-        white.scale(y).to_lab(white).l,
+        white.scale(y).to_lab(lab_white).l,
         24389.0 / 27.0 * y,
         epsilon = 1e-12
     );
@@ -156,9 +164,10 @@ fn lab_of_white_and_of_colour_science_example() {
 #[test]
 fn lab_is_continuous_at_epsilon() {
     let white = Xyz::new(1.0, 1.0, 1.0);
+    let lab_white = WhitePoint::new(white).unwrap();
     let eps = 216.0 / 24389.0;
-    let below = white.scale(eps).to_lab(white).l;
-    let above = white.scale(eps * (1.0 + 1e-15)).to_lab(white).l;
+    let below = white.scale(eps).to_lab(lab_white).l;
+    let above = white.scale(eps * (1.0 + 1e-15)).to_lab(lab_white).l;
     assert_abs_diff_eq!(below, 8.0, epsilon = 1e-12);
     assert_abs_diff_eq!(above, below, epsilon = 1e-12);
 }
@@ -662,7 +671,8 @@ proptest! {
     #[test]
     fn delta_e2000_zero_on_identical_from_xyz(x in 0.0..1.2f64, y in 0.0..1.2f64, z in 0.0..1.2f64) {
         let white = Xyz::new(0.95047, 1.0, 1.08883);
-        let l = Xyz::new(x, y, z).to_lab(white);
+        let lab_white = WhitePoint::new(white).unwrap();
+        let l = Xyz::new(x, y, z).to_lab(lab_white);
         prop_assert_eq!(delta_e2000(l, l), 0.0);
     }
 }

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use diffraction::color::{delta_e2000, srgb_decode, srgb_encode, Lab, LinearSrgb, Xyz};
+use diffraction::color::{delta_e2000, srgb_decode, srgb_encode, Lab, LinearSrgb, WhitePoint, Xyz};
 
 /// Tolerances, each with the reason for its size.
 mod tol {
@@ -314,6 +314,7 @@ fn one_sided_limits(p: Lab, q: Lab) -> [f64; 2] {
 fn xyz_to_lab_and_delta_e2000() {
     let csv = Csv::load("lab_de2000.csv");
     let white = white_point(&csv);
+    let lab_white = WhitePoint::new(white).unwrap();
     let xyz1 = [csv.col("X1"), csv.col("Y1"), csv.col("Z1")];
     let xyz2 = [csv.col("X2"), csv.col("Y2"), csv.col("Z2")];
     let lab1 = [csv.col("L1"), csv.col("a1"), csv.col("b1")];
@@ -335,8 +336,8 @@ fn xyz_to_lab_and_delta_e2000() {
             (Some([x1, y1, z1]), Some([x2, y2, z2])) => {
                 from_xyz += 1;
                 let (op, oq) = (
-                    Xyz::new(x1, y1, z1).to_lab(white),
-                    Xyz::new(x2, y2, z2).to_lab(white),
+                    Xyz::new(x1, y1, z1).to_lab(lab_white),
+                    Xyz::new(x2, y2, z2).to_lab(lab_white),
                 );
                 for (label, g, w) in [
                     ("L1", op.l, l1),

@@ -22,13 +22,54 @@ pub(super) const SRGB_TO_XYZ: [[f64; 3]; 3] = [
     [0.0193, 0.1192, 0.9505],
 ];
 
+/// Largest component magnitude for which a row of either matrix cannot overflow: the largest
+/// absolute row sum is 5.2764 (the first row of [`XYZ_TO_SRGB`]) < 8, so for |vᵢ| ≤ f64::MAX / 8
+/// every product and partial sum stays finite.
+const MAT_UNSCALED_MAX: f64 = f64::MAX / 8.0;
+
+/// 2⁶⁴: larger inputs are multiplied by its inverse (exactly, they are far from subnormal), the
+/// products summed, and the result multiplied back; it then overflows only where the exact value
+/// exceeds f64::MAX, and an ∞ − ∞ (NaN) of two overflowed products cannot occur.
+const MAT_RESCALE: f64 = 18_446_744_073_709_551_616.0;
+
+#[inline]
+fn row_dot(w: &[f64; 3], v: [f64; 3]) -> f64 {
+    w[0] * v[0] + w[1] * v[1] + w[2] * v[2]
+}
+
+/// Whether `v` is finite with a component too large for [`row_dot`] to be evaluated as written.
+#[inline]
+fn needs_rescale(v: [f64; 3]) -> bool {
+    let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
+    m > MAT_UNSCALED_MAX && m.is_finite()
+}
+
+/// One row of a matrix times `v`: never NaN for finite `v`, ±∞ only where the exact value
+/// exceeds f64::MAX in magnitude (see [`MAT_RESCALE`]).
+#[inline]
+pub(super) fn row_dot_safe(w: &[f64; 3], v: [f64; 3]) -> f64 {
+    if needs_rescale(v) {
+        row_dot(w, v.map(|c| c / MAT_RESCALE)) * MAT_RESCALE
+    } else {
+        row_dot(w, v)
+    }
+}
+
+/// `m · v` with [`row_dot_safe`] for each row.
 #[inline]
 pub(super) fn mat_vec(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
     [
-        m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
-        m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
-        m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2],
+        row_dot_safe(&m[0], v),
+        row_dot_safe(&m[1], v),
+        row_dot_safe(&m[2], v),
     ]
+}
+
+/// Clamps to [−f64::MAX, f64::MAX] (±∞ become ±f64::MAX, NaN stays NaN): where a nonlinear
+/// function's exact value lies beyond the largest finite `f64`, it returns that instead of ∞.
+#[inline]
+pub(super) fn saturate(x: f64) -> f64 {
+    x.clamp(-f64::MAX, f64::MAX)
 }
 
 /// Clamp to [0, 1], with NaN → 0.
@@ -86,7 +127,8 @@ impl LinearSrgb {
     /// ⎣0.0193  0.1192  0.9505⎦
     /// ```
     ///
-    /// (See [`Xyz::to_linear_srgb`] for why a round trip is only good to about 7e-5.)
+    /// (See [`Xyz::to_linear_srgb`] for why a round trip is only good to about 7e-5, and for the
+    /// behaviour at huge components: never NaN, ±∞ only where the exact value exceeds f64::MAX.)
     ///
     /// ```
     /// use diffraction::color::LinearSrgb;
@@ -106,7 +148,8 @@ impl LinearSrgb {
     /// The weights are positive and sum to 1 (exactly, even in `f64` arithmetic:
     /// `0.2126 + 0.7152 + 0.0722 == 1.0`), so a grey (g, g, g) has luminance g; this is what
     /// lets [`Clip::ConstantIntensity`](super::Clip::ConstantIntensity) move a colour toward
-    /// the grey of equal luminance.
+    /// the grey of equal luminance. Finite for every finite input (the exact weighted mean lies
+    /// between the smallest and the largest component; a rounding past f64::MAX saturates).
     ///
     /// ```
     /// use diffraction::color::LinearSrgb;
@@ -116,8 +159,7 @@ impl LinearSrgb {
     #[inline]
     #[must_use]
     pub fn luminance(self) -> f64 {
-        let w = SRGB_TO_XYZ[1];
-        w[0] * self.r + w[1] * self.g + w[2] * self.b
+        saturate(row_dot_safe(&SRGB_TO_XYZ[1], [self.r, self.g, self.b]))
     }
 
     /// Whether every component lies in [0, 1], inclusive and with **no tolerance** (a component
@@ -252,7 +294,8 @@ impl Srgb {
 /// 12.92 c for c ≤ 0.0031308, 1.055 c^(1/2.4) − 0.055 above.
 ///
 /// Extended to all reals without clipping: odd-symmetric for negatives (sign(c)·f(|c|)) and the
-/// same power law above 1. NaN stays NaN.
+/// same power law above 1. NaN stays NaN. Finite for every finite input (the power law grows
+/// like c^(1/2.4), so `srgb_encode(f64::MAX)` is about 1.5e128).
 ///
 /// The formula is evaluated as written, so `srgb_encode(1.0)` is `1.055 - 0.055`, which is
 /// 1 − 2⁻⁵³ in `f64` (as in colour-science); it still quantises to 255.
@@ -289,6 +332,10 @@ pub fn srgb_encode(linear: f64) -> f64 {
 ///
 /// Extended like [`srgb_encode`]: odd-symmetric for negatives, the power law above 1.
 ///
+/// Finite for every finite input: the power law exceeds f64::MAX for |v| above
+/// 1.055·f64::MAX^(1/2.4) − 0.055 ≈ 2.9e128, and there the result **saturates** at ±f64::MAX
+/// (the largest finite value, not ∞). NaN stays NaN.
+///
 /// colour-science's `eotf_sRGB` places the threshold at `eotf_inverse_sRGB(0.0031308)` =
 /// 0.040449936 instead of 0.04045, so on that interval of width 6.4e-8 the two differ by up to
 /// 2.3e-9 (the jump of the standard's rounded constants); for negatives it continues the linear
@@ -299,6 +346,8 @@ pub fn srgb_encode(linear: f64) -> f64 {
 /// assert_eq!(srgb_decode(1.0), 1.0);
 /// assert!((srgb_decode(srgb_encode(0.18)) - 0.18).abs() < 1e-16);
 /// assert_eq!(srgb_decode(-0.5), -srgb_decode(0.5));
+/// assert_eq!(srgb_decode(1e300), f64::MAX); // saturates instead of overflowing
+/// assert_eq!(srgb_decode(-1e300), -f64::MAX);
 /// ```
 #[must_use]
 pub fn srgb_decode(encoded: f64) -> f64 {
@@ -306,7 +355,8 @@ pub fn srgb_decode(encoded: f64) -> f64 {
     let l = if a <= 0.040_45 {
         a / 12.92
     } else {
-        powf((a + 0.055) / 1.055, 2.4)
+        // Above 2.9e128 the power exceeds f64::MAX: return the largest finite value.
+        saturate(powf((a + 0.055) / 1.055, 2.4))
     };
     if encoded < 0.0 {
         -l

@@ -10,6 +10,7 @@ fn monochromatic_sweep() {
     const INTENSITIES: [f64; 5] = [0.01, 0.1, 1.0, 10.0, 100.0];
     assert_eq!(CIE1931_2DEG.len(), 471);
     let white = LinearSrgb::new(1.0, 1.0, 1.0).to_xyz();
+    let lab_white = WhitePoint::new(white).unwrap();
     let mut white_count = 0;
     for (i, &[xbar, ybar, zbar]) in CIE1931_2DEG.iter().enumerate() {
         let nm = 360 + i;
@@ -46,7 +47,9 @@ fn monochromatic_sweep() {
                     assert!((b - l).abs() < 2.4e-9, "{nm} nm × {k}, {method}");
                 }
                 let _ = e.to_rgb8();
-                let de = xyz.to_lab(white).delta_e2000(c.to_xyz().to_lab(white));
+                let de = xyz
+                    .to_lab(lab_white)
+                    .delta_e2000(c.to_xyz().to_lab(lab_white));
                 assert!(de.is_finite() && de >= 0.0, "{nm} nm × {k}, {method}: {de}");
                 match method {
                     Clip::ConstantIntensity if lum <= 0.0 => {

@@ -60,6 +60,9 @@ impl Xyz {
     /// and D65 (x, y) = (0.3127, 0.3290) maps to (0.99984, 1.00010, 1.00007), not exactly to 1.
     ///
     /// The result is **not clipped**: spectral colours come out with negative components.
+    /// It is the matrix product to rounding for every finite input and never NaN: a component
+    /// is ±∞ only where its exact value exceeds f64::MAX (inputs above about 3.4e307), the
+    /// plain overflow of a linear map.
     ///
     /// ```
     /// use diffraction::color::Xyz;
@@ -75,26 +78,48 @@ impl Xyz {
 
     /// The chromaticity coordinates (x, y) = (X, Y) / (X + Y + Z).
     ///
-    /// `None` when X + Y + Z is zero (black has no chromaticity) or not finite.
+    /// `None` when X + Y + Z is zero (black has no chromaticity), when a component is not
+    /// finite, or when a coordinate would exceed f64::MAX (a non-physical colour whose sum nearly
+    /// cancels, such as (1, −1, −5e-324)). Components near f64::MAX are scaled by 2⁻⁶⁴ first, so
+    /// the sum cannot overflow.
     ///
     /// ```
     /// use diffraction::color::Xyz;
     /// let (x, y) = Xyz::new(1.0, 1.0, 1.0).chromaticity().unwrap();
     /// assert!((x - 1.0 / 3.0).abs() < 1e-15 && (y - 1.0 / 3.0).abs() < 1e-15);
     /// assert_eq!(Xyz::default().chromaticity(), None);
+    /// assert_eq!(Xyz::new(f64::MAX, f64::MAX, 0.0).chromaticity(), Some((0.5, 0.5)));
+    /// assert_eq!(Xyz::new(1.0, -1.0, -5e-324).chromaticity(), None);
     /// ```
     #[inline]
     #[must_use]
     pub fn chromaticity(self) -> Option<(f64, f64)> {
-        let sum = self.x + self.y + self.z;
-        if sum == 0.0 || !sum.is_finite() {
+        /// Above this a sum of three components may overflow (3 · MAX/4 > MAX).
+        const UNSCALED_MAX: f64 = f64::MAX / 4.0;
+        /// 2⁶⁴, an exact scale for components that large.
+        const RESCALE: f64 = 18_446_744_073_709_551_616.0;
+        let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
+        if !m.is_finite() {
+            return None;
+        }
+        let c = if m > UNSCALED_MAX {
+            self.scale(1.0 / RESCALE)
+        } else {
+            self
+        };
+        let sum = c.x + c.y + c.z;
+        let (x, y) = (c.x / sum, c.y / sum);
+        if sum == 0.0 || !x.is_finite() || !y.is_finite() {
             None
         } else {
-            Some((self.x / sum, self.y / sum))
+            Some((x, y))
         }
     }
 
     /// Multiplies every component by `k` (the same as `self * k`).
+    ///
+    /// Plain `f64` arithmetic, like `+` and `+=`: never NaN for finite operands; a component is
+    /// ±∞ only where the exact product (or sum) exceeds f64::MAX.
     ///
     /// ```
     /// use diffraction::color::Xyz;
