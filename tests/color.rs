@@ -9,43 +9,9 @@ use diffraction::color::{
 use diffraction::ParseError;
 use proptest::prelude::*;
 
-/// Tolerances, each with the reason for its size.
-mod tol {
-    /// XYZ → linear sRGB → XYZ (and the reverse), relative to the largest component. The two
-    /// IEC 61966-2-1 matrices are both published (and used by colour-science) rounded to four
-    /// decimals, so they are inverses only approximately: the largest absolute row sum of
-    /// M_rgb→xyz · M_xyz→rgb − I is 5.7e-5, of M_xyz→rgb · M_rgb→xyz − I 7.0e-5.
-    pub const MATRIX_ROUND_TRIP: f64 = 7.0e-5 + 1e-14;
-
-    /// decode(encode(x)), relative: a few ulp from `powf` (the 2.4 exponent multiplies the
-    /// relative error of the encoded value by 2.4).
-    pub const TRANSFER_ROUND_TRIP: f64 = 1e-14;
-
-    /// decode(encode(x)), absolute, for x just above the breakpoint 0.0031308: there encode takes
-    /// the power branch but lands at 0.0404499075 < 0.04045, so decode takes the linear branch.
-    /// The mismatch is the standard's own 2.3e-9 inconsistency (colour-science has it too).
-    pub const TRANSFER_BREAKPOINT_WINDOW: f64 = 2.4e-9;
-
-    /// Jump of the encoding at 0.0031308: 12.92·0.0031308 − (1.055·0.0031308^(1/2.4) − 0.055)
-    /// = 2.85e-8, because the standard's constants are rounded.
-    pub const ENCODE_JUMP: f64 = 2.9e-8;
-
-    /// Jump of the decoding at 0.04045: ((0.04045 + 0.055)/1.055)^2.4 − 0.04045/12.92 = 2.33e-9.
-    pub const DECODE_JUMP: f64 = 2.4e-9;
-
-    /// Luminance kept by `ConstantIntensity`: the result is built from Y itself, so only the
-    /// rounding of y + t(c − y) and of the weighted sum (≈ 1e-16) remains.
-    pub const LUMINANCE: f64 = 1e-12;
-
-    /// `Intensity` keeps the ratios: c_i / m is one rounding (half an ulp of the result).
-    pub const RATIO: f64 = 1e-15;
-
-    /// Sharma et al. print ΔE2000 with four decimals: half a unit in the last place.
-    pub const SHARMA: f64 = 5e-5;
-
-    /// ΔE2000 symmetry: the formula is symmetric term by term, so only rounding may differ.
-    pub const SYMMETRY: f64 = 1e-12;
-}
+/// Tolerances, each with its reason and measurement.
+#[path = "support/color_tolerance.rs"]
+mod tol;
 
 // -------------------------------------------------------------------------------------------
 // Matrices and XYZ
