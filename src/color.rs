@@ -9,6 +9,7 @@
 //! * [`Srgb`]: encoded (non-linear, "gamma") sRGB, what image files and displays take.
 //! * [`Lab`]: CIE 1976 L\*a\*b\*, with the CIEDE2000 colour difference [`delta_e2000`], the
 //!   crate's unit of colour error.
+//! * [`WhitePoint`]: a validated reference white for CIELAB (finite, positive components).
 //! * [`Clip`]: the three gamut-clipping schemes of Hall (1989).
 //!
 //! # Pipeline
@@ -63,6 +64,24 @@
 //! # fn to_pixel(c: Srgb) -> [u8; 3] { c.to_rgb8() }
 //! let linear = LinearSrgb::new(0.5, 0.2, 0.1);
 //! assert_eq!(to_pixel(linear.encode()), [188, 124, 89]);
+//! ```
+//!
+//! # Extreme values
+//!
+//! No function here returns NaN for finite input. The linear maps ([`Xyz::to_linear_srgb`],
+//! [`LinearSrgb::to_xyz`], `+`, `*`, `scale`) are exact to rounding and give ±∞ only where the
+//! exact value exceeds f64::MAX (the plain overflow of the caller's own huge values). Everything
+//! else is finite for every finite input: [`srgb_decode`], [`Xyz::to_lab`] and
+//! [`LinearSrgb::luminance`] saturate at ±f64::MAX where the exact value lies beyond it,
+//! [`delta_e2000`] clamps its components to ±1e150, [`Xyz::chromaticity`] is `None` where the
+//! coordinates would overflow, and a CIELAB white with a zero, negative or non-finite component
+//! is rejected by [`WhitePoint::new`] with an error naming it.
+//!
+//! ```
+//! use diffraction::color::{delta_e2000, srgb_decode, Lab, WhitePoint, Xyz};
+//! assert_eq!(srgb_decode(1e300), f64::MAX);
+//! assert!(delta_e2000(Lab::new(50.0, 1e50, 0.0), Lab::default()).is_finite());
+//! assert_eq!(WhitePoint::new(Xyz::default()).unwrap_err().parameter(), "white.x");
 //! ```
 //!
 //! # Reference
