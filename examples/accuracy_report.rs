@@ -27,7 +27,7 @@ use std::fs;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use diffraction::color::Xyz;
+use diffraction::color::{WhitePoint, Xyz};
 use diffraction::kernel::{n_slit, naive};
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{AguHill, DiffractionBrdf, Grating};
@@ -256,6 +256,7 @@ fn peaks_by_region(s: &Spectral, g: &Grating, us: &[f64], budget: Duration) -> [
 /// L* in the thousands is outside its domain and turns chromatic differences of 10⁻⁴ into ΔE ≈ 2.
 /// Returns (ΔE2000 with that clipping, ΔE2000 without it, relative XYZ error without it).
 fn errors(got: Xyz, want: Xyz, bright: f64, white: Xyz) -> (f64, f64, f64) {
+    let white = WhitePoint::new(white).expect("the white of a spectral integrator is positive");
     let k = 1.0 / bright;
     let (g, w) = (got.scale(k), want.scale(k));
     let de_raw = g.to_lab(white).delta_e2000(w.to_lab(white));

@@ -10,7 +10,7 @@
 //! (`Thorman::matching`), Stam's coherence width σ_c = N·d/(2√π) with a sinusoidal profile of
 //! amplitude 100 nm and a binary one of depth 120 nm over half of each period.
 
-use diffraction::color::Xyz;
+use diffraction::color::{WhitePoint, Xyz};
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{AguHill, Band, DiffractionBrdf, Grating, Profile, Stam, Thorman};
 use glam::DVec3;
@@ -225,6 +225,7 @@ fn colours(spectral: &Spectral) {
             .zip(&scales)
             .map(|(m, k)| spectral.xyz_brdf(&**m, wi, wo, Strategy::Exact) * *k)
             .collect();
+        let white = WhitePoint::new(white).expect("the white of a spectral integrator is positive");
         let lab: Vec<_> = xyz.iter().map(|c| c.to_lab(white)).collect();
         let de: Vec<String> = lab[1..]
             .iter()

@@ -57,7 +57,7 @@ def render() -> str:
         "360-830 nm in 1 nm steps; used as is, no interpolation."
     )
     header += _wrap(f'D65: colour.SDS_ILLUMINANTS["D65"], {t.d65_native}.')
-    header += _wrap(f'ILLUMINANT_A: colour.SDS_ILLUMINANTS["A"], {t.a_native}.')
+    header += _wrap(f"ILLUMINANT_A: {t.a_native}.")
     header += _wrap(
         "Grid: 471 rows, index i is wavelength 360 + i nm. Between rows the crate "
         "interpolates linearly."

@@ -117,9 +117,12 @@ mod illumination;
 pub mod kernel;
 mod math;
 mod orders;
+mod parse;
 pub mod spectrum;
 
 pub use band::Band;
+#[cfg(feature = "stam")]
+pub use bxdf::stam;
 pub use bxdf::{AguHill, DiffractionBrdf, GratingResponse, PeakSummary, Thorman};
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
@@ -128,9 +131,7 @@ pub use float::Float;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
 pub use illumination::Illumination;
 pub use orders::{GratingEquation, Order, Orders, Propagating};
-
-#[cfg(feature = "stam")]
-pub use bxdf::stam;
+pub use parse::ParseError;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

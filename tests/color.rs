@@ -2,48 +2,16 @@
 //! clipping schemes and ΔE2000 (including the 34 test pairs of Sharma, Wu & Dalal 2005).
 
 use approx::assert_abs_diff_eq;
+use diffraction::cie::Illuminant;
 use diffraction::color::{
-    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, ParseClipError, Srgb, Xyz,
+    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz,
 };
+use diffraction::ParseError;
 use proptest::prelude::*;
 
-/// Tolerances, each with the reason for its size.
-mod tol {
-    /// XYZ → linear sRGB → XYZ (and the reverse), relative to the largest component. The two
-    /// IEC 61966-2-1 matrices are both published (and used by colour-science) rounded to four
-    /// decimals, so they are inverses only approximately: the largest absolute row sum of
-    /// M_rgb→xyz · M_xyz→rgb − I is 5.7e-5, of M_xyz→rgb · M_rgb→xyz − I 7.0e-5.
-    pub const MATRIX_ROUND_TRIP: f64 = 7.0e-5 + 1e-14;
-
-    /// decode(encode(x)), relative: a few ulp from `powf` (the 2.4 exponent multiplies the
-    /// relative error of the encoded value by 2.4).
-    pub const TRANSFER_ROUND_TRIP: f64 = 1e-14;
-
-    /// decode(encode(x)), absolute, for x just above the breakpoint 0.0031308: there encode takes
-    /// the power branch but lands at 0.0404499075 < 0.04045, so decode takes the linear branch.
-    /// The mismatch is the standard's own 2.3e-9 inconsistency (colour-science has it too).
-    pub const TRANSFER_BREAKPOINT_WINDOW: f64 = 2.4e-9;
-
-    /// Jump of the encoding at 0.0031308: 12.92·0.0031308 − (1.055·0.0031308^(1/2.4) − 0.055)
-    /// = 2.85e-8, because the standard's constants are rounded.
-    pub const ENCODE_JUMP: f64 = 2.9e-8;
-
-    /// Jump of the decoding at 0.04045: ((0.04045 + 0.055)/1.055)^2.4 − 0.04045/12.92 = 2.33e-9.
-    pub const DECODE_JUMP: f64 = 2.4e-9;
-
-    /// Luminance kept by `ConstantIntensity`: the result is built from Y itself, so only the
-    /// rounding of y + t(c − y) and of the weighted sum (≈ 1e-16) remains.
-    pub const LUMINANCE: f64 = 1e-12;
-
-    /// `Intensity` keeps the ratios: c_i / m is one rounding (half an ulp of the result).
-    pub const RATIO: f64 = 1e-15;
-
-    /// Sharma et al. print ΔE2000 with four decimals: half a unit in the last place.
-    pub const SHARMA: f64 = 5e-5;
-
-    /// ΔE2000 symmetry: the formula is symmetric term by term, so only rounding may differ.
-    pub const SYMMETRY: f64 = 1e-12;
-}
+/// Tolerances, each with its reason and measurement.
+#[path = "support/color_tolerance.rs"]
+mod tol;
 
 // -------------------------------------------------------------------------------------------
 // Matrices and XYZ
@@ -111,7 +79,14 @@ fn chromaticity() {
     assert_eq!(Xyz::new(1.0, -1.0, 0.0).chromaticity(), None);
     assert_eq!(Xyz::new(f64::INFINITY, 1.0, 0.0).chromaticity(), None);
     assert_eq!(Xyz::new(f64::NAN, 1.0, 0.0).chromaticity(), None);
-    assert_eq!(Xyz::new(f64::MAX, f64::MAX, 0.0).chromaticity(), None); // the sum overflows
+    // The sum would overflow: the components are scaled by 2^-64 first (exact).
+    assert_eq!(
+        Xyz::new(f64::MAX, f64::MAX, 0.0).chromaticity(),
+        Some((0.5, 0.5))
+    );
+    // A non-physical colour whose sum nearly cancels: the coordinates would exceed f64::MAX.
+    let e = f64::EPSILON;
+    assert_eq!(Xyz::new(1.0 - e, -(1.0 - e), -5e-324).chromaticity(), None);
 }
 
 #[test]
@@ -132,20 +107,21 @@ fn xyz_arithmetic() {
 #[test]
 fn lab_of_white_and_of_colour_science_example() {
     let white = Xyz::new(0.3127 / 0.3290, 1.0, (1.0 - 0.3127 - 0.3290) / 0.3290);
-    let lab = white.to_lab(white);
+    let lab_white = WhitePoint::new(white).unwrap();
+    let lab = white.to_lab(lab_white);
     assert_abs_diff_eq!(lab.l, 100.0, epsilon = 1e-12);
     assert_abs_diff_eq!(lab.a, 0.0, epsilon = 1e-12);
     assert_abs_diff_eq!(lab.b, 0.0, epsilon = 1e-12);
     // The docstring example of colour.XYZ_to_Lab (printed there to 7 decimals).
-    let lab = Xyz::new(0.20654008, 0.12197225, 0.05136952).to_lab(white);
+    let lab = Xyz::new(0.20654008, 0.12197225, 0.05136952).to_lab(lab_white);
     assert_abs_diff_eq!(lab.l, 41.527_875_29, epsilon = 5e-8);
     assert_abs_diff_eq!(lab.a, 52.638_583_04, epsilon = 5e-8);
     assert_abs_diff_eq!(lab.b, 26.923_179_22, epsilon = 5e-8);
     // Black, and the linear segment below ε = 216/24389 (L* = κ·Y there, κ = 24389/27).
-    assert_eq!(Xyz::default().to_lab(white).l, 0.0);
+    assert_eq!(Xyz::default().to_lab(lab_white).l, 0.0);
     let y = 0.001;
     assert_abs_diff_eq!(
-        white.scale(y).to_lab(white).l,
+        white.scale(y).to_lab(lab_white).l,
         24389.0 / 27.0 * y,
         epsilon = 1e-12
     );
@@ -154,9 +130,10 @@ fn lab_of_white_and_of_colour_science_example() {
 #[test]
 fn lab_is_continuous_at_epsilon() {
     let white = Xyz::new(1.0, 1.0, 1.0);
+    let lab_white = WhitePoint::new(white).unwrap();
     let eps = 216.0 / 24389.0;
-    let below = white.scale(eps).to_lab(white).l;
-    let above = white.scale(eps * (1.0 + 1e-15)).to_lab(white).l;
+    let below = white.scale(eps).to_lab(lab_white).l;
+    let above = white.scale(eps * (1.0 + 1e-15)).to_lab(lab_white).l;
     assert_abs_diff_eq!(below, 8.0, epsilon = 1e-12);
     assert_abs_diff_eq!(above, below, epsilon = 1e-12);
 }
@@ -334,12 +311,30 @@ fn clip_names() {
     assert_eq!("clamp".parse::<Clip>(), Ok(Clip::Clamp));
     assert_eq!("intensity".parse::<Clip>(), Ok(Clip::Intensity));
     assert_eq!("constant".parse::<Clip>(), Ok(Clip::ConstantIntensity));
-    let err: ParseClipError = "Clamp".parse::<Clip>().unwrap_err();
+    let err: ParseError = "Clamp".parse::<Clip>().unwrap_err();
+    assert_eq!(err.what(), "clipping scheme");
     let msg = err.to_string();
     for name in ["clamp", "intensity", "constant"] {
         assert!(msg.contains(name), "{msg}");
     }
     assert!("".parse::<Clip>().is_err());
+}
+
+#[test]
+fn clip_and_illuminant_share_one_parse_error() {
+    let clip = "gamma".parse::<Clip>().unwrap_err();
+    let illuminant = "D50".parse::<Illuminant>().unwrap_err();
+    for (err, what) in [(clip, "clipping scheme"), (illuminant, "illuminant")] {
+        assert_eq!(err.what(), what);
+        assert_eq!(
+            err.to_string(),
+            format!("unknown {what}: expected {}", err.expected())
+        );
+    }
+    for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
+        assert!(illuminant.expected().contains(ill.name()));
+        assert_eq!(ill.name().parse::<Illuminant>(), Ok(ill));
+    }
 }
 
 fn in_unit_cube(c: LinearSrgb) -> bool {
@@ -642,7 +637,8 @@ proptest! {
     #[test]
     fn delta_e2000_zero_on_identical_from_xyz(x in 0.0..1.2f64, y in 0.0..1.2f64, z in 0.0..1.2f64) {
         let white = Xyz::new(0.95047, 1.0, 1.08883);
-        let l = Xyz::new(x, y, z).to_lab(white);
+        let lab_white = WhitePoint::new(white).unwrap();
+        let l = Xyz::new(x, y, z).to_lab(lab_white);
         prop_assert_eq!(delta_e2000(l, l), 0.0);
     }
 }

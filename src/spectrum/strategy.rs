@@ -7,6 +7,7 @@ use core::str::FromStr;
 #[cfg(doc)]
 use super::Spectral;
 use super::MAX_WAVELENGTHS;
+use crate::ParseError;
 
 /// How [`Spectral::xyz`] and [`Spectral::xyz_brdf`] evaluate the spectral integral: each
 /// variant names one algorithm with one stated error bound, the same on every path that accepts
@@ -99,26 +100,22 @@ impl fmt::Display for Strategy {
     }
 }
 
-/// The error of parsing a [`Strategy`] name.
+/// The error of parsing a [`Strategy`] name: the crate's one parse error, [`ParseError`].
 ///
 /// ```
 /// use diffraction::spectrum::{ParseStrategyError, Strategy};
-/// assert_eq!("simpson".parse::<Strategy>(), Err(ParseStrategyError));
-/// assert_eq!("gauss:0".parse::<Strategy>(), Err(ParseStrategyError)); // K must be positive
+/// let err: ParseStrategyError = "simpson".parse::<Strategy>().unwrap_err();
+/// assert_eq!(err.what(), "strategy");
+/// assert!("gauss:0".parse::<Strategy>().is_err()); // K must be positive
 /// ```
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ParseStrategyError;
+pub type ParseStrategyError = ParseError;
 
-impl fmt::Display for ParseStrategyError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(
-            "unknown strategy: expected uniform:K, gauss:K, peaks, peaks-refined, paper, exact \
-             or auto:ACCURACY (K a positive integer, ACCURACY a positive number)",
-        )
-    }
-}
+/// The accepted spellings, as the parse error lists them.
+const EXPECTED: &str = "uniform:K, gauss:K, peaks, peaks-refined, paper, exact or auto:ACCURACY \
+                        (K a positive integer, ACCURACY a positive number)";
 
-impl core::error::Error for ParseStrategyError {}
+/// The parse error of a strategy name.
+const PARSE_ERROR: ParseError = ParseError::new("strategy", EXPECTED);
 
 impl FromStr for Strategy {
     type Err = ParseStrategyError;
@@ -137,7 +134,7 @@ impl FromStr for Strategy {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let count = |v: &str, cap: u32| match v.parse::<u32>() {
             Ok(k) if k > 0 && k <= cap => Ok(k),
-            _ => Err(ParseStrategyError),
+            _ => Err(PARSE_ERROR),
         };
         match s.split_once(':') {
             None => match s {
@@ -146,7 +143,7 @@ impl FromStr for Strategy {
                 "paper" => Ok(Strategy::PaperPeaks),
                 "exact" => Ok(Strategy::Exact),
                 "auto" => Ok(Strategy::default()),
-                _ => Err(ParseStrategyError),
+                _ => Err(PARSE_ERROR),
             },
             Some(("uniform", k)) => Ok(Strategy::Uniform {
                 samples: count(k, MAX_WAVELENGTHS)?,
@@ -156,9 +153,9 @@ impl FromStr for Strategy {
             }),
             Some(("auto", a)) => match a.parse::<f64>() {
                 Ok(a) if a.is_finite() && a > 0.0 => Ok(Strategy::Auto { accuracy: a }),
-                _ => Err(ParseStrategyError),
+                _ => Err(PARSE_ERROR),
             },
-            Some(_) => Err(ParseStrategyError),
+            Some(_) => Err(PARSE_ERROR),
         }
     }
 }

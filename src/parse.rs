@@ -1,0 +1,70 @@
+//! The error of parsing one of the crate's named choices from a string.
+
+use core::fmt;
+
+/// A string is not one of the names a [`FromStr`](core::str::FromStr) implementation of the
+/// crate accepts ([`Clip`](crate::color::Clip), [`Illuminant`](crate::cie::Illuminant)).
+///
+/// It says what was being parsed and lists the accepted spellings. It does not hold the rejected
+/// input (the library allocates nothing); the caller has it and can print it beside this message.
+///
+/// ```
+/// use diffraction::cie::Illuminant;
+/// use diffraction::color::Clip;
+/// use diffraction::ParseError;
+///
+/// let err: ParseError = "hard".parse::<Clip>().unwrap_err();
+/// assert_eq!(err.what(), "clipping scheme");
+/// assert_eq!(
+///     err.to_string(),
+///     "unknown clipping scheme: expected one of \"clamp\", \"intensity\", \"constant\""
+/// );
+/// let err: ParseError = "D50".parse::<Illuminant>().unwrap_err();
+/// assert_eq!(err.what(), "illuminant");
+/// assert_eq!(err.expected(), "one of E, D65, A");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ParseError {
+    what: &'static str,
+    expected: &'static str,
+}
+
+impl ParseError {
+    /// The error for a `what` (a noun phrase: "illuminant") whose accepted spellings are
+    /// described by `expected` ("one of E, D65, A").
+    pub(crate) const fn new(what: &'static str, expected: &'static str) -> Self {
+        ParseError { what, expected }
+    }
+
+    /// What was being parsed, e.g. `"clipping scheme"` or `"illuminant"`.
+    ///
+    /// ```
+    /// use diffraction::color::Clip;
+    /// assert_eq!("Clamp".parse::<Clip>().unwrap_err().what(), "clipping scheme");
+    /// ```
+    #[must_use]
+    pub const fn what(&self) -> &'static str {
+        self.what
+    }
+
+    /// The accepted spellings, as the message lists them.
+    ///
+    /// ```
+    /// use diffraction::color::Clip;
+    /// let err = "gamma".parse::<Clip>().unwrap_err();
+    /// assert_eq!(err.expected(), "one of \"clamp\", \"intensity\", \"constant\"");
+    /// ```
+    #[must_use]
+    pub const fn expected(&self) -> &'static str {
+        self.expected
+    }
+}
+
+impl fmt::Display for ParseError {
+    /// `unknown {what}: expected {expected}`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unknown {}: expected {}", self.what, self.expected)
+    }
+}
+
+impl core::error::Error for ParseError {}
