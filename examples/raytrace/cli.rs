@@ -5,10 +5,7 @@ use std::path::PathBuf;
 use diffraction::color::Clip;
 use diffraction::spectrum::Strategy;
 
-use crate::scene::{MAX_SIZE, MAX_SPP};
-
-/// Largest accepted number of animation frames.
-pub const MAX_FRAMES: u32 = 10_000;
+use crate::limits::{self, MAX_FRAMES, MAX_SIZE, MAX_SPP};
 
 pub const USAGE: &str = "\
 raytrace: the diffraction crate's reference ray tracer (Agu & Hill, figures 4-6)
@@ -118,6 +115,8 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
                 let v = value()?;
                 opts.strategy = Some(
                     v.parse()
+                        .map_err(|e: diffraction::spectrum::ParseStrategyError| e.to_string())
+                        .and_then(limits::strategy)
                         .map_err(|e| format!("--strategy: {e}, got \"{v}\""))?,
                 );
             }

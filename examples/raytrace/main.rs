@@ -17,10 +17,12 @@ mod cli;
 mod diagnostics;
 mod font;
 mod geometry;
+mod limits;
 mod material;
 mod output;
 mod render;
 mod scene;
+mod schema;
 mod texture;
 
 #[cfg(test)]
@@ -86,12 +88,12 @@ fn prepare(path: &Path, opts: &Options) -> Result<Scene, String> {
         (Some(w), None) => {
             (s.width, s.height) = (
                 w,
-                ((w as f64 * h0 as f64 / w0 as f64).round() as u32).clamp(1, scene::MAX_SIZE),
+                ((w as f64 * h0 as f64 / w0 as f64).round() as u32).clamp(1, limits::MAX_SIZE),
             )
         }
         (None, Some(h)) => {
             (s.width, s.height) = (
-                ((h as f64 * w0 as f64 / h0 as f64).round() as u32).clamp(1, scene::MAX_SIZE),
+                ((h as f64 * w0 as f64 / h0 as f64).round() as u32).clamp(1, limits::MAX_SIZE),
                 h,
             )
         }

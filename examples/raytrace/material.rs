@@ -160,8 +160,13 @@ pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f
         }
         max_y = max_y.max(spectral.xyz(grating, u, strategy).y);
     }
+    exposure_of(max_y)
+}
+
+/// `1 / max_y`, at most [`crate::limits::MAX_EXPOSURE`]; 1 when nothing diffracted is seen.
+fn exposure_of(max_y: f64) -> f64 {
     if max_y > 0.0 && max_y.is_finite() {
-        1.0 / max_y
+        (1.0 / max_y).min(crate::limits::MAX_EXPOSURE)
     } else {
         1.0
     }
@@ -188,11 +193,7 @@ pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) ->
         let w = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
         max_y = max_y.max(spectral.xyz_brdf(brdf, w, w, strategy).y);
     }
-    if max_y > 0.0 && max_y.is_finite() {
-        1.0 / max_y
-    } else {
-        1.0
-    }
+    exposure_of(max_y)
 }
 
 #[cfg(test)]
