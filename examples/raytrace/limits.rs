@@ -165,30 +165,35 @@ pub fn count<T: PartialOrd + Display + Copy>(
 pub fn strategy(s: Strategy) -> Result<Strategy, String> {
     match s {
         Strategy::Uniform { samples } if samples > MAX_UNIFORM_SAMPLES => Err(format!(
-            "uniform:K takes at most {MAX_UNIFORM_SAMPLES} wavelengths, got {samples}"
+            "uniform:K takes at most {MAX_UNIFORM_SAMPLES} wavelengths"
         )),
         Strategy::GaussLegendre { intervals } if intervals > MAX_GAUSS_INTERVALS => Err(format!(
-            "gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals, got {intervals}"
+            "gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals"
         )),
         Strategy::Auto { accuracy } if !AUTO_ACCURACY.contains(accuracy) => Err(format!(
-            "auto:ACCURACY takes an accuracy in [{}, {}], got {}",
+            "auto:ACCURACY takes an accuracy in [{}, {}]",
             short(AUTO_ACCURACY.min),
             short(AUTO_ACCURACY.max),
-            short(accuracy)
         )),
         s => Ok(s),
     }
 }
 
-/// The camera samples of a run of `frames` images of width × height at spp samples, or an error
-/// when they pass [`MAX_PIXELS`] or [`MAX_SAMPLES`].
-pub fn work(width: u32, height: u32, spp: u32, frames: u32) -> Result<u64, String> {
+/// The pixels of an image, or an error when they pass [`MAX_PIXELS`].
+pub fn pixels(width: u32, height: u32) -> Result<u64, String> {
     let pixels = width as u64 * height as u64;
     if pixels > MAX_PIXELS {
         return Err(format!(
             "{width} x {height} = {pixels} pixels, more than the limit of {MAX_PIXELS}"
         ));
     }
+    Ok(pixels)
+}
+
+/// The camera samples of a run of `frames` images of width × height at spp samples, or an error
+/// when they pass [`MAX_PIXELS`] or [`MAX_SAMPLES`].
+pub fn work(width: u32, height: u32, spp: u32, frames: u32) -> Result<u64, String> {
+    let pixels = pixels(width, height)?;
     let samples = pixels * spp as u64 * frames as u64; // < 2⁶⁴: 2²⁴ · 2¹² · 2¹⁴
     if samples > MAX_SAMPLES {
         return Err(format!(

@@ -309,14 +309,14 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
             Some(s) => parse_strategy("render.strategy", s)?,
         },
     };
-    limits::work(settings.width, settings.height, settings.spp, 1).map_err(|e| {
-        let field = if r.spp.is_some() {
-            "render.spp"
-        } else {
-            "render.height"
-        };
-        FieldError::new(field, e)
-    })?;
+    let size = if r.height.is_some() {
+        "render.height"
+    } else {
+        "render.width"
+    };
+    limits::pixels(settings.width, settings.height).map_err(|e| FieldError::new(size, e))?;
+    limits::work(settings.width, settings.height, settings.spp, 1)
+        .map_err(|e| FieldError::new("render.spp", e))?;
 
     let c = &raw.camera;
     let up = c.up.unwrap_or([0.0, 1.0, 0.0]);
@@ -379,8 +379,13 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         let samples = if radius > 0.0 { samples } else { 1 };
         shadow_rays += samples as u64;
         if shadow_rays > limits::MAX_SHADOW_RAYS {
+            // The default count is not in the file: then the light is named.
             return Err(FieldError::new(
-                format!("{p}.samples"),
+                if l.samples.is_some() {
+                    format!("{p}.samples")
+                } else {
+                    p
+                },
                 format!(
                     "the lights' shadow samples add up to {shadow_rays}, more than the limit of \
                      {} rays from each hit",
