@@ -120,9 +120,7 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
             "--strategy" => {
                 let v = value()?;
                 opts.strategy = Some(
-                    v.parse()
-                        .map_err(|e: diffraction::spectrum::ParseStrategyError| e.to_string())
-                        .and_then(limits::strategy)
+                    limits::parse_strategy(&v)
                         .map_err(|e| format!("--strategy: {e}, got \"{v}\""))?,
                 );
             }

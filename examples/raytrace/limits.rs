@@ -160,6 +160,27 @@ pub fn count<T: PartialOrd + Display + Copy>(
     }
 }
 
+/// Parses a strategy name and checks it against the work limits, naming the limit when a
+/// count or an accuracy is out of range (the crate's parser refuses counts above its own cap
+/// without saying which).
+pub fn parse_strategy(s: &str) -> Result<Strategy, String> {
+    let count = |k: &str| k.parse::<u64>().ok();
+    match s.split_once(':') {
+        Some(("uniform", k)) if count(k).is_some_and(|k| k > MAX_UNIFORM_SAMPLES as u64) => {
+            return strategy(Strategy::Uniform { samples: u32::MAX })
+        }
+        Some(("gauss", k)) if count(k).is_some_and(|k| k > MAX_GAUSS_INTERVALS as u64) => {
+            return strategy(Strategy::GaussLegendre {
+                intervals: u32::MAX,
+            })
+        }
+        _ => {}
+    }
+    s.parse()
+        .map_err(|e: diffraction::spectrum::ParseStrategyError| e.to_string())
+        .and_then(strategy)
+}
+
 /// A strategy within the work limits: `uniform:K` with K ≤ [`MAX_UNIFORM_SAMPLES`], `gauss:K`
 /// with K ≤ [`MAX_GAUSS_INTERVALS`], `auto:ACCURACY` in [`AUTO_ACCURACY`].
 pub fn strategy(s: Strategy) -> Result<Strategy, String> {

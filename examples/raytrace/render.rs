@@ -314,7 +314,10 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
     let albedo = albedo.unwrap_or_else(|| material.albedo.at(hit));
 
     // Step 2: ambient and diffuse.
-    let mut color = scene.ambient * albedo * material.ambient;
+    // Eq. 12 in linear sRGB with the material's coefficients: the ambient and diffuse terms
+    // coloured by the albedo, the diffraction term by the spectrum.
+    let (k_ambient, k_diffuse, k_diffraction) = material.shading.coefficients();
+    let mut color = scene.ambient * albedo * k_ambient;
     for light in &scene.lights {
         let to = light.position - hit.point;
         let wi = to.normalize();
@@ -326,14 +329,16 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
         if vis == 0.0 {
             continue;
         }
-        let mut reflected = albedo * (material.diffuse * cos);
+        let mut reflected = albedo * (k_diffuse * cos);
         if let Some((g, frame)) = &grating {
             // Steps 3 and 5: local directions and the phase projection.
             let (wi_l, wo_l) = (frame.to_local(wi), frame.to_local(wo));
             if wi_l.z > 0.0 && wo_l.z > 0.0 {
                 // Steps 6-8: the spectral colour of the diffraction term (for Agu-Hill, of
                 // u = wi.x + wo.x).
-                let rgb = g.xyz(&scene.spectral, wi_l, wo_l).to_linear_srgb();
+                let rgb = g
+                    .xyz(&scene.spectral, wi_l, wo_l, k_diffraction)
+                    .to_linear_srgb();
                 reflected += DVec3::new(rgb.r, rgb.g, rgb.b);
             }
         }

@@ -20,7 +20,7 @@ use diffraction::cie::Illuminant;
 use diffraction::color::Clip;
 use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
-use diffraction::{AguHill, Grating, Thorman};
+use diffraction::{AguHill, Grating, Illumination, Thorman};
 use glam::DVec3;
 use toml::de::{DeTable, DeValue};
 
@@ -266,10 +266,7 @@ fn vec3(path: &str, v: [f64; 3], range: Range) -> Check<DVec3> {
 }
 
 fn parse_strategy(path: &str, s: &str) -> Check<Strategy> {
-    s.parse()
-        .map_err(|e: diffraction::spectrum::ParseStrategyError| e.to_string())
-        .and_then(limits::strategy)
-        .map_err(|e| FieldError::new(path, format!("{e}, got \"{s}\"")))
+    limits::parse_strategy(s).map_err(|e| FieldError::new(path, format!("{e}, got \"{s}\"")))
 }
 
 fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
@@ -565,12 +562,11 @@ impl Loader<'_> {
             }
             RawKind::Grating(g) => {
                 let base_color = color("color", g.color, [0.7; 3])?;
-                let (grating, follows) = self.grating(g, path, (ka, kd), base_color)?;
+                let (grating, shading, follows) = self.grating(g, path, (ka, kd), base_color)?;
                 return Ok((
                     Material {
                         albedo: Albedo::Solid(base_color),
-                        ambient: ka,
-                        diffuse: kd,
+                        shading,
                         mirror,
                         mirror_tint,
                         grating: Some(grating),
@@ -582,8 +578,8 @@ impl Loader<'_> {
         Ok((
             Material {
                 albedo,
-                ambient: ka,
-                diffuse: kd,
+                shading: Illumination::new(ka, kd, 0.0)
+                    .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?,
                 mirror,
                 mirror_tint,
                 grating,
@@ -623,7 +619,7 @@ impl Loader<'_> {
         path: &str,
         (ka, kd): (f64, f64),
         base_color: DVec3,
-    ) -> Check<(GratingMaterial, bool)> {
+    ) -> Check<(GratingMaterial, Illumination, bool)> {
         let f = |name: &str| format!("{path}.{name}");
         let period = match (g.period_nm, g.lines_per_mm) {
             (Some(_), Some(_)) => {
@@ -646,7 +642,9 @@ impl Loader<'_> {
             g.diffraction.unwrap_or(1.0),
             limits::COEFFICIENT,
         )?;
-        let model = build_model(g, path, period, (ka, kd, kdiff))?;
+        let shading = Illumination::new(ka, kd, kdiff)
+            .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?;
+        let model = build_model(g, path, period)?;
         let (strategy, follows) = match &g.strategy {
             Some(s) => (parse_strategy(&f("strategy"), s)?, false),
             None => (self.settings.strategy, true),
@@ -669,11 +667,11 @@ impl Loader<'_> {
             GratingMaterial {
                 exposure,
                 model,
-                diffraction: kdiff,
                 field,
                 strategy,
                 plain_albedo,
             },
+            shading,
             follows,
         ))
     }
@@ -682,12 +680,7 @@ impl Loader<'_> {
 /// The grating's diffraction model (`model`, default "agu-hill") and its parameters; a
 /// parameter of another model is an error, and so is a Stam model in a build without the
 /// `stam` feature.
-fn build_model(
-    g: &RawGrating,
-    path: &str,
-    period: f64,
-    (ka, kd, kdiff): (f64, f64, f64),
-) -> Check<Model> {
+fn build_model(g: &RawGrating, path: &str, period: f64) -> Check<Model> {
     let f = |name: &str| format!("{path}.{name}");
     let name = g.model.as_deref().unwrap_or("agu-hill");
     let takes: &[&str] = match name {
@@ -730,7 +723,6 @@ fn build_model(
             let slits = g.slits.unwrap_or(1000);
             count(&f("slits"), slits, 1, limits::SLITS.max as u64)?;
             let grating = Grating::new(period, width, slits as u32).map_err(crate_error)?;
-            diffraction::Illumination::new(ka, kd, kdiff).map_err(crate_error)?;
             Ok(Model::AguHill(AguHill::new(grating)))
         }
         "thorman" => {
