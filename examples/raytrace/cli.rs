@@ -5,10 +5,7 @@ use std::path::PathBuf;
 use diffraction::color::Clip;
 use diffraction::spectrum::Strategy;
 
-use crate::scene::{MAX_SIZE, MAX_SPP};
-
-/// Largest accepted number of animation frames.
-pub const MAX_FRAMES: u32 = 10_000;
+use crate::limits::{self, MAX_FRAMES, MAX_SIZE, MAX_SPP};
 
 pub const USAGE: &str = "\
 raytrace: the diffraction crate's reference ray tracer (Agu & Hill, figures 4-6)
@@ -23,11 +20,13 @@ NAME.pfm). SCENE is a shipped scene's name (fig4a, fig4b, fig5a, fig5b, fig6) or
 
 OPTIONS:
     --width W          image width in pixels (1-16384; alone, keeps the scene's aspect ratio)
-    --height H         image height in pixels (1-16384)
-    --spp S            samples per pixel, stratified (1-4096)
+    --height H         image height in pixels (1-16384; width x height at most 16777216)
+    --spp S            samples per pixel, stratified (1-4096; width x height x spp x frames
+                       at most 4294967296 camera samples)
     --seed N           seed of the jitter (the same seed gives the same bytes)
     --strategy NAME    spectral evaluation: peaks (default), peaks-refined, paper, exact,
-                       uniform:K, gauss:K, auto or auto:ACCURACY
+                       uniform:K (K <= 4096), gauss:K (K <= 512), auto or auto:ACCURACY
+                       (ACCURACY in [1e-6, 1])
     --clip SCHEME      gamut clipping: clamp, intensity (default), constant
     --out PATH         one scene: the output file (.png, or .pfm for linear floats);
                        several scenes or --frames: the output directory (default out/)
@@ -38,6 +37,10 @@ OPTIONS:
                        intensity and constant (default file out/NAME-clipping.png)
     --quiet            no progress bar and no messages
     -h, --help         this text
+
+Every output path is checked before rendering (extension, directory, writable, no two
+outputs on one file). Each file is written under a temporary name beside it and renamed into
+place when complete, so a failed run leaves existing files as they were.
 
 make-label writes the can label (default examples/assets/label.png).
 ";
@@ -117,7 +120,7 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
             "--strategy" => {
                 let v = value()?;
                 opts.strategy = Some(
-                    v.parse()
+                    limits::parse_strategy(&v)
                         .map_err(|e| format!("--strategy: {e}, got \"{v}\""))?,
                 );
             }

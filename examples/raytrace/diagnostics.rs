@@ -91,6 +91,22 @@ fn segments(path: &str) -> Vec<Seg> {
     out
 }
 
+/// The value at `path` in a parsed document, if it is there.
+pub fn value_at<'a>(root: &'a toml::Table, path: &str) -> Option<&'a toml::Value> {
+    let mut segs = segments(path).into_iter();
+    let Some(Seg::Key(first)) = segs.next() else {
+        return None;
+    };
+    let mut v = root.get(&first)?;
+    for seg in segs {
+        v = match seg {
+            Seg::Key(k) => v.get(k.as_str())?,
+            Seg::Index(i) => v.get(i)?,
+        };
+    }
+    Some(v)
+}
+
 /// The span of the deepest part of `path` present in the document (the whole document if
 /// nothing matches).
 pub fn locate(doc: &Spanned<DeTable<'_>>, path: &str) -> Range<usize> {

@@ -17,10 +17,12 @@ mod cli;
 mod diagnostics;
 mod font;
 mod geometry;
+mod limits;
 mod material;
 mod output;
 mod render;
 mod scene;
+mod schema;
 mod texture;
 
 #[cfg(test)]
@@ -31,6 +33,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use cli::{Command, Options};
+use output::{Kind, Target};
 use scene::Scene;
 
 /// Where the shipped scenes live.
@@ -86,12 +89,12 @@ fn prepare(path: &Path, opts: &Options) -> Result<Scene, String> {
         (Some(w), None) => {
             (s.width, s.height) = (
                 w,
-                ((w as f64 * h0 as f64 / w0 as f64).round() as u32).clamp(1, scene::MAX_SIZE),
+                ((w as f64 * h0 as f64 / w0 as f64).round() as u32).clamp(1, limits::MAX_SIZE),
             )
         }
         (None, Some(h)) => {
             (s.width, s.height) = (
-                ((h as f64 * w0 as f64 / h0 as f64).round() as u32).clamp(1, scene::MAX_SIZE),
+                ((h as f64 * w0 as f64 / h0 as f64).round() as u32).clamp(1, limits::MAX_SIZE),
                 h,
             )
         }
@@ -122,11 +125,26 @@ fn has_extension(p: &Path, ext: &str) -> bool {
     p.extension().is_some_and(|x| x.eq_ignore_ascii_case(ext))
 }
 
+/// One scene's work, its outputs checked.
+enum Job {
+    Still {
+        scene: Scene,
+        png: Option<Target>,
+        pfm: Vec<Target>,
+    },
+    Animation {
+        scene: Scene,
+        frames: Vec<Target>,
+        gif: Target,
+        dir: PathBuf,
+    },
+}
+
 /// Renders one still; writes a PNG and/or a PFM.
 fn still(
     scene: &Scene,
-    png: Option<&Path>,
-    pfm: Option<&Path>,
+    png: Option<&Target>,
+    pfm: &[Target],
     opts: &Options,
 ) -> Result<(), String> {
     let start = Instant::now();
@@ -139,21 +157,22 @@ fn still(
         render::progress_wanted(opts.quiet),
         &scene.name,
     );
-    if opts.compare_clip {
-        if let Some(p) = png {
-            output::write_png(p, &output::clip_panels(&image))?;
-        }
-    } else if let Some(p) = png {
-        output::write_png(p, &output::to_rgb8(&image, scene.settings.clip))?;
+    if let Some(t) = png {
+        let picture = if opts.compare_clip {
+            output::clip_panels(&image)
+        } else {
+            output::to_rgb8(&image, scene.settings.clip)
+        };
+        output::write_png(&t.path, &picture)?;
     }
-    if let Some(p) = pfm {
-        output::write_pfm(p, &image)?;
+    for t in pfm {
+        output::write_pfm(&t.path, &image)?;
     }
     let s = &scene.settings;
     let written: Vec<String> = png
-        .iter()
-        .chain(pfm.iter())
-        .map(|p| p.display().to_string())
+        .into_iter()
+        .chain(pfm)
+        .map(|t| t.shown.display().to_string())
         .collect();
     note(
         opts,
@@ -176,39 +195,110 @@ fn still(
     Ok(())
 }
 
-/// Renders `frames` frames orbiting the camera once around its target into `dir`, as numbered
-/// PNGs and an animated GIF.
-fn animation(scene: &Scene, frames: u32, dir: &Path, opts: &Options) -> Result<(), String> {
+/// Renders one frame per target orbiting the camera once around its target, as numbered PNGs
+/// and an animated GIF streamed frame by frame.
+fn animation(
+    scene: &Scene,
+    frames: &[Target],
+    gif: &Target,
+    dir: &Path,
+    opts: &Options,
+) -> Result<(), String> {
     let start = Instant::now();
     let bar = render::progress_wanted(opts.quiet);
-    let mut pictures = Vec::new();
-    for i in 0..frames {
-        let angle = std::f64::consts::TAU * i as f64 / frames as f64;
+    let n = frames.len();
+    let mut encoder = output::Gif::create(&gif.path, 80)?;
+    for (i, frame) in frames.iter().enumerate() {
+        let angle = std::f64::consts::TAU * i as f64 / n as f64;
         let camera = render::orbit(&scene.camera, angle);
         let image = render::render(
             scene,
             &camera,
             bar,
-            &format!("{} {}/{}", scene.name, i + 1, frames),
+            &format!("{} {}/{}", scene.name, i + 1, n),
         );
         let png = output::to_rgb8(&image, scene.settings.clip);
-        output::write_png(&dir.join(format!("{}_{i:04}.png", scene.name)), &png)?;
-        pictures.push(png);
+        output::write_png(&frame.path, &png)?;
+        encoder.add(&png)?;
     }
-    let gif = dir.join(format!("{}.gif", scene.name));
-    output::write_gif(&gif, &pictures, 80)?;
+    encoder.finish()?;
     note(
         opts,
         &format!(
-            "{}: {frames} frames in {:.1} s -> {}/{}_NNNN.png, {}",
+            "{}: {n} frames in {:.1} s -> {}/{}_NNNN.png, {}",
             scene.name,
             start.elapsed().as_secs_f64(),
             dir.display(),
             scene.name,
-            gif.display()
+            gif.shown.display()
         ),
     );
     Ok(())
+}
+
+/// Loads one scene and checks its work and its outputs.
+fn plan(name: &str, single: bool, all: bool, opts: &Options) -> Result<Job, String> {
+    let path = scene_path(name)?;
+    let scene = prepare(&path, opts)?;
+    let s = &scene.settings;
+    limits::work(s.width, s.height, s.spp, opts.frames.unwrap_or(1))
+        .map_err(|e| format!("{}: {e}", scene.name))?;
+    let out = opts.out.clone();
+    if let Some(n) = opts.frames {
+        let dir = match &out {
+            Some(d) if single => d.clone(),
+            Some(d) => d.join(&scene.name),
+            None => PathBuf::from("out").join(&scene.name),
+        };
+        let dir = output::directory(&dir)?;
+        let frames = (0..n)
+            .map(|i| output::target(&dir.join(format!("{}_{i:04}.png", scene.name)), Kind::Png))
+            .collect::<Result<_, _>>()?;
+        let gif = output::target(&dir.join(format!("{}.gif", scene.name)), Kind::Gif)?;
+        return Ok(Job::Animation {
+            scene,
+            frames,
+            gif,
+            dir,
+        });
+    }
+    // One scene and a file name: write exactly that; otherwise a directory of NAME.png
+    // (and NAME.pfm when rendering everything or when asked).
+    let file_out = out
+        .as_ref()
+        .filter(|p| single && (has_extension(p, "png") || has_extension(p, "pfm")));
+    if let Some(p) = out.as_ref().filter(|_| single && file_out.is_none()) {
+        if p.extension().is_some() && !p.is_dir() {
+            return Err(format!(
+                "--out {}: expected a file name ending in .png or .pfm, or a directory",
+                p.display()
+            ));
+        }
+    }
+    let suffix = if opts.compare_clip { "-clipping" } else { "" };
+    let (png, mut pfm) = match file_out {
+        Some(p) if has_extension(p, "pfm") => (None, vec![p.clone()]),
+        Some(p) => (Some(p.clone()), vec![]),
+        None => {
+            let dir = output::directory(&out.unwrap_or_else(|| PathBuf::from("out")))?;
+            let png = dir.join(format!("{}{suffix}.png", scene.name));
+            let pfm = if all && !opts.compare_clip {
+                vec![dir.join(format!("{}.pfm", scene.name))]
+            } else {
+                vec![]
+            };
+            (Some(png), pfm)
+        }
+    };
+    pfm.extend(opts.pfm.clone());
+    Ok(Job::Still {
+        png: png.map(|p| output::target(&p, Kind::Png)).transpose()?,
+        pfm: pfm
+            .iter()
+            .map(|p| output::target(p, Kind::Pfm))
+            .collect::<Result<_, _>>()?,
+        scene,
+    })
 }
 
 fn run(opts: &Options) -> Result<(), String> {
@@ -222,43 +312,32 @@ fn run(opts: &Options) -> Result<(), String> {
         return Err(format!("no scenes found in {}", scenes_dir().display()));
     }
     let single = names.len() == 1;
-    let out = opts.out.clone();
     let start = Instant::now();
-    for name in &names {
-        let path = scene_path(name)?;
-        let scene = prepare(&path, opts)?;
-        if let Some(frames) = opts.frames {
-            let dir = match &out {
-                Some(d) if single => d.clone(),
-                Some(d) => d.join(&scene.name),
-                None => PathBuf::from("out").join(&scene.name),
-            };
-            animation(&scene, frames, &dir, opts)?;
-            continue;
-        }
-        // One scene and a file name: write exactly that; otherwise a directory of NAME.png
-        // (and NAME.pfm when rendering everything or when asked).
-        let file_out = out
-            .as_ref()
-            .filter(|p| single && (has_extension(p, "png") || has_extension(p, "pfm")));
-        let suffix = if opts.compare_clip { "-clipping" } else { "" };
-        let (png, pfm) = match file_out {
-            Some(p) if has_extension(p, "pfm") => (None, Some(p.clone())),
-            Some(p) => (Some(p.clone()), opts.pfm.clone()),
-            None => {
-                let dir = out.clone().unwrap_or_else(|| PathBuf::from("out"));
-                let png = dir.join(format!("{}{suffix}.png", scene.name));
-                let pfm = if opts.compare_clip {
-                    None
-                } else if all {
-                    Some(dir.join(format!("{}.pfm", scene.name)))
-                } else {
-                    opts.pfm.clone()
-                };
-                (Some(png), pfm)
+    // Every scene is loaded and every output checked before anything is rendered.
+    let jobs = names
+        .iter()
+        .map(|name| plan(name, single, all, opts))
+        .collect::<Result<Vec<_>, _>>()?;
+    let targets: Vec<Target> = jobs
+        .iter()
+        .flat_map(|job| match job {
+            Job::Still { png, pfm, .. } => png.iter().chain(pfm.iter()).cloned().collect(),
+            Job::Animation { frames, gif, .. } => {
+                frames.iter().chain([gif]).cloned().collect::<Vec<_>>()
             }
-        };
-        still(&scene, png.as_deref(), pfm.as_deref(), opts)?;
+        })
+        .collect();
+    output::distinct(&targets)?;
+    for job in &jobs {
+        match job {
+            Job::Still { scene, png, pfm } => still(scene, png.as_ref(), pfm, opts)?,
+            Job::Animation {
+                scene,
+                frames,
+                gif,
+                dir,
+            } => animation(scene, frames, gif, dir, opts)?,
+        }
     }
     if !single {
         note(
@@ -289,7 +368,8 @@ fn main() -> ExitCode {
         }
         Command::MakeLabel { out } => {
             let out = out.unwrap_or_else(label_path);
-            output::write_png(&out, &texture::make_label())
+            output::target(&out, Kind::Png)
+                .and_then(|t| output::write_png(&t.path, &texture::make_label()))
                 .map(|()| eprintln!("wrote {}", out.display()))
         }
         Command::Render(opts) => run(&opts),

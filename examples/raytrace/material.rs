@@ -9,7 +9,7 @@ use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
 #[cfg(feature = "stam")]
 use diffraction::Stam;
-use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
+use diffraction::{AguHill, DiffractionBrdf, Grating, Illumination, Thorman};
 use glam::DVec3;
 
 use crate::geometry::{Hit, Part};
@@ -45,10 +45,9 @@ impl Albedo {
 #[derive(Debug, Clone)]
 pub struct Material {
     pub albedo: Albedo,
-    /// Phong ambient coefficient k_a.
-    pub ambient: f64,
-    /// Phong diffuse coefficient k_d.
-    pub diffuse: f64,
+    /// The coefficients of the paper's eq. 12 (k_a, k_d, k_diffraction), validated by the
+    /// crate: the only place they are kept.
+    pub shading: Illumination,
     /// Fraction of perfect mirror reflection (0: none), tinted by `mirror_tint`.
     pub mirror: f64,
     pub mirror_tint: DVec3,
@@ -59,7 +58,7 @@ pub struct Material {
 /// The diffraction model of a grating material (the scene's `model` key).
 #[derive(Debug, Clone)]
 pub enum Model {
-    /// The paper's model, with the coefficients (ambient, diffuse, diffraction) of eq. 12.
+    /// The paper's model (its eq. 12 coefficients are the material's `shading`).
     AguHill(AguHill),
     /// Thorman's: peak directions only, every order equally bright.
     Thorman(Thorman),
@@ -84,10 +83,8 @@ impl Model {
 /// crate's diffraction models, over a field of grating directions.
 #[derive(Debug, Clone)]
 pub struct GratingMaterial {
-    /// The diffraction model (for Agu-Hill with the coefficients of eq. 12).
+    /// The diffraction model.
     pub model: Model,
-    /// The diffraction coefficient k_diffraction of eq. 12.
-    pub diffraction: f64,
     /// The grating vector across the surface (constant, twisted, radial, checkerboard).
     pub field: GratingField,
     /// How the spectral integral is evaluated.
@@ -100,15 +97,16 @@ pub struct GratingMaterial {
 
 impl GratingMaterial {
     /// The diffraction term's colour for local directions `wi`, `wo` (z the normal, x the
-    /// grating vector): k_diffraction · exposure · XYZ. Agu-Hill depends on u = wi.x + wo.x only
+    /// grating vector): k_diffraction · exposure · XYZ, with `k_diffraction` from the material's
+    /// [`Illumination`]. Agu-Hill depends on u = wi.x + wo.x only
     /// and takes the lobe-exact paths of `Spectral::xyz`; the other models go through
     /// `Spectral::xyz_brdf` (with cos θi for Stam, a BRDF).
-    pub fn xyz(&self, spectral: &Spectral, wi: DVec3, wo: DVec3) -> Xyz {
+    pub fn xyz(&self, spectral: &Spectral, wi: DVec3, wo: DVec3, k_diffraction: f64) -> Xyz {
         let xyz = match &self.model {
             Model::AguHill(m) => spectral.xyz(m.grating(), wi.x + wo.x, self.strategy),
             other => spectral.xyz_brdf(other.brdf(), wi, wo, self.strategy),
         };
-        xyz.scale(self.diffraction * self.exposure)
+        xyz.scale(k_diffraction * self.exposure)
     }
 
     /// Whether the field has a grating at the tangent point `p` (not a plain square).
@@ -160,8 +158,13 @@ pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f
         }
         max_y = max_y.max(spectral.xyz(grating, u, strategy).y);
     }
+    exposure_of(max_y)
+}
+
+/// `1 / max_y`, at most [`crate::limits::MAX_EXPOSURE`]; 1 when nothing diffracted is seen.
+fn exposure_of(max_y: f64) -> f64 {
     if max_y > 0.0 && max_y.is_finite() {
-        1.0 / max_y
+        (1.0 / max_y).min(crate::limits::MAX_EXPOSURE)
     } else {
         1.0
     }
@@ -188,11 +191,7 @@ pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) ->
         let w = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
         max_y = max_y.max(spectral.xyz_brdf(brdf, w, w, strategy).y);
     }
-    if max_y > 0.0 && max_y.is_finite() {
-        1.0 / max_y
-    } else {
-        1.0
-    }
+    exposure_of(max_y)
 }
 
 #[cfg(test)]

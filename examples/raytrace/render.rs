@@ -32,9 +32,97 @@ impl Rng {
         Rng(hash64(seed))
     }
 
-    pub fn next_f64(&mut self) -> f64 {
+    pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        (hash64(self.0) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+        hash64(self.0)
+    }
+
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// An integer in [0, n), n ≥ 1, by the high half of a 64 × 64-bit product (Lemire's method
+    /// without the rejection step: the bias is below n / 2⁶⁴, under 10⁻¹⁵ for the counts here).
+    pub fn below(&mut self, n: u32) -> u32 {
+        ((self.next_u64() as u128 * n as u128) >> 64) as u32
+    }
+}
+
+/// Largest number of samples in one [`Strata`] set (larger counts are taken as this): the
+/// scene loader's limits on samples per pixel and shadow samples are at most this.
+pub const MAX_STRATA_SAMPLES: u32 = 4096;
+
+/// Largest number of cells a [`Strata`] grid leaves empty: a grid of cols = ⌈√n⌉ columns and
+/// rows = ⌈n / cols⌉ rows has fewer than cols cells over n, and cols ≤ 64 for n ≤
+/// [`MAX_STRATA_SAMPLES`].
+const MAX_EMPTY_CELLS: usize = 64;
+
+/// `n` stratified samples of the unit square for any n ≥ 1: a grid of cols = ⌈√n⌉ by
+/// rows = ⌈n / cols⌉ cells (cols·rows ≥ n, fewer than cols cells too many), one jittered sample
+/// in each of n distinct cells. When the grid has more cells than samples, the cells left empty
+/// are a uniformly random subset (Floyd's algorithm) drawn afresh for every set, so every cell
+/// is sampled with the same probability n / (cols·rows) and every sample is uniform over the
+/// square: the estimate is unbiased and no part of the domain is ever skipped. When n is a square
+/// or the grid is full (cols·rows = n) no cell is left out and nothing extra is drawn.
+#[derive(Debug, Clone)]
+pub struct Strata {
+    cols: u32,
+    rows: u32,
+    /// The cells left empty, sorted.
+    empty: [u32; MAX_EMPTY_CELLS],
+    n_empty: usize,
+    /// The next cell to visit and the next empty cell to skip.
+    cell: u32,
+    skip: usize,
+    left: u32,
+}
+
+impl Strata {
+    /// The grid for `n` samples (0 is taken as 1, more than [`MAX_STRATA_SAMPLES`] as that),
+    /// its empty cells drawn from `rng`.
+    pub fn new(n: u32, rng: &mut Rng) -> Strata {
+        let n = n.clamp(1, MAX_STRATA_SAMPLES);
+        let cols = (n as f64).sqrt().ceil() as u32;
+        let rows = n.div_ceil(cols);
+        let cells = cols * rows;
+        let n_empty = (cells - n) as usize; // < cols ≤ MAX_EMPTY_CELLS
+        let mut empty = [0u32; MAX_EMPTY_CELLS];
+        // Floyd's algorithm: a uniformly random n_empty-subset of 0..cells.
+        for (k, j) in (cells - n_empty as u32..cells).enumerate() {
+            let t = rng.below(j + 1);
+            empty[k] = if empty[..k].contains(&t) { j } else { t };
+        }
+        empty[..n_empty].sort_unstable();
+        Strata {
+            cols,
+            rows,
+            empty,
+            n_empty,
+            cell: 0,
+            skip: 0,
+            left: n,
+        }
+    }
+
+    /// The grid's columns and rows.
+    pub fn grid(&self) -> (u32, u32) {
+        (self.cols, self.rows)
+    }
+
+    /// The cell (column, row) of the next sample; the caller jitters inside it, at
+    /// ((column + ξ₁) / cols, (row + ξ₂) / rows).
+    pub fn next_cell(&mut self) -> Option<(u32, u32)> {
+        if self.left == 0 {
+            return None;
+        }
+        while self.skip < self.n_empty && self.empty[self.skip] == self.cell {
+            self.skip += 1;
+            self.cell += 1;
+        }
+        let cell = (self.cell % self.cols, self.cell / self.cols);
+        self.cell += 1;
+        self.left -= 1;
+        Some(cell)
     }
 }
 
@@ -106,9 +194,6 @@ pub fn render(scene: &Scene, camera: &Camera, progress: bool, label: &str) -> Im
     } else {
         ProgressBar::hidden()
     };
-    // Stratified jitter: a cols × rows grid of strata, one sample in each of the first spp.
-    let cols = (s.spp as f64).sqrt().ceil() as u32;
-    let rows = s.spp.div_ceil(cols);
     let mut pixels = vec![DVec3::ZERO; (w as usize) * (h as usize)];
     pixels
         .par_chunks_mut(w as usize)
@@ -117,10 +202,11 @@ pub fn render(scene: &Scene, camera: &Camera, progress: bool, label: &str) -> Im
             for (x, out) in row.iter_mut().enumerate() {
                 let mut rng = Rng::new(s.seed ^ hash64(((y as u64) << 32) | x as u64));
                 let mut sum = DVec3::ZERO;
-                for i in 0..s.spp {
-                    let (cx, cy) = ((i % cols) as f64, (i / cols) as f64);
-                    let jx = (cx + rng.next_f64()) / cols as f64;
-                    let jy = (cy + rng.next_f64()) / rows as f64;
+                let mut strata = Strata::new(s.spp, &mut rng);
+                let (cols, rows) = strata.grid();
+                while let Some((cx, cy)) = strata.next_cell() {
+                    let jx = (cx as f64 + rng.next_f64()) / cols as f64;
+                    let jy = (cy as f64 + rng.next_f64()) / rows as f64;
                     let ray = rays.ray(x as f64 + jx, y as f64 + jy);
                     sum += trace(scene, &ray, 0, &mut rng);
                 }
@@ -158,7 +244,8 @@ fn sky(scene: &Scene, dir: DVec3) -> DVec3 {
 }
 
 /// The fraction of `light` visible from `origin`: one shadow ray for a point light, `samples`
-/// stratified rays toward a disc of the light's radius facing the point for a spherical one.
+/// stratified rays ([`Strata`]) toward a disc of the light's radius facing the point for a
+/// spherical one.
 fn visibility(scene: &Scene, origin: DVec3, light: &Light, rng: &mut Rng) -> f64 {
     if light.radius <= 0.0 {
         let to = light.position - origin;
@@ -172,13 +259,13 @@ fn visibility(scene: &Scene, origin: DVec3, light: &Light, rng: &mut Rng) -> f64
     let axis = (light.position - origin).normalize();
     let (a, b) = axis.any_orthonormal_pair();
     let n = light.samples;
-    let cols = (n as f64).sqrt().ceil() as u32;
-    let rows = n.div_ceil(cols);
     let mut seen = 0u32;
-    for i in 0..n {
-        // Stratified in (r², angle): uniform over the disc.
-        let r = (((i / cols) as f64 + rng.next_f64()) / rows as f64).sqrt() * light.radius;
-        let phi = ((i % cols) as f64 + rng.next_f64()) / cols as f64 * std::f64::consts::TAU;
+    let mut strata = Strata::new(n, rng);
+    let (cols, rows) = strata.grid();
+    while let Some((cx, cy)) = strata.next_cell() {
+        // Stratified in (r², angle): uniform over the disc, rings by row, sectors by column.
+        let r = ((cy as f64 + rng.next_f64()) / rows as f64).sqrt() * light.radius;
+        let phi = (cx as f64 + rng.next_f64()) / cols as f64 * std::f64::consts::TAU;
         let target = light.position + (a * phi.cos() + b * phi.sin()) * r;
         let to = target - origin;
         let dist = to.length();
@@ -227,7 +314,10 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
     let albedo = albedo.unwrap_or_else(|| material.albedo.at(hit));
 
     // Step 2: ambient and diffuse.
-    let mut color = scene.ambient * albedo * material.ambient;
+    // Eq. 12 in linear sRGB with the material's coefficients: the ambient and diffuse terms
+    // coloured by the albedo, the diffraction term by the spectrum.
+    let (k_ambient, k_diffuse, k_diffraction) = material.shading.coefficients();
+    let mut color = scene.ambient * albedo * k_ambient;
     for light in &scene.lights {
         let to = light.position - hit.point;
         let wi = to.normalize();
@@ -239,14 +329,16 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
         if vis == 0.0 {
             continue;
         }
-        let mut reflected = albedo * (material.diffuse * cos);
+        let mut reflected = albedo * (k_diffuse * cos);
         if let Some((g, frame)) = &grating {
             // Steps 3 and 5: local directions and the phase projection.
             let (wi_l, wo_l) = (frame.to_local(wi), frame.to_local(wo));
             if wi_l.z > 0.0 && wo_l.z > 0.0 {
                 // Steps 6-8: the spectral colour of the diffraction term (for Agu-Hill, of
                 // u = wi.x + wo.x).
-                let rgb = g.xyz(&scene.spectral, wi_l, wo_l).to_linear_srgb();
+                let rgb = g
+                    .xyz(&scene.spectral, wi_l, wo_l, k_diffraction)
+                    .to_linear_srgb();
                 reflected += DVec3::new(rgb.r, rgb.g, rgb.b);
             }
         }

@@ -5,11 +5,14 @@
 //! `[objects.material.field]`). See `examples/scenes/fig4a.toml` for a commented example, and
 //! `examples/scenes/baselines/compare.toml` for the grating `model` key (Agu-Hill, Thorman, Stam).
 //!
-//! Parsing has two stages: serde checks the types (unknown keys are errors), then
-//! [`build`] checks the values and builds the scene. Either stage's error names the file, the
-//! line and the field path, and says what is expected.
+//! Loading has two stages: serde checks the keys and types ([`crate::schema`]; unknown keys are
+//! errors), then [`build`] checks every value against the documented ranges of
+//! [`crate::limits`] and builds the scene. Either stage's error names the file, the line and
+//! the field path, and says what is expected. The file's size and its numbers of objects and
+//! lights are checked before it is deserialised, a texture's size before it is decoded.
 
 use std::collections::HashMap;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -17,167 +20,20 @@ use diffraction::cie::Illuminant;
 use diffraction::color::Clip;
 use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
-use diffraction::{AguHill, Grating, Thorman};
+use diffraction::{AguHill, Grating, Illumination, Thorman};
 use glam::DVec3;
-use serde::Deserialize;
-use toml::de::DeTable;
+use toml::de::{DeTable, DeValue};
 
-use crate::diagnostics::{line_of, locate, path_at, plain_message, FieldError, SceneError};
+use crate::diagnostics::{
+    line_of, locate, path_at, plain_message, value_at, FieldError, SceneError,
+};
 use crate::geometry::{Primitive, Shape, Transform};
+use crate::limits::{self, check, count, zero_or, Range};
 use crate::material::{model_exposure, Albedo, GratingMaterial, Material, Model};
+use crate::schema::{
+    culprit, RawField, RawGrating, RawKind, RawMaterial, RawScene, RawTile, Scale, COMMON_KEYS,
+};
 use crate::texture::{ImageTexture, Wood};
-
-/// Largest accepted image width or height.
-pub const MAX_SIZE: u32 = 16384;
-/// Largest accepted number of samples per pixel.
-pub const MAX_SPP: u32 = 4096;
-/// Largest accepted number of coherent slits N.
-pub const MAX_SLITS: u64 = 1_000_000_000;
-/// Largest accepted recursion depth of mirror reflection.
-pub const MAX_DEPTH: u32 = 64;
-/// Largest accepted number of shadow samples of one light.
-pub const MAX_LIGHT_SAMPLES: u32 = 1024;
-/// Largest accepted number of objects and of lights.
-pub const MAX_OBJECTS: usize = 10_000;
-
-// ------------------------------------------------------------------------------------------
-// The file's schema (stage 1: types).
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawScene {
-    description: Option<String>,
-    #[serde(default)]
-    render: RawRender,
-    camera: RawCamera,
-    #[serde(default)]
-    environment: RawEnvironment,
-    #[serde(default)]
-    lights: Vec<RawLight>,
-    #[serde(default)]
-    objects: Vec<RawObject>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawRender {
-    width: Option<u32>,
-    height: Option<u32>,
-    spp: Option<u32>,
-    max_depth: Option<u32>,
-    seed: Option<u64>,
-    strategy: Option<String>,
-    clip: Option<String>,
-    illuminant: Option<String>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawCamera {
-    position: [f64; 3],
-    look_at: [f64; 3],
-    up: Option<[f64; 3]>,
-    fov_deg: Option<f64>,
-}
-
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawEnvironment {
-    background: Option<[f64; 3]>,
-    zenith: Option<[f64; 3]>,
-    ambient: Option<[f64; 3]>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLight {
-    position: [f64; 3],
-    color: Option<[f64; 3]>,
-    intensity: Option<f64>,
-    radius: Option<f64>,
-    samples: Option<u32>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
-enum Scale {
-    Uniform(f64),
-    Axes([f64; 3]),
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawObject {
-    shape: String,
-    hole: Option<f64>,
-    translate: Option<[f64; 3]>,
-    rotate_deg: Option<[f64; 3]>,
-    scale: Option<Scale>,
-    material: RawMaterial,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawMaterial {
-    #[serde(rename = "type")]
-    kind: String,
-    color: Option<[f64; 3]>,
-    ambient: Option<f64>,
-    diffuse: Option<f64>,
-    mirror: Option<f64>,
-    mirror_color: Option<[f64; 3]>,
-    // wood
-    light: Option<[f64; 3]>,
-    dark: Option<[f64; 3]>,
-    ring_spacing: Option<f64>,
-    turbulence: Option<f64>,
-    plank_width: Option<f64>,
-    plank_length: Option<f64>,
-    // image
-    image: Option<String>,
-    // grating
-    period_nm: Option<f64>,
-    lines_per_mm: Option<f64>,
-    slit_width_nm: Option<f64>,
-    slits: Option<u64>,
-    diffraction: Option<f64>,
-    strategy: Option<String>,
-    field: Option<RawField>,
-    // grating model and its parameters
-    model: Option<String>,
-    lobe_width: Option<f64>,
-    depth_nm: Option<f64>,
-    fraction: Option<f64>,
-    coherence_nm: Option<f64>,
-    reflectance: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawField {
-    #[serde(rename = "type")]
-    kind: String,
-    angle_deg: Option<f64>,
-    twist_deg: Option<f64>,
-    center: Option<[f64; 2]>,
-    cell_size: Option<f64>,
-    even: Option<RawTile>,
-    odd: Option<RawTile>,
-    plain_color: Option<[f64; 3]>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawTile {
-    #[serde(rename = "type")]
-    kind: String,
-    angle_deg: Option<f64>,
-    twist_deg: Option<f64>,
-    center: Option<[f64; 2]>,
-}
-
-// ------------------------------------------------------------------------------------------
-// The scene (stage 2: values).
 
 /// Render settings (the scene's `[render]` table, overridable from the command line).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -236,24 +92,73 @@ impl Scene {
     /// exposure).
     pub fn set_strategy(&mut self, strategy: Strategy) {
         self.settings.strategy = strategy;
+        let mut exposures = Exposures::default();
         for (m, follows) in self.materials.iter_mut().zip(&self.follows_default) {
             if let (Some(g), true) = (&mut m.grating, *follows) {
                 g.strategy = strategy;
-                g.exposure = model_exposure(&self.spectral, &g.model, strategy);
+                g.exposure = exposures.get(&self.spectral, &g.model, strategy);
             }
         }
     }
 }
 
-/// Loads and checks a scene file.
-pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let file = path.display().to_string();
-    let src = std::fs::read_to_string(path).map_err(|e| SceneError {
-        file: file.clone(),
+/// The exposures of the distinct (model, strategy) pairs of a scene, each scanned once.
+#[derive(Debug, Default)]
+struct Exposures(HashMap<String, f64>);
+
+impl Exposures {
+    fn get(&mut self, spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
+        // Debug prints every parameter exactly (shortest round-trip floats).
+        let key = format!("{model:?} {strategy:?}");
+        *self
+            .0
+            .entry(key)
+            .or_insert_with(|| model_exposure(spectral, model, strategy))
+    }
+
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+}
+
+fn file_error(file: &str, message: String) -> SceneError {
+    SceneError {
+        file: file.to_string(),
         line: None,
         field: None,
-        message: format!("cannot read the scene file: {e}"),
-    })?;
+        message,
+    }
+}
+
+/// Loads and checks a scene file of at most [`limits::MAX_SCENE_BYTES`].
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let file = path.display().to_string();
+    let cannot = |e: std::io::Error| file_error(&file, format!("cannot read the scene file: {e}"));
+    let too_big = || {
+        file_error(
+            &file,
+            format!(
+                "the scene file is larger than the limit of {} bytes",
+                limits::MAX_SCENE_BYTES
+            ),
+        )
+    };
+    let f = std::fs::File::open(path).map_err(cannot)?;
+    if f.metadata()
+        .is_ok_and(|m| m.len() > limits::MAX_SCENE_BYTES)
+    {
+        return Err(too_big());
+    }
+    // Devices and pipes have no length: read one byte past the limit at most.
+    let mut bytes = Vec::new();
+    f.take(limits::MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > limits::MAX_SCENE_BYTES {
+        return Err(too_big());
+    }
+    let src = String::from_utf8(bytes)
+        .map_err(|e| file_error(&file, format!("the scene file is not UTF-8 text: {e}")))?;
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -270,21 +175,64 @@ pub fn parse(src: &str, file: &str, name: &str, base: &Path) -> Result<Scene, Sc
         field,
         message,
     };
+    if src.len() as u64 > limits::MAX_SCENE_BYTES {
+        return Err(err(
+            None,
+            None,
+            format!(
+                "the scene is larger than the limit of {} bytes",
+                limits::MAX_SCENE_BYTES
+            ),
+        ));
+    }
     // Syntax.
     let doc = DeTable::parse(src).map_err(|e| {
         let line = e.span().map(|s| line_of(src, s.start));
         err(line, None, format!("invalid TOML: {}", e.message().trim()))
     })?;
-    // Types.
+    // Counts, before anything is deserialised.
+    for key in ["objects", "lights"] {
+        let n = doc
+            .get_ref()
+            .iter()
+            .find(|(k, _)| k.get_ref() == key)
+            .and_then(|(_, v)| match v.get_ref() {
+                DeValue::Array(a) => Some(a.len()),
+                _ => None,
+            })
+            .unwrap_or(0);
+        if n > limits::MAX_OBJECTS {
+            let line = line_of(src, locate(&doc, key).start);
+            return Err(err(
+                Some(line),
+                Some(key.to_string()),
+                format!("expected at most {} {key}, got {n}", limits::MAX_OBJECTS),
+            ));
+        }
+    }
+    // Keys and types.
     let raw: RawScene = toml::from_str(src).map_err(|e| {
-        let offset = e.span().filter(|s| !s.is_empty()).map(|s| s.start);
+        let mut offset = e.span().filter(|s| !s.is_empty()).map(|s| s.start);
         let mut field = e.span().and_then(|s| path_at(&doc, s));
-        let message = plain_message(e.message());
-        // "missing field `x`" is reported at the table that lacks it.
-        if let Some(missing) = message
+        let mut message = plain_message(e.message());
+        let material = field.clone().filter(|f| f.ends_with(".material"));
+        let key = material.as_ref().and_then(|m| {
+            let table: toml::Table = toml::from_str(src).ok()?;
+            culprit(value_at(&table, m)?.as_table()?)
+        });
+        if let (Some(m), Some(key)) = (material, key) {
+            // A tagged material reports the whole table: name the key that fails.
+            if message.starts_with("unknown field") && !key.contains('.') {
+                message = format!("{message} (or one of {COMMON_KEYS})");
+            }
+            let path = format!("{m}.{key}");
+            offset = Some(locate(&doc, &path).start);
+            field = Some(path);
+        } else if let Some(missing) = message
             .strip_prefix("missing field `")
             .and_then(|m| m.split('`').next())
         {
+            // "missing field `x`" is reported at the table that lacks it.
             field = Some(match field {
                 Some(f) => format!("{f}.{missing}"),
                 None => missing.to_string(),
@@ -309,71 +257,16 @@ fn expect(path: &str, ok: bool, what: &str, got: impl std::fmt::Display) -> Chec
     }
 }
 
-fn positive(path: &str, v: f64) -> Check<f64> {
-    expect(path, v.is_finite() && v > 0.0, "a positive number", v)?;
-    Ok(v)
-}
-
-fn non_negative(path: &str, v: f64) -> Check<f64> {
-    expect(path, v.is_finite() && v >= 0.0, "a number >= 0", v)?;
-    Ok(v)
-}
-
-fn finite(path: &str, v: f64) -> Check<f64> {
-    expect(path, v.is_finite(), "a finite number", v)?;
-    Ok(v)
-}
-
-fn vec3(path: &str, v: [f64; 3]) -> Check<DVec3> {
+/// Three numbers, each in `range`.
+fn vec3(path: &str, v: [f64; 3], range: Range) -> Check<DVec3> {
     for (i, c) in v.iter().enumerate() {
-        finite(&format!("{path}[{i}]"), *c)?;
+        check(&format!("{path}[{i}]"), *c, range)?;
     }
     Ok(DVec3::from_array(v))
-}
-
-fn color(path: &str, v: [f64; 3]) -> Check<DVec3> {
-    for (i, c) in v.iter().enumerate() {
-        non_negative(&format!("{path}[{i}]"), *c)?;
-    }
-    Ok(DVec3::from_array(v))
-}
-
-fn unit_interval(path: &str, v: f64) -> Check<f64> {
-    expect(path, (0.0..=1.0).contains(&v), "a number in [0, 1]", v)?;
-    Ok(v)
-}
-
-fn count(path: &str, v: u32, min: u32, max: u32) -> Check<u32> {
-    expect(
-        path,
-        (min..=max).contains(&v),
-        &format!("an integer in [{min}, {max}]"),
-        v,
-    )?;
-    Ok(v)
 }
 
 fn parse_strategy(path: &str, s: &str) -> Check<Strategy> {
-    s.parse()
-        .map_err(|e: diffraction::spectrum::ParseStrategyError| {
-            FieldError::new(path, format!("{e}, got \"{s}\""))
-        })
-}
-
-/// Rejects fields that the chosen `type` does not use (they are most likely a mistake).
-fn only(path: &str, kind: &str, present: &[(&str, bool)], allowed: &[&str]) -> Check<()> {
-    for (name, is_set) in present {
-        if *is_set && !allowed.contains(name) {
-            return Err(FieldError::new(
-                format!("{path}.{name}"),
-                format!(
-                    "not used by type \"{kind}\" (it takes {})",
-                    allowed.join(", ")
-                ),
-            ));
-        }
-    }
-    Ok(())
+    limits::parse_strategy(s).map_err(|e| FieldError::new(path, format!("{e}, got \"{s}\"")))
 }
 
 fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
@@ -387,10 +280,20 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
             })?,
     };
     let settings = Settings {
-        width: count("render.width", r.width.unwrap_or(480), 1, MAX_SIZE)?,
-        height: count("render.height", r.height.unwrap_or(360), 1, MAX_SIZE)?,
-        spp: count("render.spp", r.spp.unwrap_or(4), 1, MAX_SPP)?,
-        max_depth: count("render.max_depth", r.max_depth.unwrap_or(5), 0, MAX_DEPTH)?,
+        width: count("render.width", r.width.unwrap_or(480), 1, limits::MAX_SIZE)?,
+        height: count(
+            "render.height",
+            r.height.unwrap_or(360),
+            1,
+            limits::MAX_SIZE,
+        )?,
+        spp: count("render.spp", r.spp.unwrap_or(4), 1, limits::MAX_SPP)?,
+        max_depth: count(
+            "render.max_depth",
+            r.max_depth.unwrap_or(5),
+            0,
+            limits::MAX_DEPTH,
+        )?,
         seed: r.seed.unwrap_or(1),
         clip: match r.clip.as_deref() {
             None => Clip::Intensity,
@@ -403,35 +306,39 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
             Some(s) => parse_strategy("render.strategy", s)?,
         },
     };
+    let size = if r.height.is_some() {
+        "render.height"
+    } else {
+        "render.width"
+    };
+    limits::pixels(settings.width, settings.height).map_err(|e| FieldError::new(size, e))?;
+    limits::work(settings.width, settings.height, settings.spp, 1)
+        .map_err(|e| FieldError::new("render.spp", e))?;
 
     let c = &raw.camera;
+    let up = c.up.unwrap_or([0.0, 1.0, 0.0]);
     let camera = Camera {
-        position: vec3("camera.position", c.position)?,
-        look_at: vec3("camera.look_at", c.look_at)?,
-        up: vec3("camera.up", c.up.unwrap_or([0.0, 1.0, 0.0]))?,
-        fov_deg: c.fov_deg.unwrap_or(40.0),
+        position: vec3("camera.position", c.position, limits::COORDINATE)?,
+        look_at: vec3("camera.look_at", c.look_at, limits::COORDINATE)?,
+        up: vec3("camera.up", up, limits::COORDINATE)?.normalize_or_zero(),
+        fov_deg: check("camera.fov_deg", c.fov_deg.unwrap_or(40.0), limits::FOV_DEG)?,
     };
-    expect(
-        "camera.fov_deg",
-        camera.fov_deg.is_finite() && camera.fov_deg > 0.0 && camera.fov_deg < 180.0,
-        "an angle in (0, 180) degrees",
-        camera.fov_deg,
-    )?;
     let forward = camera.look_at - camera.position;
     expect(
         "camera.look_at",
-        forward.length() > 1e-12,
+        forward.length() > 1e-9,
         "a point different from camera.position",
         "the same point",
     )?;
     expect(
         "camera.up",
         forward.normalize().cross(camera.up).length() > 1e-9,
-        "a direction not parallel to the view direction",
-        format!("{:?}", c.up.unwrap_or([0.0, 1.0, 0.0])),
+        "a non-zero direction not parallel to the view direction",
+        format!("{up:?}"),
     )?;
 
     let env = &raw.environment;
+    let color = |path: &str, v: [f64; 3]| vec3(path, v, limits::COLOR);
     let background = color(
         "environment.background",
         env.background.unwrap_or([0.05, 0.05, 0.06]),
@@ -445,43 +352,63 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         env.ambient.unwrap_or([0.1, 0.1, 0.1]),
     )?;
 
-    expect(
-        "lights",
-        raw.lights.len() <= MAX_OBJECTS,
-        &format!("at most {MAX_OBJECTS} lights"),
-        raw.lights.len(),
-    )?;
     let mut lights = Vec::new();
+    let mut shadow_rays = 0u64;
     for (i, l) in raw.lights.iter().enumerate() {
         let p = format!("lights[{i}]");
         let color = color(&format!("{p}.color"), l.color.unwrap_or([1.0, 1.0, 1.0]))?;
-        let intensity = non_negative(&format!("{p}.intensity"), l.intensity.unwrap_or(1.0))?;
-        let radius = non_negative(&format!("{p}.radius"), l.radius.unwrap_or(0.0))?;
+        let intensity = check(
+            &format!("{p}.intensity"),
+            l.intensity.unwrap_or(1.0),
+            limits::COLOR,
+        )?;
+        let radius = zero_or(
+            &format!("{p}.radius"),
+            l.radius.unwrap_or(0.0),
+            limits::LENGTH,
+        )?;
         let samples = count(
             &format!("{p}.samples"),
             l.samples.unwrap_or(if radius > 0.0 { 8 } else { 1 }),
             1,
-            MAX_LIGHT_SAMPLES,
+            limits::MAX_LIGHT_SAMPLES,
         )?;
+        let samples = if radius > 0.0 { samples } else { 1 };
+        shadow_rays += samples as u64;
+        if shadow_rays > limits::MAX_SHADOW_RAYS {
+            // The default count is not in the file: then the light is named.
+            return Err(FieldError::new(
+                if l.samples.is_some() {
+                    format!("{p}.samples")
+                } else {
+                    p
+                },
+                format!(
+                    "the lights' shadow samples add up to {shadow_rays}, more than the limit of \
+                     {} rays from each hit",
+                    limits::MAX_SHADOW_RAYS
+                ),
+            ));
+        }
         lights.push(Light {
-            position: vec3(&format!("{p}.position"), l.position)?,
+            position: vec3(&format!("{p}.position"), l.position, limits::COORDINATE)?,
             color: color * intensity,
             radius,
-            samples: if radius > 0.0 { samples } else { 1 },
+            samples,
         });
     }
 
-    let spectral = Spectral::new(illuminant);
-    expect(
-        "objects",
-        raw.objects.len() <= MAX_OBJECTS,
-        &format!("at most {MAX_OBJECTS} objects"),
-        raw.objects.len(),
-    )?;
+    let mut loader = Loader {
+        settings: &settings,
+        spectral: Spectral::new(illuminant),
+        base,
+        images: HashMap::new(),
+        texels: 0,
+        exposures: Exposures::default(),
+    };
     let mut objects = Vec::new();
     let mut materials = Vec::new();
     let mut follows_default = Vec::new();
-    let mut images: HashMap<PathBuf, Arc<ImageTexture>> = HashMap::new();
     for (i, o) in raw.objects.iter().enumerate() {
         let p = format!("objects[{i}]");
         let shape = match o.shape.as_str() {
@@ -513,29 +440,27 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
                 "only a \"disc\" has a hole",
             ));
         }
-        let translate = vec3(&format!("{p}.translate"), o.translate.unwrap_or([0.0; 3]))?;
-        let rotate = vec3(&format!("{p}.rotate_deg"), o.rotate_deg.unwrap_or([0.0; 3]))?;
+        let translate = vec3(
+            &format!("{p}.translate"),
+            o.translate.unwrap_or([0.0; 3]),
+            limits::COORDINATE,
+        )?;
+        let rotate = vec3(
+            &format!("{p}.rotate_deg"),
+            o.rotate_deg.unwrap_or([0.0; 3]),
+            limits::ANGLE_DEG,
+        )?;
         let scale = match o.scale {
             None => DVec3::ONE,
-            Some(Scale::Uniform(s)) => DVec3::splat(positive(&format!("{p}.scale"), s)?),
-            Some(Scale::Axes(a)) => {
-                for (k, s) in a.iter().enumerate() {
-                    positive(&format!("{p}.scale[{k}]"), *s)?;
-                }
-                DVec3::from_array(a)
+            Some(Scale::Uniform(s)) => {
+                DVec3::splat(check(&format!("{p}.scale"), s, limits::SCALE)?)
             }
+            Some(Scale::Axes(a)) => vec3(&format!("{p}.scale"), a, limits::SCALE)?,
         };
         let transform = Transform::new(translate, rotate, scale).ok_or_else(|| {
             FieldError::new(format!("{p}.scale"), "expected an invertible transform")
         })?;
-        let (material, follows) = build_material(
-            &o.material,
-            &format!("{p}.material"),
-            &settings,
-            &spectral,
-            base,
-            &mut images,
-        )?;
+        let (material, follows) = loader.material(&o.material, &format!("{p}.material"))?;
         objects.push(Primitive {
             shape,
             transform,
@@ -556,145 +481,155 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         lights,
         objects,
         materials,
-        spectral,
+        spectral: loader.spectral,
         follows_default,
     })
 }
 
-/// The material at `path`, and whether its strategy follows the scene default.
-fn build_material(
-    m: &RawMaterial,
-    path: &str,
-    settings: &Settings,
-    spectral: &Spectral,
-    base: &Path,
-    images: &mut HashMap<PathBuf, Arc<ImageTexture>>,
-) -> Check<(Material, bool)> {
-    let present = [
-        ("color", m.color.is_some()),
-        ("ambient", m.ambient.is_some()),
-        ("diffuse", m.diffuse.is_some()),
-        ("mirror", m.mirror.is_some()),
-        ("mirror_color", m.mirror_color.is_some()),
-        ("light", m.light.is_some()),
-        ("dark", m.dark.is_some()),
-        ("ring_spacing", m.ring_spacing.is_some()),
-        ("turbulence", m.turbulence.is_some()),
-        ("plank_width", m.plank_width.is_some()),
-        ("plank_length", m.plank_length.is_some()),
-        ("image", m.image.is_some()),
-        ("period_nm", m.period_nm.is_some()),
-        ("lines_per_mm", m.lines_per_mm.is_some()),
-        ("slit_width_nm", m.slit_width_nm.is_some()),
-        ("slits", m.slits.is_some()),
-        ("diffraction", m.diffraction.is_some()),
-        ("strategy", m.strategy.is_some()),
-        ("field", m.field.is_some()),
-        ("model", m.model.is_some()),
-        ("lobe_width", m.lobe_width.is_some()),
-        ("depth_nm", m.depth_nm.is_some()),
-        ("fraction", m.fraction.is_some()),
-        ("coherence_nm", m.coherence_nm.is_some()),
-        ("reflectance", m.reflectance.is_some()),
-    ];
-    const COMMON: [&str; 4] = ["ambient", "diffuse", "mirror", "mirror_color"];
-    let allowed: Vec<&str> = match m.kind.as_str() {
-        "diffuse" | "mirror" => vec!["color"],
-        "wood" => vec!["light", "dark", "ring_spacing", "turbulence", "plank_width", "plank_length"],
-        "image" => vec!["image", "color"],
-        "grating" => vec![
-            "color",
-            "period_nm",
-            "lines_per_mm",
-            "slit_width_nm",
-            "slits",
-            "diffraction",
-            "strategy",
-            "field",
-            "model",
-            "lobe_width",
-            "depth_nm",
-            "fraction",
-            "coherence_nm",
-            "reflectance",
-        ],
-        other => {
-            return Err(FieldError::new(
-                format!("{path}.type"),
-                format!("expected one of \"diffuse\", \"mirror\", \"wood\", \"image\", \"grating\", got \"{other}\""),
-            ))
-        }
-    };
-    let allowed: Vec<&str> = allowed.into_iter().chain(COMMON).collect();
-    only(path, &m.kind, &present, &allowed)?;
+/// What building the materials shares: the settings, the colour integrator, the textures
+/// loaded so far (and their texels, against [`limits::MAX_TEXTURE_PIXELS`]) and the exposures
+/// measured so far.
+struct Loader<'a> {
+    settings: &'a Settings,
+    spectral: Spectral,
+    base: &'a Path,
+    images: HashMap<PathBuf, Arc<ImageTexture>>,
+    texels: u64,
+    exposures: Exposures,
+}
 
-    let f = |name: &str| format!("{path}.{name}");
-    let is_mirror = m.kind == "mirror";
-    let base_color = color(
-        &f("color"),
-        m.color
-            .unwrap_or(if is_mirror { [0.05; 3] } else { [0.7; 3] }),
-    )?;
-    let ka = non_negative(&f("ambient"), m.ambient.unwrap_or(1.0))?;
-    let kd = non_negative(
-        &f("diffuse"),
-        m.diffuse.unwrap_or(if is_mirror { 0.1 } else { 1.0 }),
-    )?;
-    let mirror = unit_interval(
-        &f("mirror"),
-        m.mirror.unwrap_or(if is_mirror { 0.9 } else { 0.0 }),
-    )?;
-    let mirror_tint = color(&f("mirror_color"), m.mirror_color.unwrap_or([1.0; 3]))?;
-
-    let albedo = match m.kind.as_str() {
-        "wood" => Albedo::Wood(Wood {
-            light: color(&f("light"), m.light.unwrap_or([0.62, 0.40, 0.20]))?,
-            dark: color(&f("dark"), m.dark.unwrap_or([0.30, 0.16, 0.07]))?,
-            ring_spacing: positive(&f("ring_spacing"), m.ring_spacing.unwrap_or(0.05))?,
-            turbulence: non_negative(&f("turbulence"), m.turbulence.unwrap_or(1.5))?,
-            plank_width: non_negative(&f("plank_width"), m.plank_width.unwrap_or(0.0))?,
-            plank_length: non_negative(&f("plank_length"), m.plank_length.unwrap_or(0.0))?,
-        }),
-        "image" => {
-            let Some(name) = &m.image else {
-                return Err(FieldError::new(
-                    f("image"),
-                    "expected the path of a PNG image (relative to the scene file)",
-                ));
-            };
-            let file = base.join(name);
-            let texture = match images.get(&file) {
-                Some(t) => t.clone(),
-                None => {
-                    let t = Arc::new(ImageTexture::load(&file).map_err(|e| {
-                        FieldError::new(
-                            f("image"),
-                            format!("{e} (the can label is made by `raytrace make-label`)"),
-                        )
-                    })?);
-                    images.insert(file, t.clone());
-                    t
-                }
-            };
-            Albedo::Image {
-                texture,
-                other: base_color,
+impl Loader<'_> {
+    /// The material at `path`, and whether its strategy follows the scene default.
+    fn material(&mut self, m: &RawMaterial, path: &str) -> Check<(Material, bool)> {
+        let f = |name: &str| format!("{path}.{name}");
+        let color = |name: &str, v: Option<[f64; 3]>, default: [f64; 3]| {
+            vec3(&f(name), v.unwrap_or(default), limits::COLOR)
+        };
+        let is_mirror = matches!(m.kind, RawKind::Mirror { .. });
+        let ka = check(&f("ambient"), m.ambient.unwrap_or(1.0), limits::COEFFICIENT)?;
+        let kd = check(
+            &f("diffuse"),
+            m.diffuse.unwrap_or(if is_mirror { 0.1 } else { 1.0 }),
+            limits::COEFFICIENT,
+        )?;
+        let mirror = check(
+            &f("mirror"),
+            m.mirror.unwrap_or(if is_mirror { 0.9 } else { 0.0 }),
+            limits::FRACTION,
+        )?;
+        let mirror_tint = color("mirror_color", m.mirror_color, [1.0; 3])?;
+        let (albedo, grating) = match &m.kind {
+            RawKind::Diffuse { color: c } => (Albedo::Solid(color("color", *c, [0.7; 3])?), None),
+            RawKind::Mirror { color: c } => (Albedo::Solid(color("color", *c, [0.05; 3])?), None),
+            RawKind::Wood {
+                light,
+                dark,
+                ring_spacing,
+                turbulence,
+                plank_width,
+                plank_length,
+            } => {
+                let wood = Wood {
+                    light: color("light", *light, [0.62, 0.40, 0.20])?,
+                    dark: color("dark", *dark, [0.30, 0.16, 0.07])?,
+                    ring_spacing: check(
+                        &f("ring_spacing"),
+                        ring_spacing.unwrap_or(0.05),
+                        limits::LENGTH,
+                    )?,
+                    turbulence: check(
+                        &f("turbulence"),
+                        turbulence.unwrap_or(1.5),
+                        limits::COEFFICIENT,
+                    )?,
+                    plank_width: zero_or(
+                        &f("plank_width"),
+                        plank_width.unwrap_or(0.0),
+                        limits::LENGTH,
+                    )?,
+                    plank_length: zero_or(
+                        &f("plank_length"),
+                        plank_length.unwrap_or(0.0),
+                        limits::LENGTH,
+                    )?,
+                };
+                (Albedo::Wood(wood), None)
             }
-        }
-        _ => Albedo::Solid(base_color),
-    };
+            RawKind::Image { image, color: c } => {
+                let texture = self.texture(image.as_deref(), &f("image"))?;
+                let other = color("color", *c, [0.7; 3])?;
+                (Albedo::Image { texture, other }, None)
+            }
+            RawKind::Grating(g) => {
+                let base_color = color("color", g.color, [0.7; 3])?;
+                let (grating, shading, follows) = self.grating(g, path, (ka, kd), base_color)?;
+                return Ok((
+                    Material {
+                        albedo: Albedo::Solid(base_color),
+                        shading,
+                        mirror,
+                        mirror_tint,
+                        grating: Some(grating),
+                    },
+                    follows,
+                ));
+            }
+        };
+        Ok((
+            Material {
+                albedo,
+                shading: Illumination::new(ka, kd, 0.0)
+                    .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?,
+                mirror,
+                mirror_tint,
+                grating,
+            },
+            true,
+        ))
+    }
 
-    let mut follows = true;
-    let grating = if m.kind == "grating" {
-        let period = match (m.period_nm, m.lines_per_mm) {
+    /// The image texture named `name` (relative to the scene file), loaded once per file.
+    fn texture(&mut self, name: Option<&str>, path: &str) -> Check<Arc<ImageTexture>> {
+        let Some(name) = name else {
+            return Err(FieldError::new(
+                path,
+                "expected the path of a PNG image (relative to the scene file)",
+            ));
+        };
+        let file = self.base.join(name);
+        if let Some(t) = self.images.get(&file) {
+            return Ok(t.clone());
+        }
+        let budget = limits::MAX_TEXTURE_PIXELS - self.texels;
+        let t = Arc::new(ImageTexture::load(&file, budget).map_err(|e| {
+            FieldError::new(
+                path,
+                format!("{e} (the can label is made by `raytrace make-label`)"),
+            )
+        })?);
+        self.texels += t.texels();
+        self.images.insert(file, t.clone());
+        Ok(t)
+    }
+
+    /// The grating of a grating material, and whether its strategy follows the scene default.
+    fn grating(
+        &mut self,
+        g: &RawGrating,
+        path: &str,
+        (ka, kd): (f64, f64),
+        base_color: DVec3,
+    ) -> Check<(GratingMaterial, Illumination, bool)> {
+        let f = |name: &str| format!("{path}.{name}");
+        let period = match (g.period_nm, g.lines_per_mm) {
             (Some(_), Some(_)) => {
                 return Err(FieldError::new(
                     f("lines_per_mm"),
                     "give either period_nm or lines_per_mm, not both",
                 ))
             }
-            (Some(d), None) => positive(&f("period_nm"), d)?,
-            (None, Some(l)) => 1.0e6 / positive(&f("lines_per_mm"), l)?,
+            (Some(d), None) => check(&f("period_nm"), d, limits::PERIOD_NM)?,
+            (None, Some(l)) => 1.0e6 / check(&f("lines_per_mm"), l, limits::LINES_PER_MM)?,
             (None, None) => {
                 return Err(FieldError::new(
                     f("period_nm"),
@@ -702,65 +637,52 @@ fn build_material(
                 ))
             }
         };
-        let kdiff = non_negative(&f("diffraction"), m.diffraction.unwrap_or(1.0))?;
-        let model = build_model(m, path, period, (ka, kd, kdiff), &present)?;
-        let strategy = match &m.strategy {
-            Some(s) => {
-                follows = false;
-                parse_strategy(&f("strategy"), s)?
-            }
-            None => settings.strategy,
+        let kdiff = check(
+            &f("diffraction"),
+            g.diffraction.unwrap_or(1.0),
+            limits::COEFFICIENT,
+        )?;
+        let shading = Illumination::new(ka, kd, kdiff)
+            .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?;
+        let model = build_model(g, path, period)?;
+        let (strategy, follows) = match &g.strategy {
+            Some(s) => (parse_strategy(&f("strategy"), s)?, false),
+            None => (self.settings.strategy, true),
         };
-        let (field, plain_albedo) = match &m.field {
+        let (field, plain_albedo) = match &g.field {
             None => (GratingField::constant(0.0), base_color),
             Some(field) => build_field(field, &f("field"), base_color)?,
         };
-        Some(GratingMaterial {
-            exposure: model_exposure(spectral, &model, strategy),
-            model,
-            diffraction: kdiff,
-            field,
-            strategy,
-            plain_albedo,
-        })
-    } else {
-        None
-    };
-
-    Ok((
-        Material {
-            albedo,
-            ambient: ka,
-            diffuse: kd,
-            mirror,
-            mirror_tint,
-            grating,
-        },
-        follows,
-    ))
+        let exposure = self.exposures.get(&self.spectral, &model, strategy);
+        if self.exposures.len() > limits::MAX_GRATINGS {
+            return Err(FieldError::new(
+                path,
+                format!(
+                    "more than {} distinct gratings (each needs an exposure scan)",
+                    limits::MAX_GRATINGS
+                ),
+            ));
+        }
+        Ok((
+            GratingMaterial {
+                exposure,
+                model,
+                field,
+                strategy,
+                plain_albedo,
+            },
+            shading,
+            follows,
+        ))
+    }
 }
 
 /// The grating's diffraction model (`model`, default "agu-hill") and its parameters; a
 /// parameter of another model is an error, and so is a Stam model in a build without the
 /// `stam` feature.
-fn build_model(
-    m: &RawMaterial,
-    path: &str,
-    period: f64,
-    (ka, kd, kdiff): (f64, f64, f64),
-    present: &[(&str, bool)],
-) -> Check<Model> {
+fn build_model(g: &RawGrating, path: &str, period: f64) -> Check<Model> {
     let f = |name: &str| format!("{path}.{name}");
-    let name = m.model.as_deref().unwrap_or("agu-hill");
-    const PARAMETERS: [&str; 7] = [
-        "slit_width_nm",
-        "slits",
-        "lobe_width",
-        "depth_nm",
-        "fraction",
-        "coherence_nm",
-        "reflectance",
-    ];
+    let name = g.model.as_deref().unwrap_or("agu-hill");
     let takes: &[&str] = match name {
         "agu-hill" => &["slit_width_nm", "slits"],
         "thorman" => &["lobe_width"],
@@ -773,8 +695,8 @@ fn build_model(
             ))
         }
     };
-    for (key, is_set) in present {
-        if *is_set && PARAMETERS.contains(key) && !takes.contains(key) {
+    for (key, is_set) in g.parameters() {
+        if is_set && !takes.contains(&key) {
             return Err(FieldError::new(
                 f(key),
                 format!(
@@ -786,29 +708,46 @@ fn build_model(
     }
     let crate_error = |e: diffraction::Error| {
         let field = match e.parameter() {
-            "period_nm" if m.period_nm.is_none() => "lines_per_mm",
+            "period_nm" if g.period_nm.is_none() => "lines_per_mm",
             p => p,
         };
         FieldError::new(f(field), e.to_string())
     };
     match name {
         "agu-hill" => {
-            let width = positive(&f("slit_width_nm"), m.slit_width_nm.unwrap_or(period / 2.0))?;
-            let slits = m.slits.unwrap_or(1000);
-            expect(
-                &f("slits"),
-                (1..=MAX_SLITS).contains(&slits),
-                &format!("an integer in [1, {MAX_SLITS}]"),
-                slits,
+            let width = check(
+                &f("slit_width_nm"),
+                g.slit_width_nm.unwrap_or(period / 2.0),
+                limits::SLIT_WIDTH_NM,
             )?;
+            let slits = g.slits.unwrap_or(1000);
+            count(&f("slits"), slits, 1, limits::SLITS.max as u64)?;
             let grating = Grating::new(period, width, slits as u32).map_err(crate_error)?;
-            diffraction::Illumination::new(ka, kd, kdiff).map_err(crate_error)?;
             Ok(Model::AguHill(AguHill::new(grating)))
         }
-        "thorman" => Ok(Model::Thorman(
-            Thorman::new(period, m.lobe_width.unwrap_or(0.005)).map_err(crate_error)?,
-        )),
-        _ => stam_model(m, path, name, period, &crate_error),
+        "thorman" => {
+            let lobe = check(
+                &f("lobe_width"),
+                g.lobe_width.unwrap_or(0.005),
+                limits::LOBE_WIDTH,
+            )?;
+            Ok(Model::Thorman(
+                Thorman::new(period, lobe).map_err(crate_error)?,
+            ))
+        }
+        _ => {
+            for (key, v, range) in [
+                ("depth_nm", g.depth_nm, limits::DEPTH_NM),
+                ("fraction", g.fraction, limits::FRACTION),
+                ("coherence_nm", g.coherence_nm, limits::COHERENCE_NM),
+                ("reflectance", g.reflectance, limits::FRACTION),
+            ] {
+                if let Some(v) = v {
+                    check(&f(key), v, range)?;
+                }
+            }
+            stam_model(g, path, name, period, &crate_error)
+        }
     }
 }
 
@@ -816,7 +755,7 @@ fn build_model(
 /// fraction (binary, default 0.5), reflectance (default 1).
 #[cfg(feature = "stam")]
 fn stam_model(
-    m: &RawMaterial,
+    g: &RawGrating,
     _: &str,
     name: &str,
     period: f64,
@@ -826,23 +765,23 @@ fn stam_model(
     let profile = match name {
         "stam-sine" => Profile::Sine,
         _ => Profile::Binary {
-            fraction: m.fraction.unwrap_or(0.5),
+            fraction: g.fraction.unwrap_or(0.5),
         },
     };
     let stam = Stam::new(
         profile,
         period,
-        m.depth_nm.unwrap_or(100.0),
-        m.coherence_nm.unwrap_or(10.0 * period),
+        g.depth_nm.unwrap_or(100.0),
+        g.coherence_nm.unwrap_or(10.0 * period),
     )
-    .and_then(|s| s.with_reflectance(m.reflectance.unwrap_or(1.0)))
+    .and_then(|s| s.with_reflectance(g.reflectance.unwrap_or(1.0)))
     .map_err(crate_error)?;
     Ok(Model::Stam(stam))
 }
 
 #[cfg(not(feature = "stam"))]
 fn stam_model(
-    _: &RawMaterial,
+    _: &RawGrating,
     path: &str,
     name: &str,
     _: f64,
@@ -858,107 +797,85 @@ fn stam_model(
 }
 
 fn degrees(path: &str, v: Option<f64>) -> Check<f64> {
-    Ok(finite(path, v.unwrap_or(0.0))?.to_radians())
+    Ok(check(path, v.unwrap_or(0.0), limits::ANGLE_DEG)?.to_radians())
 }
 
 fn center(path: &str, v: Option<[f64; 2]>) -> Check<[f64; 2]> {
     let c = v.unwrap_or([0.0, 0.0]);
-    finite(&format!("{path}[0]"), c[0])?;
-    finite(&format!("{path}[1]"), c[1])?;
+    check(&format!("{path}[0]"), c[0], limits::COORDINATE)?;
+    check(&format!("{path}[1]"), c[1], limits::COORDINATE)?;
     Ok(c)
 }
 
 fn build_tile(t: &RawTile, path: &str) -> Check<Tile> {
-    let present = [
-        ("angle_deg", t.angle_deg.is_some()),
-        ("twist_deg", t.twist_deg.is_some()),
-        ("center", t.center.is_some()),
-    ];
     let f = |name: &str| format!("{path}.{name}");
-    match t.kind.as_str() {
-        "plain" => {
-            only(path, "plain", &present, &[])?;
-            Ok(Tile::Plain)
-        }
-        "constant" => {
-            only(path, "constant", &present, &["angle_deg", "twist_deg"])?;
-            Ok(Tile::Constant {
-                angle: degrees(&f("angle_deg"), t.angle_deg)?
-                    + degrees(&f("twist_deg"), t.twist_deg)?,
-            })
-        }
-        "radial" => {
-            only(path, "radial", &present, &["center", "twist_deg"])?;
-            Ok(Tile::Radial {
-                center: center(&f("center"), t.center)?,
-                twist: degrees(&f("twist_deg"), t.twist_deg)?,
-            })
-        }
-        other => Err(FieldError::new(
-            f("type"),
-            format!("expected one of \"plain\", \"constant\", \"radial\", got \"{other}\""),
-        )),
-    }
+    Ok(match t {
+        RawTile::Plain {} => Tile::Plain,
+        RawTile::Constant {
+            angle_deg,
+            twist_deg,
+        } => Tile::Constant {
+            angle: degrees(&f("angle_deg"), *angle_deg)? + degrees(&f("twist_deg"), *twist_deg)?,
+        },
+        RawTile::Radial {
+            center: c,
+            twist_deg,
+        } => Tile::Radial {
+            center: center(&f("center"), *c)?,
+            twist: degrees(&f("twist_deg"), *twist_deg)?,
+        },
+    })
 }
 
 /// The field and the albedo of its plain squares.
 fn build_field(fd: &RawField, path: &str, base_color: DVec3) -> Check<(GratingField, DVec3)> {
-    let present = [
-        ("angle_deg", fd.angle_deg.is_some()),
-        ("twist_deg", fd.twist_deg.is_some()),
-        ("center", fd.center.is_some()),
-        ("cell_size", fd.cell_size.is_some()),
-        ("even", fd.even.is_some()),
-        ("odd", fd.odd.is_some()),
-        ("plain_color", fd.plain_color.is_some()),
-    ];
     let f = |name: &str| format!("{path}.{name}");
-    let twist = degrees(&f("twist_deg"), fd.twist_deg)?;
-    let field = match fd.kind.as_str() {
-        "constant" => {
-            only(path, "constant", &present, &["angle_deg", "twist_deg"])?;
-            GratingField::constant(degrees(&f("angle_deg"), fd.angle_deg)?)
-        }
-        "radial" => {
-            only(path, "radial", &present, &["center", "twist_deg"])?;
+    let (field, twist, plain) = match fd {
+        RawField::Constant {
+            angle_deg,
+            twist_deg,
+        } => (
+            GratingField::constant(degrees(&f("angle_deg"), *angle_deg)?),
+            twist_deg,
+            None,
+        ),
+        RawField::Radial {
+            center: c,
+            twist_deg,
+        } => (
             GratingField::Uniform(Tile::Radial {
-                center: center(&f("center"), fd.center)?,
+                center: center(&f("center"), *c)?,
                 twist: 0.0,
-            })
-        }
-        "checkerboard" => {
-            only(
-                path,
-                "checkerboard",
-                &present,
-                &["cell_size", "even", "odd", "plain_color", "twist_deg"],
-            )?;
-            let cell = positive(&f("cell_size"), fd.cell_size.unwrap_or(0.25))?;
-            let even = match &fd.even {
+            }),
+            twist_deg,
+            None,
+        ),
+        RawField::Checkerboard {
+            cell_size,
+            even,
+            odd,
+            plain_color,
+            twist_deg,
+        } => {
+            let cell = check(&f("cell_size"), cell_size.unwrap_or(0.25), limits::LENGTH)?;
+            let even = match even {
                 Some(t) => build_tile(t, &f("even"))?,
                 None => Tile::Constant { angle: 0.0 },
             };
-            let odd = match &fd.odd {
+            let odd = match odd {
                 Some(t) => build_tile(t, &f("odd"))?,
                 None => Tile::Plain,
             };
-            GratingField::checkerboard(cell, even, odd)
-                .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?
-        }
-        other => {
-            return Err(FieldError::new(
-                f("type"),
-                format!(
-                    "expected one of \"constant\", \"radial\", \"checkerboard\", got \"{other}\""
-                ),
-            ))
+            let field = GratingField::checkerboard(cell, even, odd)
+                .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?;
+            (field, twist_deg, plain_color.as_ref())
         }
     };
     let field = field
-        .twisted(twist)
+        .twisted(degrees(&f("twist_deg"), *twist)?)
         .map_err(|e| FieldError::new(f("twist_deg"), e.to_string()))?;
-    let plain = match fd.plain_color {
-        Some(c) => color(&f("plain_color"), c)?,
+    let plain = match plain {
+        Some(c) => vec3(&f("plain_color"), *c, limits::COLOR)?,
         None => base_color,
     };
     Ok((field, plain))

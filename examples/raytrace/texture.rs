@@ -150,9 +150,32 @@ pub struct ImageTexture {
 }
 
 impl ImageTexture {
-    pub fn load(path: &Path) -> Result<ImageTexture, String> {
-        let img = image::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    /// Loads a PNG (or any format the `image` crate reads here) of at most `max_texels` pixels,
+    /// checked from the file's header before anything is decoded.
+    pub fn load(path: &Path, max_texels: u64) -> Result<ImageTexture, String> {
+        let cannot = |e: &dyn std::fmt::Display| format!("cannot read {}: {e}", path.display());
+        let reader = || {
+            image::ImageReader::open(path)
+                .map_err(|e| cannot(&e))?
+                .with_guessed_format()
+                .map_err(|e| cannot(&e))
+        };
+        let (w, h) = reader()?.into_dimensions().map_err(|e| cannot(&e))?;
+        let texels = w as u64 * h as u64;
+        if texels > max_texels {
+            return Err(format!(
+                "{}: {w} x {h} = {texels} pixels, more than the {max_texels} left of the limit on \
+                 texture pixels",
+                path.display()
+            ));
+        }
+        let img = reader()?.decode().map_err(|e| cannot(&e))?;
         Ok(ImageTexture::from_rgb8(&img.to_rgb8()))
+    }
+
+    /// The number of texels.
+    pub fn texels(&self) -> u64 {
+        self.texels.len() as u64
     }
 
     pub fn from_rgb8(img: &image::RgbImage) -> ImageTexture {
