@@ -147,3 +147,17 @@ pub const ONE_SLIT_GAUSS: f64 = 2e-14;
 /// `Uniform { samples: 471 }` against `Exact` for one slit (second order). Measured 1.7e-5
 /// (300 draws); margin 2.4×.
 pub const ONE_SLIT_MIDPOINT: f64 = 4e-5;
+
+// ---- Stam's Bessel function and order efficiencies (tests/baselines.rs, stam_orders.csv) ----
+
+/// J_n(x) against 50-digit mpmath for |x| ≤ 1000 outside the decaying region, absolute.
+/// Measured 2.7e-16; margin 3.7×.
+pub const BESSEL_ABS: f64 = 1e-15;
+/// J_n(x) in the decaying region n > x + 5, relative. Measured 9e-15; margin 2.2×.
+pub const BESSEL_DECAYING: f64 = 2e-14;
+/// J_n(x) at x = 1.5e6 and 2e7, where |J| ≈ 1e-3, absolute. Measured 2e-19; margin 5×.
+pub const BESSEL_LARGE_X: f64 = 1e-18;
+/// |c_m|² of both profiles, relative. Measured 1.5e-13 where it exceeds 1e-6; margin 3.3×.
+pub const EFFICIENCY_REL: f64 = 5e-13;
+/// |c_m|², absolute floor for values at the zeros.
+pub const EFFICIENCY_ABS: f64 = 1e-15;
