@@ -2,6 +2,9 @@
 //! only) and Stam (Fourier optics, feature `stam`). Shared peaks, the reference order
 //! efficiencies, and the energy and reciprocity properties each model claims.
 
+#[path = "support/tolerance.rs"]
+mod tolerance;
+
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{AguHill, Band, DiffractionBrdf, Grating, Peak, Thorman};
 use glam::DVec3;
@@ -265,11 +268,9 @@ mod stam {
             .collect()
     }
 
-    /// J_n against mpmath.besselj at 50 digits: absolute 10⁻¹⁴ for |x| ≤ 1000 (measured
-    /// 2.7·10⁻¹⁶), relative 10⁻¹³ in the decaying region n > x + 5 (measured 9·10⁻¹⁵), and
-    /// absolute 10⁻¹⁷ at x = 1.5·10⁶ and 2·10⁷ where |J| ≈ 10⁻³ (measured 2·10⁻¹⁹).
-    /// The order efficiencies |c_m|² of both profiles to 10⁻⁹ relative (measured 1.5·10⁻¹³ where
-    /// they exceed 10⁻⁶), with an absolute floor of 10⁻¹⁵ for values at the zeros.
+    /// J_n against mpmath.besselj at 50 digits, and the order efficiencies |c_m|² of both
+    /// profiles, within the measured errors of `tests/support/tolerance.rs` (`BESSEL_*`,
+    /// `EFFICIENCY_*`).
     #[test]
     fn order_efficiencies_match_the_reference() {
         let rows = reference();
@@ -282,12 +283,12 @@ mod stam {
                 let tolerance = if r.phase.abs() <= 1000.0 {
                     let decaying = r.order.unsigned_abs() as f64 > r.phase.abs() + 5.0;
                     if decaying {
-                        1e-13 * j.abs()
+                        tolerance::BESSEL_DECAYING * j.abs()
                     } else {
-                        1e-14
+                        tolerance::BESSEL_ABS
                     }
                 } else {
-                    1e-17
+                    tolerance::BESSEL_LARGE_X
                 };
                 assert!(
                     (got - j).abs() <= tolerance,
@@ -300,7 +301,8 @@ mod stam {
             }
             let got = r.profile.efficiency(r.order, r.phase);
             assert!(
-                (got - r.efficiency).abs() <= 1e-9 * r.efficiency + 1e-15,
+                (got - r.efficiency).abs()
+                    <= tolerance::EFFICIENCY_REL * r.efficiency + tolerance::EFFICIENCY_ABS,
                 "{:?} m = {} φ = {}: {got} vs {}",
                 r.profile,
                 r.order,

@@ -1,10 +1,20 @@
 //! Spectral integration against the independent reference of `python_ref/` (float64 lobe-by-lobe
-//! quadrature in numpy, cross-checked with mpmath; `tests/data/spectral_xyz.csv`).
+//! quadrature in numpy, cross-checked with mpmath; `tests/data/spectral_xyz.csv`): each
+//! strategy's stated bound (see `Strategy`) on the grating path (`Spectral::xyz`, and
+//! `Spectral::xyz_brdf` on `AguHill`, which says it is its grating's intensity) and on the
+//! generic path (`Spectral::xyz_brdf` on a model that does not say so), over every row.
+
+#[path = "support/generic_models.rs"]
+mod generic_models;
+#[path = "support/tolerance.rs"]
+mod tolerance;
 
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
-use diffraction::{Grating, Slits};
-use std::collections::HashMap;
+use diffraction::{AguHill, Grating, Slits};
+use generic_models::{retro, Opaque};
+use std::collections::{BTreeMap, HashMap};
 use std::fs;
+use tolerance as tol;
 
 struct Row {
     d: f64,
@@ -42,10 +52,34 @@ fn rows() -> Vec<Row> {
         .collect()
 }
 
-fn xyz(s: &Spectral, r: &Row, strategy: Strategy) -> [f64; 3] {
-    let g = Grating::with_slits(r.d, r.w, Slits::Finite(r.n)).unwrap();
-    let c = s.xyz(&g, r.u, strategy);
+/// The two paths a strategy is accepted on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Path {
+    /// `Spectral::xyz` on the grating.
+    Grating,
+    /// `Spectral::xyz_brdf` on the grating's `AguHill` model hidden behind `Opaque`, at the
+    /// retro-reflecting pair with phase projection u.
+    Generic,
+}
+
+fn grating(r: &Row) -> Grating {
+    Grating::with_slits(r.d, r.w, Slits::Finite(r.n)).unwrap()
+}
+
+fn xyz(s: &Spectral, r: &Row, path: Path, strategy: Strategy) -> [f64; 3] {
+    let g = grating(r);
+    let c = match path {
+        Path::Grating => s.xyz(&g, r.u, strategy),
+        Path::Generic => {
+            let (wi, wo) = retro(r.u);
+            s.xyz_brdf(&Opaque(AguHill::new(g)), wi, wo, strategy)
+        }
+    };
     [c.x, c.y, c.z]
+}
+
+fn spectral_for(r: &Row) -> Spectral {
+    Spectral::new(r.ill)
 }
 
 /// Largest reference Y over the diffracted directions (d·|u| ≥ 360 nm, where some order m ≠ 0
@@ -53,12 +87,13 @@ fn xyz(s: &Spectral, r: &Row, strategy: Strategy) -> [f64; 3] {
 /// error, which puts the grating's brightest diffraction colour at Y = 1. (The white order 0 at
 /// u = 0 always has Y = 1 and would hide the colours' errors.) See docs/accuracy.md.
 fn brightest(rows: &[Row]) -> HashMap<(u64, u64, u32, Illuminant), f64> {
+    let ybar_area = 106.85689; // ∫ȳ dλ of the 1 nm table, only to set a floor
     let mut m = HashMap::new();
     for r in rows {
         let k = (r.d.to_bits(), r.w.to_bits(), r.n, r.ill);
         // Floor: the Y of an ideal first-order peak (S = 1) at 555 nm under E, 555/(N·∫ȳ),
         // for gratings that diffract nothing (w = d puts every order on a zero of S).
-        let e = m.entry(k).or_insert(555.0 / (r.n as f64 * 106.857));
+        let e = m.entry(k).or_insert(555.0 / (r.n as f64 * ybar_area));
         if r.d * r.u.abs() >= 360.0 {
             *e = e.max(r.xyz[1]);
         }
@@ -66,148 +101,249 @@ fn brightest(rows: &[Row]) -> HashMap<(u64, u64, u32, Illuminant), f64> {
     m
 }
 
-#[test]
-fn exact_strategy_matches_reference_to_1e_6() {
-    let rows = rows();
-    assert!(rows.len() > 2000);
-    let spectral = [Spectral::new(Illuminant::E), Spectral::new(Illuminant::D65)];
-    let mut worst = 0.0f64;
-    for r in &rows {
-        let s = &spectral[(r.ill == Illuminant::D65) as usize];
-        let got = xyz(s, r, Strategy::Exact);
-        for (c, (&g, &want)) in got.iter().zip(&r.xyz).enumerate() {
-            let err = (g - want).abs();
-            let tol = 1e-6 * want.abs() + 1e-12;
-            assert!(
-                err <= tol,
-                "d={} w={} N={} u={} {:?} channel {c}: got {} want {} (rel {:e})",
-                r.d,
-                r.w,
-                r.n,
-                r.u,
-                r.ill,
-                g,
-                want,
-                err / want.abs()
-            );
-            if want.abs() > 1e-9 {
-                worst = worst.max(err / want.abs());
-            }
-        }
-    }
-    println!("exact: worst relative error {worst:e}");
+fn scale(bright: &HashMap<(u64, u64, u32, Illuminant), f64>, r: &Row) -> f64 {
+    bright[&(r.d.to_bits(), r.w.to_bits(), r.n, r.ill)]
 }
 
-/// Auto meets the accuracy it is asked for, relative to the brightest colour of the grating
-/// (the exposure that puts it at Y = 1).
+/// Whether order 0's half period (x < ½) reaches into the band: d·|u|/830 nm < ½.
+fn order0_in_band(r: &Row) -> bool {
+    r.d * r.u.abs() / 830.0 < 0.5
+}
+
+fn describe(r: &Row) -> String {
+    format!("d={} w={} N={} u={} {:?}", r.d, r.w, r.n, r.u, r.ill)
+}
+
+/// `AguHill` says it is its grating's intensity, so `xyz_brdf` on it is `xyz`, bit for bit,
+/// for every strategy: the grating path's bounds below hold for it.
 #[test]
-fn auto_strategy_meets_requested_accuracy() {
+fn agu_hill_takes_the_grating_path() {
     let rows = rows();
-    let bright = brightest(&rows);
-    let spectral = [Spectral::new(Illuminant::E), Spectral::new(Illuminant::D65)];
-    for accuracy in [1e-2, 1e-3, 1e-4, 1e-6] {
-        let mut worst = 0.0f64;
-        for r in &rows {
-            let s = &spectral[(r.ill == Illuminant::D65) as usize];
-            let got = xyz(s, r, Strategy::Auto { accuracy });
-            let scale = bright[&(r.d.to_bits(), r.w.to_bits(), r.n, r.ill)];
-            for (c, (&g, &want)) in got.iter().zip(&r.xyz).enumerate() {
-                let err = (g - want).abs() / scale;
-                worst = worst.max(err);
-                assert!(
-                    err <= accuracy,
-                    "auto:{accuracy:e} d={} w={} N={} u={} {:?} channel {c}: got {} want {} \
-                     (error {err:e} of the brightest Y)",
-                    r.d,
-                    r.w,
-                    r.n,
-                    r.u,
-                    r.ill,
-                    g,
-                    want
+    let strategies = [
+        Strategy::Exact,
+        Strategy::PeakSearch { refine: false },
+        Strategy::PeakSearch { refine: true },
+        Strategy::PaperPeaks,
+        Strategy::Auto { accuracy: 1e-3 },
+        Strategy::GaussLegendre { intervals: 4 },
+        Strategy::Uniform { samples: 7 },
+    ];
+    for r in rows.iter().step_by(7) {
+        let s = spectral_for(r);
+        let (wi, wo) = retro(r.u);
+        let model = AguHill::new(grating(r));
+        for st in strategies {
+            let want = s.xyz(&grating(r), r.u, st);
+            assert_eq!(s.xyz_brdf(&model, wi, wo, st), want, "{st} {}", describe(r));
+        }
+    }
+}
+
+/// The worst relative error of `Exact` against the colour itself, over every component of
+/// every row, with the place where it occurs.
+fn exact_worst(rows: &[Row], path: Path) -> (f64, String) {
+    let mut worst = (0.0f64, String::new());
+    for r in rows {
+        let got = xyz(&spectral_for(r), r, path, Strategy::Exact);
+        for (c, (&g, &want)) in got.iter().zip(&r.xyz).enumerate() {
+            let rel = (g - want).abs() / want.abs();
+            if rel > worst.0 {
+                worst = (
+                    rel,
+                    format!("{} channel {c}: got {g} want {want}", describe(r)),
                 );
             }
         }
-        println!("auto:{accuracy:e}: worst error {worst:e} of the brightest Y");
     }
+    worst
 }
 
-/// The error of each cheap strategy, per N, relative to the brightest colour (printed with
-/// --nocapture; the bounds asserted are those `Spectral::choose` relies on): 8/N of the brightest
-/// diffraction colour, plus, where order 0's half period reaches into the band
-/// (d·|u|/830 nm < ½), 2e-3 of the colour itself (the peak search integrates that broad light
-/// coarsely).
+/// `Exact` on the grating path: within its documented 10⁻⁶ of the colour itself, and within
+/// the measured worst error with its margin, component by component.
 #[test]
-fn peak_search_error_bounds_hold() {
+fn exact_meets_its_bound_on_the_grating_path() {
+    let rows = rows();
+    assert!(rows.len() > 2000);
+    let (worst, at) = exact_worst(&rows, Path::Grating);
+    println!("exact, grating path: worst relative error {worst:.3e} at {at}");
+    assert!(worst <= tol::EXACT_DOCUMENTED, "{worst:e} at {at}");
+    assert!(worst <= tol::EXACT_GRATING, "{worst:e} at {at}");
+}
+
+/// `Exact` on the generic path against the same reference: the measured error, relative to
+/// the brightest order, as a regression bound (the documented bound is checked, and missed,
+/// by `exact_meets_its_documented_bound_on_the_generic_path`).
+#[test]
+fn exact_generic_path_error_is_as_measured() {
     let rows = rows();
     let bright = brightest(&rows);
-    let spectral = [Spectral::new(Illuminant::E), Spectral::new(Illuminant::D65)];
-    let mut table: std::collections::BTreeMap<u32, [f64; 3]> = Default::default();
-    for r in &rows {
-        let s = &spectral[(r.ill == Illuminant::D65) as usize];
-        let scale = bright[&(r.d.to_bits(), r.w.to_bits(), r.n, r.ill)];
-        let order0 = r.d * r.u.abs() / 830.0 < 0.5;
-        let size = r.xyz.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-        for (i, refine) in [false, true].into_iter().enumerate() {
-            let got = xyz(s, r, Strategy::PeakSearch { refine });
-            let err = (0..3)
-                .map(|c| (got[c] - r.xyz[c]).abs())
-                .fold(0.0, f64::max);
-            let e = table.entry(r.n).or_default();
-            if order0 {
-                // Part of the error not covered by the orders' bound, relative to the colour.
-                let excess = (err - 8.0 / r.n as f64 * scale).max(0.0) / size;
-                e[2] = e[2].max(excess);
-            } else {
-                e[i] = e[i].max(err / scale);
-            }
+    let worst = auto_worst(&rows, &bright, Path::Generic, Strategy::Exact);
+    println!(
+        "exact, generic path: worst {:.3e} of the brightest at {}",
+        worst.0, worst.1
+    );
+    assert!(
+        worst.0 <= tol::EXACT_GENERIC_OF_BRIGHTEST,
+        "{:e} at {}",
+        worst.0,
+        worst.1
+    );
+}
+
+#[test]
+#[ignore = "fails: the generic path's Exact is 5.3e-4 of the brightest order (3.8e-4 of the \
+            colour itself where it is bright, up to 0.35 in the dark between orders), not 1e-6"]
+fn exact_meets_its_documented_bound_on_the_generic_path() {
+    let rows = rows();
+    let (worst, at) = exact_worst(&rows, Path::Generic);
+    assert!(worst <= tol::EXACT_DOCUMENTED, "{worst:e} at {at}");
+}
+
+/// Per N: the worst error of the peak search away from order 0, times N, relative to the
+/// brightest order; and in order 0's region the worst excess over the documented orders' term
+/// 8/N, relative to the colour itself.
+fn peak_search_table(rows: &[Row], path: Path, refine: bool) -> BTreeMap<u32, (f64, f64)> {
+    let bright = brightest(rows);
+    let mut table: BTreeMap<u32, (f64, f64)> = BTreeMap::new();
+    for r in rows {
+        let got = xyz(&spectral_for(r), r, path, Strategy::PeakSearch { refine });
+        let err = (0..3)
+            .map(|c| (got[c] - r.xyz[c]).abs())
+            .fold(0.0, f64::max);
+        let scale = scale(&bright, r);
+        let n = r.n as f64;
+        let e = table.entry(r.n).or_default();
+        if order0_in_band(r) {
+            let size = r.xyz.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+            e.1 = e.1.max((err - 8.0 / n * scale).max(0.0) / size);
+        } else {
+            e.0 = e.0.max(err * n / scale);
         }
     }
-    for (n, [plain, refined, order0]) in &table {
+    for (n, (orders, order0)) in &table {
         println!(
-            "N = {n:>8}: peaks {plain:.2e}  peaks-refined {refined:.2e}  (order-0 region: {order0:.2e} of the colour)"
+            "peaks {path:?} refine={refine} N = {n:>7}: error {orders:.3}/N of the brightest, \
+             order-0 region {order0:.2e} of the colour beyond 8/N"
         );
-        if *n >= 100 {
+    }
+    table
+}
+
+/// `PeakSearch` (both modes) on the grating path: within 8/N of the brightest order's colour
+/// plus, where order 0's half period reaches into the band, 2·10⁻³ of the colour itself (the
+/// documented bound, for every N of the grid), and within the measured error per N with its
+/// margin.
+#[test]
+fn peak_search_meets_its_bound_on_the_grating_path() {
+    let rows = rows();
+    for (refine, column) in [(false, 1), (true, 2)] {
+        let table = peak_search_table(&rows, Path::Grating, refine);
+        assert_eq!(table.len(), tol::PEAK_SEARCH_GRATING.len());
+        for (&(n, plain, refined), (&m, &(orders, order0))) in
+            tol::PEAK_SEARCH_GRATING.iter().zip(&table)
+        {
+            assert_eq!(n, m);
+            let measured = if column == 1 { plain } else { refined };
+            assert!(orders <= 8.0, "refine={refine} N={n}: {orders}/N > 8/N");
             assert!(
-                *plain <= 8.0 / *n as f64,
-                "plain peak search N={n}: {plain:e}"
+                orders <= measured * tol::PEAK_SEARCH_MARGIN,
+                "refine={refine} N={n}: {orders}/N, measured {measured}/N"
             );
             assert!(
-                *refined <= 8.0 / *n as f64,
-                "refined peak search N={n}: {refined:e}"
+                order0 <= tol::PEAK_SEARCH_ORDER0,
+                "refine={refine} N={n}: {order0:e}"
             );
-            assert!(*order0 <= 2e-3, "order-0 region N={n}: {order0:e}");
         }
     }
 }
 
+/// `PeakSearch` on the generic path: the measured error per N away from order 0, as a
+/// regression bound (the documented bound is checked, and missed, by
+/// `peak_search_meets_its_documented_bound_on_the_generic_path`). Both modes are one
+/// algorithm there.
 #[test]
-#[ignore = "diagnostic listing"]
-fn list_worst_peak_cases() {
+fn peak_search_generic_path_error_is_as_measured() {
     let rows = rows();
-    let bright = brightest(&rows);
-    let s = Spectral::new(Illuminant::E);
-    for n in [30u32, 300, 3000, 30000, 1000000] {
-        let mut v: Vec<(f64, String)> = vec![];
-        for r in rows.iter().filter(|r| r.n == n && r.ill == Illuminant::E) {
-            let scale = bright[&(r.d.to_bits(), r.w.to_bits(), r.n, r.ill)];
-            for refine in [false, true] {
-                let got = xyz(&s, r, Strategy::PeakSearch { refine });
-                let err = (0..3)
-                    .map(|c| (got[c] - r.xyz[c]).abs() / scale)
-                    .fold(0.0, f64::max);
-                v.push((
+    let table = peak_search_table(&rows, Path::Generic, false);
+    assert_eq!(table.len(), tol::PEAK_SEARCH_GENERIC.len());
+    for (&(n, measured), (&m, &(orders, _))) in tol::PEAK_SEARCH_GENERIC.iter().zip(&table) {
+        assert_eq!(n, m);
+        assert!(
+            orders <= measured * tol::PEAK_SEARCH_MARGIN,
+            "N={n}: {orders}/N, measured {measured}/N"
+        );
+    }
+    for r in rows.iter().step_by(5) {
+        let s = spectral_for(r);
+        let a = xyz(&s, r, Path::Generic, Strategy::PeakSearch { refine: false });
+        let b = xyz(&s, r, Path::Generic, Strategy::PeakSearch { refine: true });
+        assert_eq!(a, b, "{}", describe(r));
+    }
+}
+
+#[test]
+#[ignore = "fails: on the generic path the peak search gives a peak at a band end its whole \
+            equivalent width (28/N of the brightest at d=1600 w=160 N=1e6 u=0.9, order 4 at \
+            360 nm), and returns 0 in order 0's region outside its central lobe (all of the \
+            colour, e.g. d=10000 N=1e6 u=3e-7: Y=1.8e-3)"]
+fn peak_search_meets_its_documented_bound_on_the_generic_path() {
+    let rows = rows();
+    for (n, (orders, order0)) in peak_search_table(&rows, Path::Generic, false) {
+        assert!(orders <= 8.0, "N={n}: {orders}/N > 8/N");
+        assert!(order0 <= 2e-3, "N={n}: order-0 region {order0:e}");
+    }
+}
+
+/// The worst error relative to the brightest order's colour.
+fn auto_worst(
+    rows: &[Row],
+    bright: &HashMap<(u64, u64, u32, Illuminant), f64>,
+    path: Path,
+    strategy: Strategy,
+) -> (f64, String) {
+    let mut worst = (0.0f64, String::new());
+    for r in rows {
+        let got = xyz(&spectral_for(r), r, path, strategy);
+        let scale = scale(bright, r);
+        for (c, (&g, &want)) in got.iter().zip(&r.xyz).enumerate() {
+            let err = (g - want).abs() / scale;
+            if err > worst.0 {
+                worst = (
                     err,
-                    format!(
-                        "refine={refine} d={} w={} u={} got {:?} want {:?}",
-                        r.d, r.w, r.u, got, r.xyz
-                    ),
-                ));
+                    format!("{} channel {c}: got {g} want {want}", describe(r)),
+                );
             }
         }
-        v.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap());
-        for (e, s) in v.iter().take(4) {
-            println!("N={n} err {e:.2e} {s}");
-        }
+    }
+    worst
+}
+
+/// `Auto { accuracy }` on the grating path: within `accuracy` of the brightest order's colour
+/// (the documented bound), and within the measured worst error with its margin.
+#[test]
+fn auto_meets_its_accuracy_on_the_grating_path() {
+    let rows = rows();
+    let bright = brightest(&rows);
+    for (accuracy, measured) in tol::AUTO_GRATING {
+        let (worst, at) = auto_worst(&rows, &bright, Path::Grating, Strategy::Auto { accuracy });
+        println!("auto:{accuracy:e}, grating path: worst {worst:.3e} of the brightest at {at}");
+        assert!(worst <= accuracy, "auto:{accuracy:e}: {worst:e} at {at}");
+        assert!(
+            worst <= measured * tol::AUTO_MARGIN,
+            "auto:{accuracy:e}: {worst:e} at {at}"
+        );
+    }
+}
+
+#[test]
+#[ignore = "fails: on the generic path Auto is the generic Exact whatever the accuracy, \
+            5.3e-4 of the brightest order (d=740 w=74 N=1e6 u=-0.63): auto:1e-4 and auto:1e-6 \
+            are missed"]
+fn auto_meets_its_accuracy_on_the_generic_path() {
+    let rows = rows();
+    let bright = brightest(&rows);
+    for (accuracy, _) in tol::AUTO_GRATING {
+        let (worst, at) = auto_worst(&rows, &bright, Path::Generic, Strategy::Auto { accuracy });
+        assert!(worst <= accuracy, "auto:{accuracy:e}: {worst:e} at {at}");
     }
 }
