@@ -108,6 +108,13 @@ pub trait DiffractionBrdf {
     /// (wi, wo) sees, in order of increasing |m|, with its value of `eval` at the peak and its
     /// equivalent width; returns the count and whether the order-0 lobe is seen.
     ///
+    /// This is the contract the colour integrator's generic path
+    /// ([`Spectral::xyz_brdf`](crate::spectrum::Spectral::xyz_brdf) for a model without a
+    /// [`grating_response`](Self::grating_response)) relies on for its stated bounds: every
+    /// feature of `eval` in wavelength narrower than 2 nm is a visited peak, and `specular` is
+    /// `true` wherever order 0's light reaches the band. A model whose intensity has unreported
+    /// narrow side lobes (a grating's F_N) should say what it is through `grating_response`.
+    ///
     /// ```
     /// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
     /// use glam::DVec3;

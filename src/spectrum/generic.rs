@@ -8,7 +8,7 @@ use super::{Spectral, Strategy, BAND};
 use crate::cie;
 use crate::color::Xyz;
 use crate::math::{ceil, floor};
-use crate::DiffractionBrdf;
+use crate::{DiffractionBrdf, Peak};
 
 /// Where a model's order-0 lobe is seen, the peak search integrates the whole band with 8-point
 /// Gauss-Legendre on this many equal intervals (29.4 nm each): order 0's light is broad in
@@ -21,13 +21,14 @@ const ORDER0_INTERVALS: u32 = 16;
 /// integrates that smooth tail.
 const PEAK_WINDOW_WIDTHS: f64 = 64.0;
 
-/// Pieces of the peak window, each integrated with 8 points: the main lobe (two equivalent
-/// widths) gets 4 pieces, 32 points.
+/// Pieces of the peak window, each integrated with 8 points: one piece per equivalent width, so
+/// the main lobe (±1 width) gets 16 points.
 const PEAK_WINDOW_PIECES: u32 = 128;
 
-/// Peaks at least this wide (nm) are left to the 1 nm rule: 8 points per nanometre resolve a lobe
-/// of half a nanometre to `Exact`'s bound.
-const RESOLVED_WIDTH_NM: f64 = 0.5;
+/// Peaks at least this wide (nm) are left to the 1 nm rule, whose 8 points per nanometre put 16
+/// points across such a peak's main lobe, as the window does. (At 0.5 nm, Thorman's lobes of
+/// 0.5-0.6 nm were integrated with 4 points per width, 1.2·10⁻⁶ off.)
+const RESOLVED_WIDTH_NM: f64 = 2.0;
 
 impl Spectral {
     /// The reference colour of any [`DiffractionBrdf`] at (wi, wo): ∫E·f·cmf/∫E·ȳ with f the
@@ -43,7 +44,8 @@ impl Spectral {
     /// the peak values at their wavelengths, and the white scaled by the band-averaged value
     /// where the order-0 lobe is seen; `Exact` and `Auto` 8-point Gauss-Legendre on every 1 nm
     /// step of the tables, refined to 128 pieces over ±64 equivalent widths around every
-    /// visited peak narrower than 0.5 nm.
+    /// visited peak narrower than 2 nm. The bounds hold for models that keep the contract of
+    /// [`DiffractionBrdf::peaks`].
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -89,15 +91,40 @@ impl Spectral {
             Strategy::Uniform { samples } => acc = midpoint_rule(samples, &f),
             Strategy::GaussLegendre { intervals } => acc = gauss_legendre_rule(intervals, &f),
             Strategy::PeakSearch { .. } => {
-                let summary = brdf.peaks(wi, wo, BAND, &mut |p| {
-                    acc += self.weight(p.wavelength_nm) * p.intensity * cos * p.equivalent_width_nm;
-                });
-                if summary.specular {
-                    let step = BAND.width_nm() / ORDER0_INTERVALS as f64;
-                    for j in 0..ORDER0_INTERVALS {
-                        let a = BAND.min_nm() + j as f64 * step;
-                        gl8(a, a + step, &mut acc, &f);
+                // Each peak its value times its equivalent width; a peak whose window reaches a
+                // band end by quadrature of the part inside, the window cut halfway to the
+                // neighbouring peaks. Peaks come in order of decreasing wavelength, so each is
+                // handled when the next arrives (its neighbours then known).
+                let mut pending: Option<(Peak, f64)> = None; // the peak, the previous λ
+                let handle = |p: Peak, longer: f64, shorter: f64, acc: &mut DVec3| {
+                    let w = p.equivalent_width_nm;
+                    let (l0, l1) = (
+                        p.wavelength_nm - PEAK_WINDOW_WIDTHS * w,
+                        p.wavelength_nm + PEAK_WINDOW_WIDTHS * w,
+                    );
+                    if l0 < BAND.min_nm() || l1 > BAND.max_nm() {
+                        let a = l0.max(0.5 * (p.wavelength_nm + shorter)).max(BAND.min_nm());
+                        let b = l1.min(0.5 * (p.wavelength_nm + longer)).min(BAND.max_nm());
+                        *acc += window(a, b, &f);
+                    } else {
+                        *acc += self.weight(p.wavelength_nm) * (p.intensity * cos * w);
                     }
+                };
+                let summary = brdf.peaks(wi, wo, BAND, &mut |p| {
+                    if let Some((q, longer)) = pending.take() {
+                        handle(q, longer, p.wavelength_nm, &mut acc);
+                        pending = Some((p, q.wavelength_nm));
+                    } else {
+                        pending = Some((p, f64::INFINITY));
+                    }
+                });
+                if let Some((q, longer)) = pending {
+                    handle(q, longer, f64::NEG_INFINITY, &mut acc);
+                }
+                // Order 0's light is broad and may lie under the peaks: where it is seen, the
+                // peak search is `Exact` (no peak counted twice).
+                if summary.specular {
+                    acc = self.exact_generic(brdf, wi, wo, &f);
                 }
             }
             Strategy::PaperPeaks => {
@@ -116,59 +143,90 @@ impl Spectral {
                     acc += DVec3::new(self.white.x, self.white.y, self.white.z) * k;
                 }
             }
-            Strategy::Exact | Strategy::Auto { .. } => {
-                let (lo, hi) = (BAND.min_nm(), BAND.max_nm());
-                let mut l = lo;
-                while l < hi {
-                    gl8(l, l + 1.0, &mut acc, &f);
-                    l += 1.0;
-                }
-                // Resolve each narrow peak: over the whole 1 nm steps around ±PEAK_WINDOW_WIDTHS
-                // equivalent widths, replace the 1 nm rule by PEAK_WINDOW_PIECES pieces (split at the table rows). Peaks come
-                // in order of decreasing wavelength; each window stops where the previous began,
-                // so windows never overlap.
-                let mut previous_start = hi;
-                brdf.peaks(wi, wo, BAND, &mut |p| {
-                    let w = p.equivalent_width_nm;
-                    if w.is_nan() || w <= 0.0 || w >= RESOLVED_WIDTH_NM {
-                        return;
-                    }
-                    let a = floor(p.wavelength_nm - PEAK_WINDOW_WIDTHS * w).max(lo);
-                    let b = ceil(p.wavelength_nm + PEAK_WINDOW_WIDTHS * w).min(previous_start);
-                    if b.is_nan() || b <= a {
-                        return;
-                    }
-                    previous_start = a;
-                    let (c0, c1) = (
-                        (p.wavelength_nm - PEAK_WINDOW_WIDTHS * w).max(a),
-                        (p.wavelength_nm + PEAK_WINDOW_WIDTHS * w).min(b),
-                    );
-                    let mut coarse = DVec3::ZERO;
-                    let mut fine = DVec3::ZERO;
-                    let mut t = a;
-                    while t < b {
-                        gl8(t, t + 1.0, &mut coarse, &f);
-                        t += 1.0;
-                    }
-                    let by_rows = |s0: f64, s1: f64, out: &mut DVec3| {
-                        let mut t = s0;
-                        while t < s1 {
-                            let e = (floor(t) + 1.0).min(s1);
-                            gl8(t, e, out, &f);
-                            t = e;
-                        }
-                    };
-                    by_rows(a, c0, &mut fine);
-                    by_rows(c1, b, &mut fine);
-                    let piece = (c1 - c0) / PEAK_WINDOW_PIECES as f64;
-                    for j in 0..PEAK_WINDOW_PIECES {
-                        let s0 = c0 + j as f64 * piece;
-                        by_rows(s0, s0 + piece, &mut fine);
-                    }
-                    acc += fine - coarse;
-                });
-            }
+            Strategy::Exact | Strategy::Auto { .. } => acc = self.exact_generic(brdf, wi, wo, &f),
         }
         Xyz::new(acc.x.max(0.0), acc.y.max(0.0), acc.z.max(0.0))
+    }
+
+    /// `Exact` on the generic path: 8-point Gauss-Legendre on every 1 nm row of the tables, and
+    /// over ±`PEAK_WINDOW_WIDTHS` equivalent widths around every visited peak narrower than
+    /// `RESOLVED_WIDTH_NM`, `PEAK_WINDOW_PIECES` pieces instead.
+    fn exact_generic<B: DiffractionBrdf + ?Sized>(
+        &self,
+        brdf: &B,
+        wi: DVec3,
+        wo: DVec3,
+        f: &dyn Fn(f64) -> DVec3,
+    ) -> DVec3 {
+        let mut acc = DVec3::ZERO;
+        let (lo, hi) = (BAND.min_nm(), BAND.max_nm());
+        let mut l = lo;
+        while l < hi {
+            gl8(l, l + 1.0, &mut acc, f);
+            l += 1.0;
+        }
+        // Resolve each narrow peak: over the whole 1 nm steps around ±PEAK_WINDOW_WIDTHS
+        // equivalent widths, replace the 1 nm rule by the window's pieces (split at the table
+        // rows). Peaks come in order of decreasing wavelength; each window stops where the
+        // previous began, so windows never overlap.
+        let mut previous_start = hi;
+        brdf.peaks(wi, wo, BAND, &mut |p| {
+            let w = p.equivalent_width_nm;
+            if !(w > 0.0 && w < RESOLVED_WIDTH_NM) {
+                return;
+            }
+            let (l0, l1) = (
+                p.wavelength_nm - PEAK_WINDOW_WIDTHS * w,
+                p.wavelength_nm + PEAK_WINDOW_WIDTHS * w,
+            );
+            let a = floor(l0).max(lo);
+            let b = ceil(l1).min(previous_start);
+            if b.partial_cmp(&a) != Some(core::cmp::Ordering::Greater) {
+                return;
+            }
+            previous_start = a;
+            let (c0, c1) = (l0.max(a), l1.min(b));
+            let mut coarse = DVec3::ZERO;
+            let mut t = a;
+            while t < b {
+                gl8(t, t + 1.0, &mut coarse, f);
+                t += 1.0;
+            }
+            let mut fine = window(c0, c1, f);
+            by_rows(a, c0, &mut fine, f);
+            by_rows(c1, b, &mut fine, f);
+            acc += fine - coarse;
+        });
+        acc
+    }
+}
+
+/// ∫ f over [a, b] in `PEAK_WINDOW_PIECES` equal pieces, each split at the tables' 1 nm rows
+/// (8-point Gauss-Legendre on every part).
+fn window(a: f64, b: f64, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
+    let mut out = DVec3::ZERO;
+    if a.partial_cmp(&b) != Some(core::cmp::Ordering::Less) {
+        return out;
+    }
+    let piece = (b - a) / PEAK_WINDOW_PIECES as f64;
+    for j in 0..PEAK_WINDOW_PIECES {
+        let s0 = a + j as f64 * piece;
+        let s1 = if j + 1 == PEAK_WINDOW_PIECES {
+            b
+        } else {
+            s0 + piece
+        };
+        by_rows(s0, s1, &mut out, f);
+    }
+    out
+}
+
+/// 8-point Gauss-Legendre over [s0, s1] split at the integer nanometres.
+fn by_rows(s0: f64, s1: f64, out: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    let mut t = s0;
+    while t < s1 {
+        let e = (floor(t) + 1.0).min(s1);
+        gl8(t, e, out, f);
+        t = e;
     }
 }

@@ -16,7 +16,10 @@ use crate::ParseError;
 ///
 /// Errors are relative to the XYZ of the brightest diffracted order of the model (the scale of
 /// [`Spectral::choose`]). N_eff below is a peak's sharpness, λ_m/(|m|·Δλ_m) with Δλ_m its
-/// equivalent width: N for an N-slit grating.
+/// equivalent width: N for an N-slit grating. On the generic path the bounds hold for models
+/// that keep the contract of [`DiffractionBrdf::peaks`](crate::DiffractionBrdf::peaks): every
+/// feature of `eval` narrower than 2 nm is a reported peak, and `specular` says where order 0's
+/// light reaches the band.
 ///
 /// | variant | cost | bound |
 /// |---|---|---|
@@ -24,7 +27,7 @@ use crate::ParseError;
 /// | `GaussLegendre { intervals: K }` | 8K evaluations | the same, with higher order between |
 /// | `PeakSearch { .. }` | O(visible orders) | 8/N_eff, plus 2·10⁻³ of order 0's own light where its lobe reaches the band |
 /// | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
-/// | `Exact` | see the module docs | 10⁻⁶ relative to the colour itself |
+/// | `Exact` | see the module docs | 10⁻⁶ of the colour itself (of 10⁻³ of the brightest order for darker colours) |
 /// | `Auto { accuracy }` | the cheapest of the above whose bound meets `accuracy` | `accuracy` |
 ///
 /// ```
