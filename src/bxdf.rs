@@ -106,7 +106,9 @@ pub trait DiffractionBrdf {
 
     /// Visits every narrow peak (order m ≠ 0 on the grating equation inside `band`) that
     /// (wi, wo) sees, in order of increasing |m|, with its value of `eval` at the peak and its
-    /// equivalent width; returns the count and whether the order-0 lobe is seen.
+    /// equivalent width; returns the count and whether the order-0 lobe is seen. The crate's
+    /// models visit at most [`MAX_ORDERS`](crate::MAX_ORDERS) orders, those of lowest |m|, so
+    /// the call does bounded work.
     ///
     /// ```
     /// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};

@@ -123,6 +123,10 @@ impl Grating {
     /// use diffraction::{Grating, Slits};
     /// let g = Grating::from_lines_per_mm(600.0, 0.5, Slits::Infinite)?;
     /// assert!((g.period_nm() - 1666.6666666666667).abs() < 1e-9);
+    /// // A density so small that the period overflows is reported as what was passed.
+    /// let err = Grating::from_lines_per_mm(1e-310, 0.5, Slits::Infinite).unwrap_err();
+    /// assert_eq!(err.parameter(), "lines_per_mm");
+    /// assert!(err.to_string().starts_with("invalid lines_per_mm = 1e-310: must satisfy"));
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     pub fn from_lines_per_mm(
@@ -143,7 +147,30 @@ impl Grating {
             ));
         }
         let d = 1.0e6 / lines;
-        Grating::with_slits(d, (open * d).min(d), slits)
+        if !d.is_finite() {
+            // 10⁶ nm / lines_per_mm overflows: name what the caller passed.
+            return Err(Error::invalid(
+                "lines_per_mm",
+                lines,
+                Requirement::AtLeast {
+                    bound_name: "1e6 / f64::MAX",
+                    bound: 1.0e6 / f64::MAX,
+                },
+            ));
+        }
+        let w = open * d;
+        if !(w > 0.0) {
+            // open_fraction·d underflows.
+            return Err(Error::invalid(
+                "open_fraction",
+                open,
+                Requirement::AtLeast {
+                    bound_name: "f64::MIN_POSITIVE / period_nm",
+                    bound: f64::MIN_POSITIVE / d,
+                },
+            ));
+        }
+        Grating::with_slits(d, w.min(d), slits)
     }
 
     /// A grating with an explicit [`Slits`] value.

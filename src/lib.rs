@@ -127,7 +127,7 @@ pub use error::{Error, Requirement};
 pub use float::Float;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
 pub use illumination::Illumination;
-pub use orders::{GratingEquation, Order, Orders, Propagating};
+pub use orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
 
 #[cfg(feature = "stam")]
 pub use bxdf::stam;

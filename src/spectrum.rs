@@ -79,6 +79,7 @@ use crate::color::Xyz;
 use crate::{Band, Grating};
 
 mod auto;
+mod dense;
 mod exact;
 mod generic;
 mod lobes;

@@ -4,11 +4,11 @@
 use glam::DVec3;
 
 use super::rules::{gauss_legendre_rule, gl8, midpoint_rule};
-use super::{Spectral, Strategy, BAND};
+use super::{Spectral, Strategy, BAND, MAX_WAVELENGTHS};
 use crate::cie;
 use crate::color::Xyz;
 use crate::math::{ceil, floor};
-use crate::DiffractionBrdf;
+use crate::{DiffractionBrdf, MAX_ORDERS};
 
 impl Spectral {
     /// The reference colour of any [`DiffractionBrdf`] at (wi, wo): ∫E·f·cmf/∫E·ȳ with f the
@@ -20,11 +20,14 @@ impl Spectral {
     /// `peaks` with the same algorithm each [`Strategy`] names and the same bound (see
     /// [`Strategy`]): `Uniform` and `GaussLegendre` apply their rule to the integrand;
     /// `PeakSearch` (both modes) gives each visited peak its value times its equivalent width,
-    /// plus 8-point Gauss-Legendre on 16 intervals where the order-0 lobe is seen; `PaperPeaks`
+    /// plus 8-point Gauss-Legendre on 16 intervals where the order-0 lobe is seen (and, where
+    /// the model reports [`MAX_ORDERS`](crate::MAX_ORDERS) orders, the most it visits, the rule
+    /// of `GaussLegendre` with its largest count instead); `PaperPeaks`
     /// the peak values at their wavelengths, and the white scaled by the band-averaged value
     /// where the order-0 lobe is seen; `Exact` and `Auto` 8-point Gauss-Legendre on every 1 nm
     /// step of the tables, refined to 128 pieces over ±64 equivalent widths around every
-    /// visited peak narrower than 0.5 nm.
+    /// visited peak narrower than 0.5 nm (the windows never overlap, so at most one per
+    /// nanometre of the band does work). `PaperPeaks` sums the visited peaks only.
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -73,7 +76,11 @@ impl Spectral {
                 let summary = brdf.peaks(wi, wo, BAND, &mut |p| {
                     acc += self.weight(p.wavelength_nm) * p.intensity * cos * p.equivalent_width_nm;
                 });
-                if summary.specular {
+                if summary.orders >= MAX_ORDERS {
+                    // Too many orders to visit (at most MAX_ORDERS were): a comb far finer
+                    // than any table row, integrated by the finest Gauss-Legendre rule instead.
+                    acc = gauss_legendre_rule(MAX_WAVELENGTHS / 8, &f);
+                } else if summary.specular {
                     let step = BAND.width_nm() / 16.0;
                     for j in 0..16 {
                         let a = BAND.min_nm() + j as f64 * step;
