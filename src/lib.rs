@@ -97,7 +97,7 @@
 //! One of `std` and `libm` must be enabled.
 
 #![cfg_attr(not(feature = "std"), no_std)]
-#![cfg_attr(docsrs, feature(doc_auto_cfg))]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");

@@ -261,7 +261,7 @@ impl DiffractionBrdf for Thorman {
 
     /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with intensity `brightness` (its
     /// own lobe's peak; `eval` there also holds the far tails of the other lobes) and equivalent
-    /// width √(2π)·σ·d/|m|, at most [`MAX_ORDERS`](crate::MAX_ORDERS) of them (the lowest |m|).
+    /// width √(2π)·σ·d/|m|, at most [`MAX_ORDERS`] of them (the lowest |m|).
     /// Order 0's lobe is seen where |u| < 8.5·σ.
     fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
         if !both_above(wi.z, wo.z) {

@@ -46,6 +46,10 @@ pub(crate) const DENSE_ORDERS: f64 = 4096.0;
 /// least 0.56·x, below 12.5/(N·x) < 10⁻¹¹ of the colour.
 const WALK_ENDS_BELOW: f64 = 1_099_511_627_776.0; // 2⁴⁰
 
+/// The first-order correction of a block is computed for blocks of at most this many orders
+/// (2²⁶: n² stays exact enough; larger blocks hold orders beyond 2⁵³).
+const MOMENT_MAX_BLOCK: f64 = 67_108_864.0;
+
 /// Blocks per 1 nm row of the tables in the dense comb.
 const BLOCKS_PER_ROW: usize = 16;
 
@@ -98,15 +102,22 @@ fn cos_sum(a: f64, first: f64, n: f64) -> f64 {
 /// first-order term of a smooth factor across the block.
 fn cos_moment(a: f64, first: f64, n: f64) -> f64 {
     let sa = sin_pi(a);
-    let bound = 0.25 * n * n;
-    if sa == 0.0 || n < 2.0 {
-        return 0.0; // a = 1: Σ(m − m_c) = 0; one order: m = m_c
+    if sa == 0.0 || !(2.0..=MOMENT_MAX_BLOCK).contains(&n) {
+        // a = 1: Σ(m − m_c) = 0; one order: m = m_c; huge blocks: orders beyond 2⁵³, where
+        // the correction is far below the rounding of m itself.
+        return 0.0;
     }
+    let bound = 0.25 * n * n;
     let centre = first + 0.5 * (n - 1.0);
     // With m = m_c + j: −sin(2π·a·m_c)·Σ_j j·sin(2π·a·j), and
     // Σ_j j·sin(2π·a·j) = −[n·cos(π·a·n)·sin(π·a) − sin(π·a·n)·cos(π·a)] / (2·sin²(π·a)).
-    let t = -(n * cos_pi(a * n) * sa - sin_pi(a * n) * cos_pi(a)) / (2.0 * sa * sa);
-    (-sin_pi(2.0 * a * centre) * t).clamp(-bound, bound)
+    let t = -(n * cos_pi(a * n) - sin_pi(a * n) * cos_pi(a) / sa) / (2.0 * sa);
+    let v = -sin_pi(2.0 * a * centre) * t;
+    if v.is_finite() {
+        v.clamp(-bound, bound)
+    } else {
+        0.0
+    }
 }
 
 /// Σ_{m=A}^{A+n−1} g(m)·(α − β·cos(2π·a·m)) for a smooth g, from g at the centre and the ends
@@ -245,7 +256,10 @@ impl Spectral {
             let l = q / m;
             DVec3::from(cie::cmf(l)) * (self.illuminant.power(l) * scale)
         };
+        // The paper's sum grows with the number of orders (about q/360 nm): beyond ~10³⁰⁰ of
+        // them it saturates instead of overflowing.
         self.dense_slit_sum(grating, q, &h)
+            .min(DVec3::splat(f64::MAX))
     }
 
     /// Σ_m S(β_m)·h(m) over the orders in the band, h smooth.

@@ -21,7 +21,7 @@ impl Spectral {
     /// [`Strategy`]): `Uniform` and `GaussLegendre` apply their rule to the integrand;
     /// `PeakSearch` (both modes) gives each visited peak its value times its equivalent width,
     /// plus 8-point Gauss-Legendre on 16 intervals where the order-0 lobe is seen (and, where
-    /// the model reports [`MAX_ORDERS`](crate::MAX_ORDERS) orders, the most it visits, the rule
+    /// the model reports [`MAX_ORDERS`] orders, the most it visits, the rule
     /// of `GaussLegendre` with its largest count instead); `PaperPeaks`
     /// the peak values at their wavelengths, and the white scaled by the band-averaged value
     /// where the order-0 lobe is seen; `Exact` and `Auto` 8-point Gauss-Legendre on every 1 nm
