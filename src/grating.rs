@@ -159,7 +159,7 @@ impl Grating {
             ));
         }
         let w = open * d;
-        if !(w > 0.0) {
+        if w.is_nan() || w <= 0.0 {
             // open_fraction·d underflows.
             return Err(Error::invalid(
                 "open_fraction",
@@ -257,7 +257,7 @@ impl Grating {
     /// ```
     #[must_use]
     pub fn phase_cycles(&self, u: f64, lambda_nm: f64) -> f64 {
-        if !(lambda_nm > 0.0) {
+        if lambda_nm.is_nan() || lambda_nm <= 0.0 {
             return 0.0;
         }
         (self.period_nm * (u / lambda_nm)).clamp(-f64::MAX, f64::MAX)

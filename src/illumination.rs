@@ -124,8 +124,9 @@ impl Illumination {
     /// assert!((i - expected).abs() < 1e-12); // the order of the additions only
     /// // Light from below the surface: only the ambient term remains.
     /// assert_eq!(shading.eval(&m, -wi, wo, 480.0, 2.0, 1.0), 0.1 * 2.0);
-    /// // Huge lights saturate instead of overflowing.
-    /// assert_eq!(shading.eval(&m, wi, wo, 480.0, f64::MAX, f64::MAX), f64::MAX);
+    /// // Products that overflow saturate instead.
+    /// let bright = Illumination::new(1.0, 1.0, 1.0)?;
+    /// assert_eq!(bright.eval(&m, wi, wo, 480.0, f64::MAX, f64::MAX), f64::MAX);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]

@@ -144,7 +144,7 @@ impl Thorman {
         // √(2π)·N·d].
         let scale = SQRT_TAU * n * grating.period_nm();
         let sigma = lambda / scale;
-        if !(sigma >= f64::MIN_POSITIVE && sigma <= 1.0) {
+        if !(f64::MIN_POSITIVE..=1.0).contains(&sigma) {
             return Err(Error::invalid(
                 "lambda_nm",
                 lambda,

@@ -196,7 +196,7 @@ impl Spectral {
         block: &mut dyn FnMut(f64, f64, f64) -> DVec3,
     ) -> DVec3 {
         let mut acc = DVec3::ZERO;
-        if !(last >= first) {
+        if last.is_nan() || first.is_nan() || last < first {
             return acc;
         }
         // Orders of the row (j, j + 1] nm are m in [ceil(q/(j + 1)), ceil(q/j) − 1]; the rows
