@@ -89,7 +89,7 @@ pub trait DiffractionBrdf {
     fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64;
 
     /// [`eval`](Self::eval) for `f32` callers. Implementations may override it with a faster
-    /// path; the default widens to `f64`.
+    /// path; the default widens to `f64` and rounds back, saturating at `f32::MAX`.
     ///
     /// ```
     /// use diffraction::{AguHill, DiffractionBrdf, Grating};
@@ -101,12 +101,15 @@ pub trait DiffractionBrdf {
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     fn eval_f32(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
-        self.eval(wi.as_dvec3(), wo.as_dvec3(), lambda_nm as f64) as f32
+        // A finite f64 value beyond f32's range saturates instead of rounding to ∞.
+        (self.eval(wi.as_dvec3(), wo.as_dvec3(), lambda_nm as f64) as f32).min(f32::MAX)
     }
 
     /// Visits every narrow peak (order m ≠ 0 on the grating equation inside `band`) that
     /// (wi, wo) sees, in order of increasing |m|, with its value of `eval` at the peak and its
-    /// equivalent width; returns the count and whether the order-0 lobe is seen.
+    /// equivalent width; returns the count and whether the order-0 lobe is seen. The crate's
+    /// models visit at most [`MAX_ORDERS`](crate::MAX_ORDERS) orders, those of lowest |m|, so
+    /// the call does bounded work.
     ///
     /// This is the contract the colour integrator's generic path
     /// ([`Spectral::xyz_brdf`](crate::spectrum::Spectral::xyz_brdf) for a model without a

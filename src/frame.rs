@@ -87,6 +87,8 @@ impl Vector for DVec3 {
 /// The phase projection u = (wi + wo)·t, for [`Vec3`] or [`DVec3`].
 ///
 /// `wi` toward the light, `wo` toward the viewer, `t` the unit grating vector; all in one frame.
+/// For unit vectors |u| ≤ 2; for vectors the caller made huge (components near `f64::MAX`)
+/// the dot product overflows like any other, which is the caller's own arithmetic.
 ///
 /// ```
 /// use diffraction::frame::phase_projection;

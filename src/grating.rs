@@ -123,6 +123,10 @@ impl Grating {
     /// use diffraction::{Grating, Slits};
     /// let g = Grating::from_lines_per_mm(600.0, 0.5, Slits::Infinite)?;
     /// assert!((g.period_nm() - 1666.6666666666667).abs() < 1e-9);
+    /// // A density so small that the period overflows is reported as what was passed.
+    /// let err = Grating::from_lines_per_mm(1e-310, 0.5, Slits::Infinite).unwrap_err();
+    /// assert_eq!(err.parameter(), "lines_per_mm");
+    /// assert!(err.to_string().starts_with("invalid lines_per_mm = 1e-310: must satisfy"));
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     pub fn from_lines_per_mm(
@@ -143,7 +147,30 @@ impl Grating {
             ));
         }
         let d = 1.0e6 / lines;
-        Grating::with_slits(d, (open * d).min(d), slits)
+        if !d.is_finite() {
+            // 10⁶ nm / lines_per_mm overflows: name what the caller passed.
+            return Err(Error::invalid(
+                "lines_per_mm",
+                lines,
+                Requirement::AtLeast {
+                    bound_name: "1e6 / f64::MAX",
+                    bound: 1.0e6 / f64::MAX,
+                },
+            ));
+        }
+        let w = open * d;
+        if w.is_nan() || w <= 0.0 {
+            // open_fraction·d underflows.
+            return Err(Error::invalid(
+                "open_fraction",
+                open,
+                Requirement::AtLeast {
+                    bound_name: "f64::MIN_POSITIVE / period_nm",
+                    bound: f64::MIN_POSITIVE / d,
+                },
+            ));
+        }
+        Grating::with_slits(d, w.min(d), slits)
     }
 
     /// A grating with an explicit [`Slits`] value.
@@ -218,15 +245,22 @@ impl Grating {
 
     /// The phase in cycles, x = d·u/λ = α/π. Integer x is a grating-equation maximum.
     ///
+    /// Finite for finite input: 0 for λ ≤ 0 (no wave), and ±`f64::MAX` where d·|u|/λ
+    /// overflows.
+    ///
     /// ```
     /// # use diffraction::Grating;
     /// let g = Grating::new(1000.0, 500.0, 10)?;
     /// assert_eq!(g.phase_cycles(0.5, 500.0), 1.0);
+    /// assert_eq!(g.phase_cycles(2.0, 5e-324), f64::MAX); // saturates instead of ∞
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn phase_cycles(&self, u: f64, lambda_nm: f64) -> f64 {
-        self.period_nm * u / lambda_nm
+        if lambda_nm.is_nan() || lambda_nm <= 0.0 {
+            return 0.0;
+        }
+        (self.period_nm * (u / lambda_nm)).clamp(-f64::MAX, f64::MAX)
     }
 
     /// I(u, λ) = S(β)·F_N(α), the paper's eq. 8 with I₀ = 1, in [0, 1].
@@ -363,7 +397,8 @@ impl Grating {
     }
 
     /// The half-width, in u, of the central (order 0) lobe at wavelength λ: the first zero of
-    /// F_N is at |u| = λ/(N·d). Zero for N = ∞.
+    /// F_N is at |u| = λ/(N·d). Zero for N = ∞; saturates at `f64::MAX` where λ/(N·d)
+    /// overflows (a period of a few ulp of zero).
     ///
     /// ```
     /// use diffraction::Grating;
@@ -376,7 +411,7 @@ impl Grating {
     /// ```
     #[must_use]
     pub fn specular_half_width(&self, lambda_nm: f64) -> f64 {
-        lambda_nm / (self.slits.as_f64() * self.period_nm)
+        (lambda_nm / (self.slits.as_f64() * self.period_nm)).min(f64::MAX)
     }
 
     /// Every order m ≠ 0 whose maximum λ_m = d·|u|/|m| lies in `band`, as an allocation-free

@@ -107,9 +107,10 @@ impl Illumination {
     /// diffraction·value)`, where `value` is the model's `eval` (times cos θi when the model
     /// does not include it); the light terms are 0 when either direction is below the surface.
     ///
-    /// The sum overflows to ∞ only when the caller's own coefficients and lights are so large
-    /// that their products do (each term is a product of the caller's finite numbers and a model
-    /// value that is finite).
+    /// Directions must be unit (cos θi = `wi.z` is clamped to 1 for other input) and lights are
+    /// powers, ≥ 0 (a negative light counts as 0). The result is finite and ≥ 0 for finite
+    /// input: where the caller's own coefficients, lights and the model's value are so large
+    /// that their products overflow, it saturates at `f64::MAX`.
     ///
     /// ```
     /// use diffraction::{AguHill, DiffractionBrdf, Grating, Illumination};
@@ -123,6 +124,9 @@ impl Illumination {
     /// assert!((i - expected).abs() < 1e-12); // the order of the additions only
     /// // Light from below the surface: only the ambient term remains.
     /// assert_eq!(shading.eval(&m, -wi, wo, 480.0, 2.0, 1.0), 0.1 * 2.0);
+    /// // Products that overflow saturate instead.
+    /// let bright = Illumination::new(1.0, 1.0, 1.0)?;
+    /// assert_eq!(bright.eval(&m, wi, wo, 480.0, f64::MAX, f64::MAX), f64::MAX);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
@@ -135,12 +139,15 @@ impl Illumination {
         ambient_light: f64,
         light: f64,
     ) -> f64 {
+        let (ambient_light, light) = (ambient_light.max(0.0), light.max(0.0));
         let mut i = self.ambient * ambient_light;
         if both_above(wi.z, wo.z) {
-            let cos = if model.cosine_included() { 1.0 } else { wi.z };
+            let cos_i = wi.z.min(1.0);
+            let cos = if model.cosine_included() { 1.0 } else { cos_i };
             let value = model.eval(wi, wo, lambda_nm) * cos;
-            i += light * (self.diffuse * wi.z + self.diffraction * value);
+            i += light * (self.diffuse * cos_i + self.diffraction * value);
         }
-        i
+        // Each term is ≥ 0, so the sum is never NaN; it saturates instead of overflowing.
+        i.min(f64::MAX)
     }
 }

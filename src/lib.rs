@@ -97,7 +97,7 @@
 //! One of `std` and `libm` must be enabled.
 
 #![cfg_attr(not(feature = "std"), no_std)]
-#![cfg_attr(docsrs, feature(doc_auto_cfg))]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
@@ -130,7 +130,7 @@ pub use error::{Error, Requirement};
 pub use float::Float;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
 pub use illumination::Illumination;
-pub use orders::{GratingEquation, Order, Orders, Propagating};
+pub use orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
 pub use parse::ParseError;
 
 /// The README's examples, compiled and run as doc tests.

@@ -13,6 +13,29 @@ use crate::error::{positive, Error};
 use crate::math;
 use crate::Band;
 
+/// The most orders a library call visits one by one: the `peaks` of the crate's models
+/// ([`DiffractionBrdf::peaks`](crate::DiffractionBrdf::peaks) of `AguHill`, `Thorman`, `Stam`)
+/// visit at most this many, those of lowest |m| (the longest wavelengths, and for the paper's
+/// model the brightest: S(β_m) ≤ 1/(π·m·w/d)²), so that a call does bounded work whatever the
+/// period. The band holds more orders only where d·|u| exceeds about 4·10⁷ nm (4 cm) for the
+/// visible band, where the orders are spaced by less than 0.002 nm: a continuum for any
+/// colour integral, which the spectral strategies integrate in closed form without visiting
+/// the orders (see [`spectrum`](crate::spectrum)). The iterators [`GratingEquation::orders`]
+/// and [`Grating::peaks`](crate::Grating::peaks) themselves are lazy and yield every order.
+///
+/// ```
+/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating, MAX_ORDERS};
+/// use glam::DVec3;
+/// let wide = Band::new(1e-9, 1000.0)?; // 1.6·10¹² orders at d = 1600 nm, u = 1
+/// let model = AguHill::new(Grating::new(1600.0, 800.0, 10)?);
+/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.4, 0.0, 0.9165));
+/// let mut seen = 0u32;
+/// let summary = model.peaks(wi, wo, wide, &mut |_| seen += 1);
+/// assert_eq!((summary.orders, seen), (MAX_ORDERS, MAX_ORDERS));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+pub const MAX_ORDERS: u32 = 1 << 16;
+
 /// The grating equation of a period d: d·u = m·λ, m ∈ ℤ.
 ///
 /// ```
@@ -132,8 +155,9 @@ impl GratingEquation {
     /// equation wo_x = m·λ/d − wi_x, wo_y = −wi_y, wo_z = √(1 − wo_x² − wo_y²).
     ///
     /// Evanescent orders (wo_x² + wo_y² ≥ 1) are never visited: the range of propagating m is
-    /// computed in closed form, so the cost is the number of propagating orders (at most
-    /// 2·d/λ + 1, and never more than 2³² however small λ is). Order 0 is the mirror
+    /// computed in closed form, so the cost is the number of propagating orders, one step per
+    /// item (at most 2·d/λ + 1, and never more than 2³² however small λ is: orders are `i32`).
+    /// The iterator is lazy; no library call walks it. Order 0 is the mirror
     /// direction. Returns nothing for λ ≤ 0, a non-finite `wi` or |wi_y| ≥ 1.
     ///
     /// ```
@@ -280,6 +304,11 @@ impl Iterator for Propagating {
             }
         }
         None
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = (self.last - self.next + 1).max(0) as usize;
+        (0, Some(n))
     }
 }
 

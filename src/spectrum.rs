@@ -57,6 +57,15 @@
 //! **Monte-Carlo.** [`Spectral::xyz_stratified`] and [`Spectral::xyz_hero`] take the caller's
 //! random numbers, for spectral renderers that average over many samples per pixel.
 //!
+//! **Extremes of d·|u|.** Where the whole band lies inside order 0's central lobe
+//! (N·d·|u|/360 nm < 10⁻⁸), `Exact` and the peak searches return the white (I = 1 to
+//! rounding). Where the band holds more than 4096 orders (d·|u| > 2.6 mm), `Exact`,
+//! `PeakSearch` (both modes) and `PaperPeaks` sum the orders in blocks of consecutive orders
+//! in closed form (Dirichlet sums of sin²(π·m·w/d), about 2·10⁴ weights) instead of one at a
+//! time, so their work is bounded for every period; against the order-by-order walk the
+//! difference is below 10⁻⁷ relative (`Exact` keeps its lobe walk for the partial periods at
+//! the band ends).
+//!
 //! **N → ∞.** With the paper's 1/N² normalisation the area of every order vanishes as 1/N, so the
 //! integral of an infinite grating is 0 except at u = 0 (white); only `PaperPeaks` shows colour.
 //!
@@ -79,6 +88,7 @@ use crate::color::Xyz;
 use crate::{Band, Grating};
 
 mod auto;
+mod dense;
 mod exact;
 mod generic;
 mod lobes;

@@ -213,7 +213,7 @@ fn thorman_rejects_bad_parameters() {
     let infinite = Grating::infinite(1600.0, 800.0).unwrap();
     assert_eq!(
         Thorman::matching(&infinite, 550.0).unwrap_err().parameter(),
-        "lobe_width"
+        "slits"
     );
     let g = Grating::new(1600.0, 800.0, 10).unwrap();
     assert_eq!(

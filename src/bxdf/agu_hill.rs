@@ -4,7 +4,7 @@
 use glam::{DVec3, Vec3};
 
 use crate::bxdf::{both_above, DiffractionBrdf, GratingResponse, PeakSummary};
-use crate::{Band, Grating, Peak};
+use crate::{Band, Grating, Peak, MAX_ORDERS};
 
 /// The paper's model: the unitless Agu-Hill intensity of a grating, S(β)·F_N(α) at
 /// u = (wi + wo)·t = `wi.x + wo.x` (eq. 8, 13), peak 1 at every order's maximum.
@@ -83,7 +83,7 @@ impl DiffractionBrdf for AguHill {
         let peaks = self.grating.peaks(wi.x + wo.x, band);
         let specular = peaks.specular();
         let mut orders = 0;
-        for p in peaks {
+        for p in peaks.take(MAX_ORDERS as usize) {
             visit(p);
             orders += 1;
         }

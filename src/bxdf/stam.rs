@@ -79,7 +79,7 @@ use crate::bxdf::profile::binary_coefficient;
 use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary};
 use crate::error::{positive, Error, Requirement};
 use crate::math;
-use crate::{Band, GratingEquation, Peak};
+use crate::{Band, GratingEquation, Peak, MAX_ORDERS};
 
 /// Lobes are summed out to k·σ_c·|Δu| = 6, where exp(−36) = 2.3·10⁻¹⁶.
 const CUTOFF: f64 = 6.0;
@@ -92,6 +92,10 @@ const SQRT_PI: f64 = 1.772453850905516;
 
 /// Stam's diffraction shader for a one-dimensional periodic surface (see the
 /// [module docs](self) for the derivation and every assumption).
+///
+/// Directions must be unit vectors. Other input is not physical but stays cheap and finite:
+/// the cosines entering the phase are clamped to [0, 1] (see [`Stam::phase`]), which bounds
+/// every Bessel sum, and a non-finite result is returned as 0.
 ///
 /// ```text
 /// f(wi, wo, λ) = F² · G/w² · Σ_m |c_m(k·w·h₀)|² · (k²σ_c²/π) · exp(−k²σ_c²·[(u − m·λ/d)² + v²])
@@ -292,6 +296,11 @@ impl Stam {
     /// The phase φ = k·w·h₀ = 2π·(wi.z + wo.z)·h₀/λ at which the profile's coefficients are
     /// taken.
     ///
+    /// Directions must be unit (as everywhere in the model); the cosines are clamped to [0, 1],
+    /// which changes nothing for unit directions and keeps φ ≤ 4π·h₀/λ for any other input. The
+    /// model's domain is λ ≥ 1 nm (below it `eval` is 0); there and for non-finite input the
+    /// phase is 0, so it is finite for every input (at most 4π·10⁴ for the deepest profile).
+    ///
     /// ```
     /// use diffraction::{Profile, Stam};
     /// use glam::DVec3;
@@ -303,7 +312,11 @@ impl Stam {
     /// ```
     #[must_use]
     pub fn phase(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        2.0 * PI * (wi.z + wo.z) * self.depth_nm / lambda_nm
+        if !(lambda_nm >= MIN_WAVELENGTH_NM && lambda_nm.is_finite()) {
+            return 0.0;
+        }
+        let w = unit_cosine(wi.z) + unit_cosine(wo.z);
+        2.0 * PI * w * self.depth_nm / lambda_nm
     }
 
     /// F²·G/w², the factor common to every order (0 where it is not finite).
@@ -320,6 +333,16 @@ impl Stam {
         } else {
             0.0
         }
+    }
+}
+
+/// A direction's cosine clamped to [0, 1] (0 for NaN): the identity for unit directions above
+/// the surface, and a bound on the work of the Bessel sums for any other input.
+fn unit_cosine(z: f64) -> f64 {
+    if z > 0.0 {
+        z.min(1.0)
+    } else {
+        0.0
     }
 }
 
@@ -383,7 +406,7 @@ impl DiffractionBrdf for Stam {
         let sigma = self.coherence_nm;
         let geometry = self.geometry(wi, wo);
         let mut orders = 0;
-        for p in self.equation.orders(u, band) {
+        for p in self.equation.orders(u, band).take(MAX_ORDERS as usize) {
             let l = p.wavelength_nm;
             let ks = 2.0 * PI * sigma / l;
             let ks2 = ks * ks;

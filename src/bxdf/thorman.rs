@@ -6,7 +6,7 @@ use glam::DVec3;
 use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary};
 use crate::error::{positive, Error, Requirement};
 use crate::math;
-use crate::{Band, Grating, GratingEquation, Peak};
+use crate::{Band, Grating, GratingEquation, Peak, MAX_ORDERS};
 
 /// Lobes are summed out to this many widths σ from their centre: exp(−8.5²/2) = 2·10⁻¹⁶.
 const CUTOFF: f64 = 8.5;
@@ -107,8 +107,19 @@ impl Thorman {
     /// The model with the period of `grating` and the lobe width that gives its peaks the
     /// equivalent widths of the grating's N-slit peaks at `lambda_nm`: σ = λ/(√(2π)·N·d).
     ///
-    /// Fails for N = ∞ (σ would be 0, reported as `lobe_width`), for a non-positive
-    /// `lambda_nm`, and where σ would exceed 1.
+    /// Fails for N = ∞ (σ would be 0; reported as `slits`), for a non-positive `lambda_nm`,
+    /// and where σ would exceed 1 or underflow (reported as `lambda_nm`, with the range
+    /// that gives 0 < σ ≤ 1 for this grating).
+    ///
+    /// ```
+    /// use diffraction::{Grating, Thorman};
+    /// let ideal = Grating::infinite(1600.0, 800.0)?;
+    /// let err = Thorman::matching(&ideal, 550.0).unwrap_err();
+    /// assert_eq!(err.to_string(), "invalid slits = inf: must be finite");
+    /// let one = Grating::new(100.0, 50.0, 1)?; // σ = λ/(√(2π)·100 nm) > 1 for λ > 250.7 nm
+    /// assert_eq!(Thorman::matching(&one, 550.0).unwrap_err().parameter(), "lambda_nm");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     ///
     /// ```
     /// use diffraction::{Band, DiffractionBrdf, Grating, Thorman};
@@ -125,7 +136,24 @@ impl Thorman {
     /// ```
     pub fn matching(grating: &Grating, lambda_nm: f64) -> Result<Thorman, Error> {
         let lambda = positive("lambda_nm", lambda_nm)?;
-        let sigma = lambda / (SQRT_TAU * grating.slits().as_f64() * grating.period_nm());
+        let n = grating.slits().as_f64();
+        if !n.is_finite() {
+            return Err(Error::invalid("slits", n, Requirement::Finite));
+        }
+        // σ = λ/(√(2π)·N·d) must be a normal number in (0, 1]: λ in [√(2π)·N·d·MIN_POSITIVE,
+        // √(2π)·N·d].
+        let scale = SQRT_TAU * n * grating.period_nm();
+        let sigma = lambda / scale;
+        if !(f64::MIN_POSITIVE..=1.0).contains(&sigma) {
+            return Err(Error::invalid(
+                "lambda_nm",
+                lambda,
+                Requirement::Within {
+                    min: scale * f64::MIN_POSITIVE,
+                    max: scale,
+                },
+            ));
+        }
         Thorman::new(grating.period_nm(), sigma)
     }
 
@@ -233,7 +261,8 @@ impl DiffractionBrdf for Thorman {
 
     /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with intensity `brightness` (its
     /// own lobe's peak; `eval` there also holds the far tails of the other lobes) and equivalent
-    /// width √(2π)·σ·d/|m|. Order 0's lobe is seen where |u| < 8.5·σ.
+    /// width √(2π)·σ·d/|m|, at most [`MAX_ORDERS`] of them (the lowest |m|).
+    /// Order 0's lobe is seen where |u| < 8.5·σ.
     fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
         if !both_above(wi.z, wo.z) {
             return PeakSummary::default();
@@ -241,7 +270,7 @@ impl DiffractionBrdf for Thorman {
         let u = wi.x + wo.x;
         let width = SQRT_TAU * self.lobe_width * self.equation.period_nm();
         let mut orders = 0;
-        for p in self.equation.orders(u, band) {
+        for p in self.equation.orders(u, band).take(MAX_ORDERS as usize) {
             visit(Peak {
                 order: p.order,
                 wavelength_nm: p.wavelength_nm,

@@ -4,11 +4,11 @@
 use glam::DVec3;
 
 use super::rules::{gauss_legendre_rule, gl8, midpoint_rule};
-use super::{Spectral, Strategy, BAND};
+use super::{Spectral, Strategy, BAND, MAX_WAVELENGTHS};
 use crate::cie;
 use crate::color::Xyz;
 use crate::math::{ceil, floor};
-use crate::{DiffractionBrdf, Peak};
+use crate::{DiffractionBrdf, Peak, MAX_ORDERS};
 
 /// Where a model's order-0 lobe is seen, the peak search integrates the whole band with 8-point
 /// Gauss-Legendre on this many equal intervals (29.4 nm each): order 0's light is broad in
@@ -40,12 +40,17 @@ impl Spectral {
     /// `peaks` with the same algorithm each [`Strategy`] names and the same bound (see
     /// [`Strategy`]): `Uniform` and `GaussLegendre` apply their rule to the integrand;
     /// `PeakSearch` (both modes) gives each visited peak its value times its equivalent width,
-    /// plus 8-point Gauss-Legendre on 16 intervals where the order-0 lobe is seen; `PaperPeaks`
+    /// plus 8-point Gauss-Legendre on 16 intervals where the order-0 lobe is seen (and, where
+    /// the model reports [`MAX_ORDERS`] orders, the most it visits, the rule
+    /// of `GaussLegendre` with its largest count instead); `PaperPeaks`
     /// the peak values at their wavelengths, and the white scaled by the band-averaged value
     /// where the order-0 lobe is seen; `Exact` and `Auto` 8-point Gauss-Legendre on every 1 nm
     /// step of the tables, refined to 128 pieces over ±64 equivalent widths around every
     /// visited peak narrower than 2 nm. The bounds hold for models that keep the contract of
-    /// [`DiffractionBrdf::peaks`].
+    /// [`DiffractionBrdf::peaks`]. The windows never overlap, so at most one per
+    /// nanometre of the band does work; where a model reports [`MAX_ORDERS`](crate::MAX_ORDERS) peaks
+    /// (a comb finer than any table row) the peak search is `GaussLegendre` with the finest
+    /// rule. `PaperPeaks` sums the visited peaks only.
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -105,7 +110,7 @@ impl Spectral {
                     if l0 < BAND.min_nm() || l1 > BAND.max_nm() {
                         let a = l0.max(0.5 * (p.wavelength_nm + shorter)).max(BAND.min_nm());
                         let b = l1.min(0.5 * (p.wavelength_nm + longer)).min(BAND.max_nm());
-                        *acc += window(a, b, &f);
+                        *acc += window(a, b, w, &f);
                     } else {
                         *acc += self.weight(p.wavelength_nm) * (p.intensity * cos * w);
                     }
@@ -121,9 +126,13 @@ impl Spectral {
                 if let Some((q, longer)) = pending {
                     handle(q, longer, f64::NEG_INFINITY, &mut acc);
                 }
-                // Order 0's light is broad and may lie under the peaks: where it is seen, the
-                // peak search is `Exact` (no peak counted twice).
-                if summary.specular {
+                if summary.orders >= MAX_ORDERS {
+                    // Too many orders to visit (at most MAX_ORDERS were): a comb far finer
+                    // than any table row, integrated by the finest Gauss-Legendre rule instead.
+                    acc = gauss_legendre_rule(MAX_WAVELENGTHS / 8, &f);
+                } else if summary.specular {
+                    // Order 0's light is broad and may lie under the peaks: where it is seen,
+                    // the peak search is `Exact` (no peak counted twice).
                     acc = self.exact_generic(brdf, wi, wo, &f);
                 }
             }
@@ -192,7 +201,7 @@ impl Spectral {
                 gl8(t, t + 1.0, &mut coarse, f);
                 t += 1.0;
             }
-            let mut fine = window(c0, c1, f);
+            let mut fine = window(c0, c1, w, f);
             by_rows(a, c0, &mut fine, f);
             by_rows(c1, b, &mut fine, f);
             acc += fine - coarse;
@@ -201,21 +210,20 @@ impl Spectral {
     }
 }
 
-/// ∫ f over [a, b] in `PEAK_WINDOW_PIECES` equal pieces, each split at the tables' 1 nm rows
-/// (8-point Gauss-Legendre on every part).
-fn window(a: f64, b: f64, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
+/// ∫ f over the part [a, b] of the window of a peak of equivalent width `width`: one piece per
+/// width (at most `PEAK_WINDOW_PIECES`, at least one), each split at the tables' 1 nm rows
+/// (8-point Gauss-Legendre on every part). The cost follows the window's size in widths, so
+/// windows cut short by their neighbours cost little however many there are.
+fn window(a: f64, b: f64, width: f64, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
     let mut out = DVec3::ZERO;
     if a.partial_cmp(&b) != Some(core::cmp::Ordering::Less) {
         return out;
     }
-    let piece = (b - a) / PEAK_WINDOW_PIECES as f64;
-    for j in 0..PEAK_WINDOW_PIECES {
+    let pieces = ceil((b - a) / width).clamp(1.0, PEAK_WINDOW_PIECES as f64) as u32;
+    let piece = (b - a) / pieces as f64;
+    for j in 0..pieces {
         let s0 = a + j as f64 * piece;
-        let s1 = if j + 1 == PEAK_WINDOW_PIECES {
-            b
-        } else {
-            s0 + piece
-        };
+        let s1 = if j + 1 == pieces { b } else { s0 + piece };
         by_rows(s0, s1, &mut out, f);
     }
     out

@@ -8,6 +8,10 @@ use crate::Grating;
 
 impl Spectral {
     pub(super) fn paper_peaks(&self, grating: &Grating, u: f64) -> DVec3 {
+        if Self::is_dense(grating.period_nm() * u) {
+            // Too many orders to walk one by one: the same sum in closed form (see `dense`).
+            return self.dense_paper_peaks(grating, grating.period_nm() * u);
+        }
         let peaks = grating.peaks(u, BAND);
         let mut acc = DVec3::ZERO;
         if peaks.specular() {

@@ -25,6 +25,13 @@ impl Spectral {
             Slits::Infinite => return DVec3::ZERO,
         };
         let q = grating.period_nm() * u;
+        if Self::order0_everywhere(grating, q) {
+            return DVec3::new(self.white.x, self.white.y, self.white.z);
+        }
+        if Self::is_dense(q) {
+            // Too many orders to walk one by one: the same sum in closed form (see `dense`).
+            return self.dense_peak_search(grating, q);
+        }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
         let lobes = Lobes::new(self, grating, q, n);
         let mut acc = DVec3::ZERO;
