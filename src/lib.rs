@@ -97,6 +97,8 @@
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
 
 mod brdf;
+pub mod bsdf;
+mod bsdf_baselines;
 pub mod cie;
 mod cie_data;
 pub mod color;
@@ -104,14 +106,18 @@ mod error;
 mod float;
 pub mod frame;
 mod grating;
+mod grating_bsdf;
+mod groove;
 pub mod kernel;
 mod math;
+mod special;
 pub mod spectrum;
 #[cfg(feature = "stam")]
 pub mod stam;
 mod thorman;
 
 pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
+pub use bsdf::{Bsdf, BsdfFlags, BsdfSample, SampledWavelengths};
 pub use error::{Error, Requirement};
 pub use float::Float;
 #[cfg(feature = "stam")]
@@ -123,3 +129,9 @@ pub use thorman::Thorman;
 pub struct ReadmeDoctests;
 
 pub use grating::{Band, DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
+pub use grating_bsdf::{
+    GratingBsdf, WavelengthSample, DEFENSIVE_ORDER_SHARE, DEFENSIVE_WAVELENGTH_SHARE,
+    MAX_ALBEDO_ORDERS, MAX_WAVELENGTH_PEAKS, MAX_WEIGHTED_ORDERS, NEAR_SPECULAR_HALF_WIDTH,
+    REGULARIZE_MAX_HALF_WIDTH, REGULARIZE_MIN_HALF_WIDTH,
+};
+pub use groove::{GrooveSpread, COHERENCE_PROXY_BOUND, GAUSSIAN_PROXY_BOUND, MAX_GROOVE_SIGMA};
