@@ -17,7 +17,7 @@
 //!   reciprocal; not energy conserving (its geometry factor exceeds 1 off the mirror
 //!   direction, see its docs).
 //!
-//! Both are GLOSSY and [`regularize`](Bsdf::regularize) leaves them unchanged (their lobe
+//! Both answer for wavelengths in [`BASELINE_WAVELENGTHS_NM`] only. Both are GLOSSY and [`regularize`](Bsdf::regularize) leaves them unchanged (their lobe
 //! widths are parameters of the published models).
 //!
 //! ```
@@ -35,7 +35,16 @@ use glam::{DVec2, DVec3};
 
 use crate::brdf::DiffractionBrdf;
 use crate::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere, Bsdf, BsdfFlags, BsdfSample};
+use crate::grating_bsdf::MIN_COS_THETA;
 use crate::thorman::Thorman;
+
+/// As a `Bsdf` the baselines answer for wavelengths in [1 nm, 1 mm] only (outside optics, and
+/// where Thorman's overlapping lobes would make f/pdf overflow); elsewhere f = pdf = 0.
+pub const BASELINE_WAVELENGTHS_NM: (f64, f64) = (1.0, 1e6);
+
+fn in_range(lambda_nm: f64) -> bool {
+    (BASELINE_WAVELENGTHS_NM.0..=BASELINE_WAVELENGTHS_NM.1).contains(&lambda_nm)
+}
 
 /// The default sampler's sample for a model whose value is `f`.
 fn cosine_sample(
@@ -44,12 +53,12 @@ fn cosine_sample(
     u2: DVec2,
     f: impl Fn(DVec3) -> f64,
 ) -> Option<BsdfSample> {
-    if !(wo.z > 0.0 && wo.is_finite() && lambda_nm > 0.0 && u2.is_finite()) {
+    if !(wo.z > 0.0 && wo.is_finite() && in_range(lambda_nm) && u2.is_finite()) {
         return None;
     }
     let wi = sample_cosine_hemisphere(u2);
     let pdf = cosine_hemisphere_pdf(wi.z);
-    if !(pdf > 0.0) {
+    if !(wi.z >= MIN_COS_THETA && pdf > 0.0) {
         return None;
     }
     Some(BsdfSample::new(
@@ -60,9 +69,15 @@ fn cosine_sample(
     ))
 }
 
-/// The default density: cos θi/π for both directions above the surface.
+/// The default density: cos θi/π for both directions above the surface (cos θi at least
+/// [`MIN_COS_THETA`], so that f/pdf stays finite).
 fn cosine_pdf(wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-    if wo.z > 0.0 && wo.is_finite() && wi.is_finite() && lambda_nm > 0.0 {
+    if wo.z > 0.0
+        && wi.z >= MIN_COS_THETA
+        && wo.is_finite()
+        && wi.is_finite()
+        && in_range(lambda_nm)
+    {
         cosine_hemisphere_pdf(wi.z)
     } else {
         0.0
@@ -72,7 +87,11 @@ fn cosine_pdf(wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
 impl Bsdf for Thorman {
     /// `eval(wi, wo, λ)`, read as 1/sr (see the [module docs](crate::bsdf_baselines)).
     fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eval(wi, wo, lambda_nm)
+        if in_range(lambda_nm) {
+            self.eval(wi, wo, lambda_nm)
+        } else {
+            0.0
+        }
     }
 
     /// Cosine-weighted hemisphere.
@@ -98,7 +117,11 @@ impl Bsdf for Thorman {
 impl Bsdf for crate::stam::Stam {
     /// `eval(wi, wo, λ)`: Stam's BRDF, cosine excluded.
     fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eval(wi, wo, lambda_nm)
+        if in_range(lambda_nm) {
+            self.eval(wi, wo, lambda_nm)
+        } else {
+            0.0
+        }
     }
 
     /// Cosine-weighted hemisphere.

@@ -105,7 +105,7 @@ pub const DEFENSIVE_ORDER_SHARE: f64 = 0.125;
 /// Above this many candidate orders the order is chosen uniformly (bounded work per call).
 pub const MAX_WEIGHTED_ORDERS: i64 = 256;
 /// [`GratingBsdf::albedo`] returns `None` above this many candidate orders.
-pub const MAX_ALBEDO_ORDERS: i64 = 4096;
+pub const MAX_ALBEDO_ORDERS: i64 = 512;
 /// Lobes narrower than this half-width in u (at the band's shortest wavelength) are reported by
 /// [`GratingBsdf::is_near_specular`].
 pub const NEAR_SPECULAR_HALF_WIDTH: f64 = 1e-6;
@@ -120,6 +120,9 @@ pub const DEFENSIVE_WAVELENGTH_SHARE: f64 = 0.1;
 /// [`GratingBsdf::sample_wavelength`] follows at most this many peaks (in order of |m|); the
 /// uniform share covers the rest.
 pub const MAX_WAVELENGTH_PEAKS: usize = 64;
+/// Directions with cos θ below this count as below the horizon (f = pdf = 0, never sampled):
+/// it keeps f/pdf finite (the pdf carries a factor cos θi) at a cost of a solid angle of 2π·10⁻¹⁰⁰.
+pub const MIN_COS_THETA: f64 = 1e-100;
 /// x = d·u/λ beyond this magnitude is not sampled (orders would not fit an `i64` exactly).
 const MAX_PHASE: f64 = 4.0e15;
 
@@ -1009,7 +1012,11 @@ impl Bsdf for GratingBsdf {
     /// λ ≤ 0, for non-finite input and for delta lobes (N = ∞ or an ideal groove).
     #[inline]
     fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        if !(wi.z > 0.0 && wo.z > 0.0 && lambda_nm > 0.0 && lambda_nm.is_finite()) {
+        if !(wi.z >= MIN_COS_THETA
+            && wo.z >= MIN_COS_THETA
+            && lambda_nm > 0.0
+            && lambda_nm.is_finite())
+        {
             return 0.0;
         }
         let Slits::Finite(n) = self.grating.slits() else {
@@ -1024,7 +1031,7 @@ impl Bsdf for GratingBsdf {
     /// Shares the hemisphere checks, u and v between the four wavelengths.
     fn f4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
         let mut out = [0.0; 4];
-        if !(wi.z > 0.0 && wo.z > 0.0) || self.groove.is_delta() {
+        if !(wi.z >= MIN_COS_THETA && wo.z >= MIN_COS_THETA) || self.groove.is_delta() {
             return out;
         }
         let Slits::Finite(n) = self.grating.slits() else {
@@ -1040,7 +1047,7 @@ impl Bsdf for GratingBsdf {
     }
 
     fn sample(&self, wo: DVec3, lambda_nm: f64, uc: f64, u2: DVec2) -> Option<BsdfSample> {
-        if !(wo.z > 0.0 && wo.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
+        if !(wo.z >= MIN_COS_THETA && wo.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return None;
         }
         if !(uc.is_finite() && u2.is_finite()) {
@@ -1062,7 +1069,7 @@ impl Bsdf for GratingBsdf {
         let v = self.groove.sample(uy, lambda_nm);
         let (x, y) = (u - wo.x, v - wo.y);
         let z2 = 1.0 - x * x - y * y;
-        if !(z2 > 0.0) {
+        if !(z2 >= MIN_COS_THETA * MIN_COS_THETA) {
             return None;
         }
         let wi = DVec3::new(x, y, math::sqrt(z2));
@@ -1120,7 +1127,11 @@ impl Bsdf for GratingBsdf {
     /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi for the order m owning u (see the [module docs](self));
     /// 0 for delta lobes, below the surface and for non-finite input.
     fn pdf(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        if !(wi.z > 0.0 && wo.z > 0.0 && lambda_nm > 0.0 && lambda_nm.is_finite()) {
+        if !(wi.z >= MIN_COS_THETA
+            && wo.z >= MIN_COS_THETA
+            && lambda_nm > 0.0
+            && lambda_nm.is_finite())
+        {
             return 0.0;
         }
         if !(wi.is_finite() && wo.is_finite()) || self.groove.is_delta() {
@@ -1136,7 +1147,7 @@ impl Bsdf for GratingBsdf {
     /// Shares the checks, u and v; the candidate orders depend on λ and are found per λ.
     fn pdf4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
         let mut out = [0.0; 4];
-        if !(wi.z > 0.0 && wo.z > 0.0 && wi.is_finite() && wo.is_finite()) {
+        if !(wi.z >= MIN_COS_THETA && wo.z >= MIN_COS_THETA && wi.is_finite() && wo.is_finite()) {
             return out;
         }
         if self.groove.is_delta() {

@@ -98,7 +98,7 @@ compile_error!("diffraction needs either the `std` (default) or the `libm` featu
 
 mod brdf;
 pub mod bsdf;
-mod bsdf_baselines;
+pub mod bsdf_baselines;
 pub mod cie;
 mod cie_data;
 pub mod color;
@@ -131,7 +131,7 @@ pub struct ReadmeDoctests;
 pub use grating::{Band, DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
 pub use grating_bsdf::{
     GratingBsdf, WavelengthSample, DEFENSIVE_ORDER_SHARE, DEFENSIVE_WAVELENGTH_SHARE,
-    MAX_ALBEDO_ORDERS, MAX_WAVELENGTH_PEAKS, MAX_WEIGHTED_ORDERS, NEAR_SPECULAR_HALF_WIDTH,
-    REGULARIZE_MAX_HALF_WIDTH, REGULARIZE_MIN_HALF_WIDTH,
+    MAX_ALBEDO_ORDERS, MAX_WAVELENGTH_PEAKS, MAX_WEIGHTED_ORDERS, MIN_COS_THETA,
+    NEAR_SPECULAR_HALF_WIDTH, REGULARIZE_MAX_HALF_WIDTH, REGULARIZE_MIN_HALF_WIDTH,
 };
 pub use groove::{GrooveSpread, COHERENCE_PROXY_BOUND, GAUSSIAN_PROXY_BOUND, MAX_GROOVE_SIGMA};

@@ -393,7 +393,7 @@ pub fn chi2_grating(
 
 /// Mean and standard error of the furnace estimator f·cos θi/pdf over `samples` draws (a
 /// `None` counts as 0); also the largest weight seen.
-pub fn furnace<B: Bsdf>(
+pub fn furnace<B: Bsdf + ?Sized>(
     b: &B,
     wo: DVec3,
     lambda: f64,
@@ -417,7 +417,13 @@ pub fn furnace<B: Bsdf>(
 
 /// ∫ f·cos θi dωi over the hemisphere for any model by a (θ, φ) product rule: `nt` × `np`
 /// pieces of 8-point Gauss-Legendre (for smooth, moderately wide lobes only).
-pub fn hemisphere_integral<B: Bsdf>(b: &B, wo: DVec3, lambda: f64, nt: usize, np: usize) -> f64 {
+pub fn hemisphere_integral<B: Bsdf + ?Sized>(
+    b: &B,
+    wo: DVec3,
+    lambda: f64,
+    nt: usize,
+    np: usize,
+) -> f64 {
     let pi = std::f64::consts::PI;
     integrate(0.0, 0.5 * pi, nt, &|t: f64| {
         let (st, ct) = t.sin_cos();
