@@ -285,7 +285,7 @@ impl BsdfSample {
 /// assert_eq!(l.pdf(), [1.0 / 470.0; 4]);
 /// l.terminate_secondary();
 /// assert!(l.secondary_terminated());
-/// assert_eq!(l.pdf(), [1.0 / 470.0, 0.0, 0.0, 0.0]);
+/// assert_eq!(l.pdf(), [0.25 / 470.0, 0.0, 0.0, 0.0]); // the hero now stands for all four
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SampledWavelengths {

@@ -79,7 +79,7 @@
 //! // The first order of 480 nm at normal incidence: u = 0.3.
 //! let wi = DVec3::new(0.3, 0.0, 0.91f64.sqrt());
 //! // On the peak: ρ²·S(π/2)·N·d/λ·g(0), g(0) = L/λ with L = N·d.
-//! let peak = 0.25 * (4.0 / std::f64::consts::PI.powi(2)) * (1000.0 * 1600.0 / 480.0).powi(2);
+//! let peak = 0.25 * (4.0 / std::f64::consts::PI.powi(2)) * (1000.0f64 * 1600.0 / 480.0).powi(2);
 //! assert!((b.f(wo, wi, 480.0) - peak).abs() < 1e-9 * peak);
 //! // Passive: the albedo is at most w/d.
 //! let a = b.albedo(wo, 480.0).unwrap();
@@ -148,6 +148,62 @@ const MAX_PHASE: f64 = 4.0e15;
 pub struct GratingBsdf {
     grating: Grating,
     groove: GrooveSpread,
+    /// Derived from `grating` (rebuilt by every constructor and by `regularize`).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    cache: Cache,
+}
+
+/// Orders |m| ≤ this have their weights w_m summed in a table, so that the order choice and
+/// its probability cost O(log K) and O(1) instead of O(K).
+const TABLE_ORDERS: usize = 64;
+
+/// What `sample` and `pdf` would otherwise recompute on every call.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Cache {
+    /// atan N (π/2 for N = ∞).
+    atan_n: f64,
+    /// w_0.
+    w0: f64,
+    /// prefix\[k\] = Σ_{j=1}^{k} w_j (w is even in m).
+    prefix: [f64; TABLE_ORDERS + 1],
+}
+
+impl Cache {
+    fn new(grating: &Grating) -> Cache {
+        let rho = grating.slit_width_nm() / grating.period_nm();
+        let mut prefix = [0.0; TABLE_ORDERS + 1];
+        for k in 1..=TABLE_ORDERS {
+            prefix[k] = prefix[k - 1] + order_weight(grating.slits(), rho, k as i64);
+        }
+        Cache {
+            atan_n: atan(grating.slits().as_f64()),
+            w0: order_weight(grating.slits(), rho, 0),
+            prefix,
+        }
+    }
+
+    /// Σ_{k=a}^{b} w_k for −64 ≤ a ≤ b ≤ 64.
+    #[inline]
+    fn sum(&self, a: i64, b: i64) -> f64 {
+        let p = |k: i64| self.prefix[k as usize];
+        if a >= 1 {
+            p(b) - p(a - 1)
+        } else if b <= -1 {
+            p(-a) - p(-b - 1)
+        } else {
+            p(-a) + self.w0 + p(b)
+        }
+    }
+}
+
+/// The weight w_m of order m in the order choice.
+#[inline]
+fn order_weight(slits: Slits, rho: f64, m: i64) -> f64 {
+    let s = single_slit_cycles(rho * m as f64);
+    match slits {
+        Slits::Infinite => s,
+        Slits::Finite(_) => s + DEFENSIVE_ORDER_SHARE * envelope_bound(rho, m),
+    }
 }
 
 #[cfg(feature = "serde")]
@@ -213,7 +269,11 @@ impl GratingBsdf {
             },
             Slits::Infinite => GrooveSpread::Ideal,
         };
-        GratingBsdf { grating, groove }
+        GratingBsdf {
+            grating,
+            groove,
+            cache: Cache::new(&grating),
+        }
     }
 
     /// Sets the groove spread, validated ([`GrooveSpread::validate`]).
@@ -227,8 +287,8 @@ impl GratingBsdf {
     /// ```
     pub fn with_groove(self, groove: GrooveSpread) -> Result<GratingBsdf, Error> {
         Ok(GratingBsdf {
-            grating: self.grating,
             groove: groove.validate()?,
+            ..self
         })
     }
 
@@ -323,12 +383,13 @@ impl GratingBsdf {
     /// The weight w_m of order m in the order choice.
     #[inline]
     fn order_weight(&self, m: i64) -> f64 {
-        let rho = self.duty();
-        let s = single_slit_cycles(rho * m as f64);
-        match self.grating.slits() {
-            Slits::Infinite => s,
-            Slits::Finite(_) => s + DEFENSIVE_ORDER_SHARE * envelope_bound(rho, m),
-        }
+        order_weight(self.grating.slits(), self.duty(), m)
+    }
+
+    /// Whether [lo, hi] lies inside the table.
+    #[inline]
+    fn tabled(lo: i64, hi: i64) -> bool {
+        lo >= -(TABLE_ORDERS as i64) && hi <= TABLE_ORDERS as i64
     }
 
     /// The candidate orders for wo at step λ/d (u per order), or `None` when there are none.
@@ -357,10 +418,15 @@ impl GratingBsdf {
                 uniform: true,
             });
         }
-        let mut total = 0.0;
-        for m in lo..=hi {
-            total += self.order_weight(m);
-        }
+        let total = if Self::tabled(lo, hi) {
+            self.cache.sum(lo, hi)
+        } else {
+            let mut total = 0.0;
+            for m in lo..=hi {
+                total += self.order_weight(m);
+            }
+            total
+        };
         (total > 0.0).then_some(Candidates {
             lo,
             hi,
@@ -388,6 +454,23 @@ impl GratingBsdf {
             return (c.lo + k, 1.0 / c.total);
         }
         let target = uc * c.total;
+        if Self::tabled(c.lo, c.hi) {
+            // The first m with Σ_{lo}^{m} w > target, by bisection on the table's sums.
+            let (mut a, mut b) = (c.lo, c.hi);
+            while a < b {
+                let mid = a + (b - a) / 2;
+                if self.cache.sum(c.lo, mid) > target {
+                    b = mid;
+                } else {
+                    a = mid + 1;
+                }
+            }
+            let mut m = a;
+            while m > c.lo && self.order_weight(m) == 0.0 {
+                m -= 1;
+            }
+            return (m, self.order_weight(m) / c.total);
+        }
         let mut acc = 0.0;
         let mut last = c.lo;
         for m in c.lo..=c.hi {
@@ -443,8 +526,8 @@ impl GratingBsdf {
         let gv = self.groove.proxy_bound();
         match self.grating.slits() {
             Slits::Infinite => rho * rho * c.total * gv,
-            Slits::Finite(n) => {
-                let fu = 2.0 * atan(n as f64);
+            Slits::Finite(_) => {
+                let fu = 2.0 * self.cache.atan_n;
                 if c.uniform {
                     return rho * rho * c.total * fu * gv;
                 }
@@ -606,7 +689,7 @@ impl GratingBsdf {
                 }
                 let (p, w, start) = chosen.or(last)?;
                 let t = ((target - start) / w).clamp(0.0, 1.0);
-                let r = lorentz_r(n, t);
+                let r = lorentz_r(n, self.cache.atan_n, t);
                 let x = (p.order.unsigned_abs() as f64) + r;
                 mix.q / x
             }
@@ -743,7 +826,8 @@ impl GratingBsdf {
                 }
                 if let Some(pk) = found {
                     let w = self.peak_weight(&pk, mix.v);
-                    p += share * w * lorentz_q(mix.n, r) * mix.q / (lambda * lambda);
+                    p += share * w * lorentz_q(mix.n, self.cache.atan_n, r) * mix.q
+                        / (lambda * lambda);
                 }
             }
         }
@@ -782,22 +866,21 @@ fn envelope_bound(rho: f64, m: i64) -> f64 {
     3.0 / (3.0 + a * a)
 }
 
-/// The Lorentzian proxy's inverse CDF: r = tan((2t − 1)·atan N)/(2N), |r| ≤ ½.
+/// The Lorentzian proxy's inverse CDF: r = tan((2t − 1)·atan N)/(2N), |r| ≤ ½ (a = atan N).
 #[inline]
-fn lorentz_r(n: f64, t: f64) -> f64 {
-    let a = atan(n);
+fn lorentz_r(n: f64, a: f64, t: f64) -> f64 {
     let r = tan((2.0 * t - 1.0) * a) / (2.0 * n);
     r.clamp(-0.5, 0.5)
 }
 
-/// The Lorentzian proxy's density on |r| < ½: N/((1 + 4N²r²)·atan N).
+/// The Lorentzian proxy's density on |r| < ½: N/((1 + 4N²r²)·atan N) (a = atan N).
 #[inline]
-fn lorentz_q(n: f64, r: f64) -> f64 {
+fn lorentz_q(n: f64, a: f64, r: f64) -> f64 {
     if r.abs() > 0.5 {
         return 0.0;
     }
     let t = 2.0 * n * r;
-    n / ((1.0 + t * t) * atan(n))
+    n / ((1.0 + t * t) * a)
 }
 
 /// ∫_{−½}^{½} N·F_N(π·r)·h(r) dr for a smooth h, with the pieces also split at `cuts`
@@ -833,11 +916,11 @@ fn period_integral(n: f64, cuts: &[f64; 4], h: &dyn Fn(f64) -> f64) -> f64 {
             }
         }
         let pts = &mut pts[..k];
-        pts.sort_by(|x, y| x.partial_cmp(y).unwrap_or(core::cmp::Ordering::Equal));
+        pts.sort_unstable_by(|x, y| x.partial_cmp(y).unwrap_or(core::cmp::Ordering::Equal));
         for j in 0..k - 1 {
             let (p0, p1) = (pts[j], pts[j + 1]);
             let f = |r: f64| w(r) * h(r);
-            let at_cut = |p: f64| cuts.iter().any(|&c| c == p);
+            let at_cut = |p: f64| cuts.contains(&p);
             sum += match (at_cut(p0), at_cut(p1)) {
                 (true, false) => graded(p0, p1, &f),
                 (false, true) => graded(p1, p0, &f),
@@ -1061,15 +1144,18 @@ impl Bsdf for GratingBsdf {
         let (u, pu) = match self.grating.slits() {
             Slits::Finite(n) => {
                 let nf = n as f64;
-                let r = lorentz_r(nf, ux);
-                ((m as f64 + r) * step, lorentz_q(nf, r) / step)
+                let r = lorentz_r(nf, self.cache.atan_n, ux);
+                (
+                    (m as f64 + r) * step,
+                    lorentz_q(nf, self.cache.atan_n, r) / step,
+                )
             }
             Slits::Infinite => (m as f64 * step, 1.0),
         };
         let v = self.groove.sample(uy, lambda_nm);
         let (x, y) = (u - wo.x, v - wo.y);
         let z2 = 1.0 - x * x - y * y;
-        if !(z2 >= MIN_COS_THETA * MIN_COS_THETA) {
+        if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {
             return None;
         }
         let wi = DVec3::new(x, y, math::sqrt(z2));
@@ -1087,7 +1173,7 @@ impl Bsdf for GratingBsdf {
                 } else {
                     self.order_probability(&c, mr as i64)
                 };
-                let q = lorentz_q(n as f64, xr - mr);
+                let q = lorentz_q(n as f64, self.cache.atan_n, xr - mr);
                 (
                     self.value_uv(n, u, v, lambda_nm),
                     pm * q / step * self.groove.pdf(v, lambda_nm) * wi.z,
@@ -1196,6 +1282,7 @@ impl Bsdf for GratingBsdf {
                 Grating::with_slits(d, self.grating.slit_width_nm(), Slits::Finite(n_new.max(1)))
             {
                 self.grating = g;
+                self.cache = Cache::new(&g);
             }
         }
         self.groove = match self.groove {
@@ -1227,7 +1314,8 @@ impl GratingBsdf {
         let m = math::rint(x);
         let r = x - m;
         let pm = self.order_probability(&c, m as i64);
-        let p = pm * lorentz_q(n, r) / step * self.groove.pdf(v, lambda_nm) * wi.z;
+        let p =
+            pm * lorentz_q(n, self.cache.atan_n, r) / step * self.groove.pdf(v, lambda_nm) * wi.z;
         if p.is_finite() {
             p
         } else {

@@ -18,8 +18,10 @@
 //! ```
 //! use diffraction::GrooveSpread;
 //! let g = GrooveSpread::CoherenceLength { length_nm: 50_000.0 };
-//! // Unit integral: the mass over a wide interval is 1, to the sinc² tail (≈ λ/(π²·L·v)).
-//! assert!((g.mass(-1.0, 1.0, 500.0) - 1.0).abs() < 1e-5);
+//! // Unit integral: the mass over |v| < 1 is 1 less the sinc² tails beyond t = L·v/λ = 100,
+//! // 1/(π²·100) to 5·10⁻⁹ (mpmath).
+//! let tail = 1.0 / (std::f64::consts::PI.powi(2) * 100.0);
+//! assert!((g.mass(-1.0, 1.0, 500.0) - (1.0 - tail)).abs() < 1e-8);
 //! // The peak is L/λ.
 //! assert_eq!(g.value(0.0, 500.0), 100.0);
 //! ```
@@ -246,7 +248,7 @@ impl GrooveSpread {
     /// ```
     #[must_use]
     pub fn mass(self, v0: f64, v1: f64, lambda_nm: f64) -> f64 {
-        if v0.is_nan() || v1.is_nan() || !(lambda_nm > 0.0) {
+        if v0.is_nan() || v1.is_nan() || lambda_nm.is_nan() || lambda_nm <= 0.0 {
             return 0.0;
         }
         let (a, b) = if v0 <= v1 { (v0, v1) } else { (v1, v0) };
@@ -311,7 +313,7 @@ impl GrooveSpread {
             GrooveSpread::Gaussian { sigma } => sigma,
             GrooveSpread::Ideal => 0.0,
         };
-        if !(width > 1e-9 * scale) || !width.is_finite() {
+        if width.is_nan() || width <= 1e-9 * scale || !width.is_finite() {
             return self.value(0.5 * (v0 + v1), lambda_nm);
         }
         let m = self.mass(v0, v1, lambda_nm) / width;

@@ -36,9 +36,9 @@ mod imp {
 pub(crate) use imp::*;
 
 /// 2/√π.
-const TWO_OVER_SQRT_PI: f64 = 1.1283791670955126;
+const TWO_OVER_SQRT_PI: f64 = core::f64::consts::FRAC_2_SQRT_PI;
 /// 1/√π.
-const ONE_OVER_SQRT_PI: f64 = 0.5641895835477563;
+const ONE_OVER_SQRT_PI: f64 = 0.5 * core::f64::consts::FRAC_2_SQRT_PI;
 /// Where erf switches from its series to the continued fraction of erfc.
 const ERF_SPLIT: f64 = 3.0;
 /// Where Si switches from its power series to the continued fraction of E₁(ix).
@@ -203,20 +203,17 @@ mod tests {
     #[test]
     fn erf_and_si_match_mpmath() {
         let erf_ref = [
-            (0.1, 0.112462916018284898404712251014),
-            (1.0, 0.842700792949714869341220635083),
-            (2.9, 0.999958902121900541142004123158),
-            (3.1, 0.99998835134263280041068654191),
-            (5.0, 0.99999999999846254020557196515),
+            (0.1, 0.1124629160182849),
+            (1.0, 0.8427007929497149),
+            (2.9, 0.9999589021219005),
+            (3.1, 0.9999883513426328),
+            (5.0, 0.9999999999984626),
         ];
         for (x, want) in erf_ref {
             assert!((erf(x) - want).abs() <= 2e-15 * want, "erf({x})");
             assert!((erf(-x) + want).abs() <= 2e-15 * want);
         }
-        let erfc_ref = [
-            (3.5, 7.43098372341412745523683756096e-7),
-            (10.0, 2.08848758376254475700078629496e-45),
-        ];
+        let erfc_ref = [(3.5, 7.430983723414128e-07), (10.0, 2.088487583762545e-45)];
         for (x, want) in erfc_ref {
             assert!(
                 (erfc(x) - want).abs() <= 2e-15 * want,
@@ -225,11 +222,11 @@ mod tests {
             );
         }
         let si_ref = [
-            (0.5, 0.493107418043066689161626707573),
-            (3.9, 1.77650136044780545437943939454),
-            (4.1, 1.73874362649176899668201100097),
-            (10.0, 1.65834759421887404933097187939),
-            (1000.0, 1.57023312196877121814796277804),
+            (0.5, 0.4931074180430667),
+            (3.9, 1.7765013604478055),
+            (4.1, 1.738743626491769),
+            (10.0, 1.6583475942188741),
+            (1000.0, 1.5702331219687713),
         ];
         for (x, want) in si_ref {
             assert!((si(x) - want).abs() <= 2e-15, "si({x}) = {}", si(x));
@@ -250,6 +247,6 @@ mod tests {
         };
         assert!((sinc2_integral(t) - closed).abs() < 1e-15);
         // mpmath: quad(sinc(pi s)^2, [0, 1]) = 0.4514116667901403...
-        assert!((sinc2_integral(1.0) - 0.451411666790140313).abs() < 1e-15);
+        assert!((sinc2_integral(1.0) - 0.45141166679014033).abs() < 1e-15);
     }
 }
