@@ -107,6 +107,27 @@ impl GrooveSpread {
         Ok(self)
     }
 
+    /// Whether the parameter passes [`validate`](Self::validate). The fields are public, so an
+    /// unvalidated value can reach the methods: they then return 0 (no lobe) rather than a
+    /// negative or non-finite value.
+    ///
+    /// ```
+    /// # use diffraction::GrooveSpread;
+    /// let bad = GrooveSpread::Gaussian { sigma: -1.0 };
+    /// assert!(!bad.is_valid());
+    /// assert_eq!(bad.value(0.0, 500.0), 0.0);
+    /// ```
+    #[must_use]
+    pub fn is_valid(self) -> bool {
+        match self {
+            GrooveSpread::CoherenceLength { length_nm } => length_nm.is_finite() && length_nm > 0.0,
+            GrooveSpread::Gaussian { sigma } => {
+                sigma.is_finite() && sigma > 0.0 && sigma <= MAX_GROOVE_SIGMA
+            }
+            GrooveSpread::Ideal => true,
+        }
+    }
+
     /// Whether g is the delta δ(v) (then `value` and `pdf` are 0 and the lobes are specular in v).
     ///
     /// ```
@@ -128,7 +149,7 @@ impl GrooveSpread {
     /// ```
     #[must_use]
     pub fn value(self, v: f64, lambda_nm: f64) -> f64 {
-        if !(v.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
+        if !(v.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite() && self.is_valid()) {
             return 0.0;
         }
         let g = match self {
@@ -162,6 +183,9 @@ impl GrooveSpread {
     /// ```
     #[must_use]
     pub fn proxy_scale(self, lambda_nm: f64) -> f64 {
+        if !self.is_valid() {
+            return 0.0;
+        }
         match self {
             GrooveSpread::CoherenceLength { length_nm } => {
                 SINC2_PROXY_SCALE * lambda_nm / (PI * length_nm)
@@ -248,7 +272,8 @@ impl GrooveSpread {
     /// ```
     #[must_use]
     pub fn mass(self, v0: f64, v1: f64, lambda_nm: f64) -> f64 {
-        if v0.is_nan() || v1.is_nan() || lambda_nm.is_nan() || lambda_nm <= 0.0 {
+        if v0.is_nan() || v1.is_nan() || lambda_nm.is_nan() || lambda_nm <= 0.0 || !self.is_valid()
+        {
             return 0.0;
         }
         let (a, b) = if v0 <= v1 { (v0, v1) } else { (v1, v0) };
