@@ -1,13 +1,16 @@
 //! The interface every diffraction model of the crate implements, and the models: the paper's
 //! Agu-Hill grating ([`AguHill`]), and the related work it argues against ([`Thorman`], and
 //! `Stam` with the feature `stam`). One file per model; add a model by adding a file here that
-//! implements [`DiffractionBrdf`].
+//! implements [`DiffractionBrdf`] (and [`Bsdf`] if it is radiometric and samplable).
 
 use glam::{DVec3, Vec3};
 
 use crate::{Band, Grating, Peak};
 
 mod agu_hill;
+pub mod baselines;
+pub mod bsdf;
+pub mod grating_bsdf;
 #[cfg(feature = "stam")]
 pub(crate) mod profile;
 #[cfg(feature = "stam")]
@@ -15,6 +18,8 @@ pub mod stam;
 mod thorman;
 
 pub use agu_hill::AguHill;
+pub use bsdf::{Bsdf, BsdfFlags, BsdfSample, SampledWavelengths};
+pub use grating_bsdf::{GratingBsdf, WavelengthSample};
 #[cfg(feature = "stam")]
 pub use profile::Profile;
 #[cfg(feature = "stam")]
@@ -56,8 +61,9 @@ pub struct PeakSummary {
 /// [`cosine_included`](Self::cosine_included) is `false`. The paper's model does not apply a
 /// cosine to its diffraction term, so [`AguHill`] reports `true`.
 ///
-/// Later versions may add importance sampling (`sample`, `pdf`) as provided methods with
-/// defaults, which is not a breaking change for implementors.
+/// This is the interface every model shares with the colour integrator. Radiometric models
+/// (1/sr, energy-normalised, with importance sampling for path tracers) implement
+/// [`Bsdf`], which extends it; the paper's unitless [`AguHill`] does not.
 ///
 /// ```
 /// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};

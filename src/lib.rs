@@ -50,6 +50,10 @@
 //! * [`DiffractionBrdf`]: the interface every model implements; the models [`AguHill`] (the
 //!   paper's), [`Thorman`] (peak directions only, every order equally bright) and, with the
 //!   feature `stam`, `Stam` (Fourier optics for sinusoidal and binary profiles, in [`stam`]).
+//! * [`Bsdf`], [`GratingBsdf`], [`GrooveSpread`]: the radiometric, samplable interface for path
+//!   tracers (pbrt-v4's BxDF shape: `f`, `sample`, `pdf`, four wavelengths at once) and the
+//!   energy-normalised Agu-Hill grating with an exact sampling density and wavelength sampling
+//!   (`docs/radiometry.md`); [`Thorman`] and `Stam` implement it with a cosine sampler.
 //! * [`Illumination`]: the paper's illumination model (eq. 12), ambient + diffuse + diffraction
 //!   around any model.
 //! * [`cie`]: the CIE 1931 2° observer and illuminants E, D65, A at 1 nm (from colour-science).
@@ -113,22 +117,28 @@ mod error;
 mod float;
 pub mod frame;
 mod grating;
+pub mod groove;
 mod illumination;
 pub mod kernel;
 mod math;
 mod orders;
 mod parse;
+mod special;
 pub mod spectrum;
 
 pub use band::Band;
 #[cfg(feature = "stam")]
 pub use bxdf::stam;
-pub use bxdf::{AguHill, DiffractionBrdf, GratingResponse, PeakSummary, Thorman};
+pub use bxdf::{
+    baselines, bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf,
+    GratingBsdf, GratingResponse, PeakSummary, SampledWavelengths, Thorman, WavelengthSample,
+};
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
 pub use error::{Error, Requirement};
 pub use float::Float;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
+pub use groove::GrooveSpread;
 pub use illumination::Illumination;
 pub use orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
 pub use parse::ParseError;

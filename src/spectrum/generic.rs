@@ -48,7 +48,7 @@ impl Spectral {
     /// step of the tables, refined to 128 pieces over ±64 equivalent widths around every
     /// visited peak narrower than 2 nm. The bounds hold for models that keep the contract of
     /// [`DiffractionBrdf::peaks`]. The windows never overlap, so at most one per
-    /// nanometre of the band does work; where a model reports [`MAX_ORDERS`](crate::MAX_ORDERS) peaks
+    /// nanometre of the band does work; where a model reports [`MAX_ORDERS`] peaks
     /// (a comb finer than any table row) the peak search is `GaussLegendre` with the finest
     /// rule. `PaperPeaks` sums the visited peaks only.
     ///

@@ -1,0 +1,622 @@
+//! The radiometric, samplable BSDF interface for path tracers, shaped like pbrt-v4's `BxDF`.
+//!
+//! [`DiffractionBrdf`] is the crate's shared colour-integration interface: a spectral value
+//! `eval(wi, wo, λ)`, the `peaks` it shows and whether the cosine is included. Every model has
+//! it, including the paper's unitless intensity ([`AguHill`](crate::AguHill)). [`Bsdf`]
+//! **extends** it (it is a supertrait, not a replacement) with what a Monte-Carlo integrator
+//! needs: a value in physical units, importance sampling with an exact density, several
+//! wavelengths per call, flags and regularisation. The colour integrator keeps working on
+//! `DiffractionBrdf` for every model; a path tracer asks for `Bsdf`.
+//!
+//! # Conventions (pbrt-v4's)
+//!
+//! * Directions are unit vectors in the local frame: `z` the normal, `x` the grating vector,
+//!   `y` along the grooves. **`wo` points toward the viewer** (the camera side of the path),
+//!   **`wi` toward the light**; both above the surface (z > 0) for a reflection, otherwise
+//!   `f` and `pdf` are 0.
+//! * [`f`](Bsdf::f) is the BRDF in 1/sr, **cosine excluded**: reflected radiance is
+//!   `∫ f(wo, wi, λ)·L(wi, λ)·cos θi dωi`.
+//! * [`sample`](Bsdf::sample) returns wi with the value f and the density `pdf` in **solid
+//!   angle** (1/sr) of the procedure that produced it. The Monte-Carlo weight is
+//!   `f·cos θi / pdf`. A sample flagged [`BsdfFlags::SPECULAR`] comes from a lobe that is a
+//!   Dirac delta in at least one dimension: then `f` and `pdf` both omit the same delta factor
+//!   and only the weight `f·cos θi / pdf` is meaningful (for a pure delta lobe `pdf` is the
+//!   discrete probability of choosing it), exactly as pbrt's specular BxDFs do; `f` and `pdf`
+//!   of the trait return 0 for such lobes.
+//! * For radiometric models `DiffractionBrdf::eval(wi, wo, λ) == Bsdf::f(wo, wi, λ)` (note the
+//!   argument order) and `cosine_included()` is `false`.
+//!
+//! # Why the paper's model is not a `Bsdf`
+//!
+//! [`AguHill`](crate::AguHill) is the paper's unitless intensity S·F_N with every maximum at 1:
+//! the area of each order falls as 1/N, so the light it reflects depends on N and the paper
+//! needs an exposure per material; it includes no cos θi and has no unit. Reading it as 1/sr
+//! would make a grating almost black for large N and brighter than a mirror for small N. It is
+//! kept exactly as it is (for the paper's pictures) and implements only `DiffractionBrdf`. The
+//! energy-normalised reading of the same optics is [`GratingBsdf`](crate::GratingBsdf).
+//!
+//! # Mapping to Mitsuba 3
+//!
+//! Mitsuba's `BSDF` calls the direction toward the camera `si.wi` and the sampled one `wo`,
+//! and includes the cosine in its values:
+//!
+//! | Mitsuba 3 | this crate |
+//! |---|---|
+//! | `si.wi` | `wo` |
+//! | `wo` (argument / sampled) | `wi` |
+//! | `eval(ctx, si, wo)` | `f(wo, wi, λ) · wi.z` |
+//! | `pdf(ctx, si, wo)` | `pdf(wo, wi, λ)` |
+//! | `sample(ctx, si, sample1, sample2)` → (bs, weight) | `sample(wo, λ, uc, u2)` → bs, weight = `f·wi.z/pdf` |
+//! | `eval_pdf(ctx, si, wo)` | `f4` and `pdf4` (the four-wavelength calls share their work) |
+//! | `BSDFSample3f.sampled_type` | `flags` |
+//!
+//! ```
+//! use diffraction::{Bsdf, DiffractionBrdf, Grating, GratingBsdf};
+//! use glam::{DVec2, DVec3};
+//! let bsdf = GratingBsdf::new(Grating::new(1600.0, 800.0, 1000)?);
+//! let wo = DVec3::new(0.2, 0.1, (1.0f64 - 0.05).sqrt());
+//! let s = bsdf.sample(wo, 550.0, 0.3, DVec2::new(0.4, 0.6)).unwrap();
+//! // The sample's value and density are those of `f` and `pdf` at its direction.
+//! assert!((s.f - bsdf.f(wo, s.wi, 550.0)).abs() <= 1e-9 * s.f);
+//! assert!((s.pdf - bsdf.pdf(wo, s.wi, 550.0)).abs() <= 1e-9 * s.pdf);
+//! // The colour interface sees the same value with the arguments in its own order.
+//! assert_eq!(bsdf.eval(s.wi, wo, 550.0), bsdf.f(wo, s.wi, 550.0));
+//! # Ok::<(), diffraction::Error>(())
+//! ```
+
+use core::ops::BitOr;
+
+use glam::{DVec2, DVec3};
+
+use crate::error::{Error, Requirement};
+use crate::math;
+use crate::Band;
+use crate::DiffractionBrdf;
+
+/// What kind of scattering a lobe or a sample is (pbrt-v4's `BxDFFlags`, reflection only).
+///
+/// ```
+/// use diffraction::BsdfFlags;
+/// let glossy = BsdfFlags::REFLECTION | BsdfFlags::GLOSSY;
+/// assert!(glossy.contains(BsdfFlags::GLOSSY) && !glossy.is_specular());
+/// assert!((BsdfFlags::REFLECTION | BsdfFlags::SPECULAR).is_specular());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct BsdfFlags(u8);
+
+impl BsdfFlags {
+    /// No scattering.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(!BsdfFlags::NONE.contains(BsdfFlags::REFLECTION));
+    /// ```
+    pub const NONE: BsdfFlags = BsdfFlags(0);
+    /// Light leaves on the side it arrived.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(BsdfFlags::REFLECTION.is_reflective());
+    /// ```
+    pub const REFLECTION: BsdfFlags = BsdfFlags(1);
+    /// A lobe spread over the whole hemisphere.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(!BsdfFlags::DIFFUSE.is_specular());
+    /// ```
+    pub const DIFFUSE: BsdfFlags = BsdfFlags(2);
+    /// A lobe with a density (however narrow): `f` and `pdf` are finite functions.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(BsdfFlags::GLOSSY.contains(BsdfFlags::GLOSSY));
+    /// ```
+    pub const GLOSSY: BsdfFlags = BsdfFlags(4);
+    /// A lobe that is a Dirac delta in at least one dimension: `f` and `pdf` return 0 for it,
+    /// and only `sample` reaches it (see the [module docs](self)).
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(BsdfFlags::SPECULAR.is_specular());
+    /// ```
+    pub const SPECULAR: BsdfFlags = BsdfFlags(8);
+
+    /// Whether every flag of `other` is set in `self`.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// let f = BsdfFlags::REFLECTION | BsdfFlags::GLOSSY;
+    /// assert!(f.contains(BsdfFlags::REFLECTION | BsdfFlags::GLOSSY));
+    /// assert!(!f.contains(BsdfFlags::SPECULAR));
+    /// ```
+    #[must_use]
+    pub fn contains(self, other: BsdfFlags) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    /// Whether [`SPECULAR`](Self::SPECULAR) is set.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(!(BsdfFlags::REFLECTION | BsdfFlags::GLOSSY).is_specular());
+    /// ```
+    #[must_use]
+    pub fn is_specular(self) -> bool {
+        self.contains(BsdfFlags::SPECULAR)
+    }
+
+    /// Whether [`REFLECTION`](Self::REFLECTION) is set.
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert!(!BsdfFlags::NONE.is_reflective());
+    /// ```
+    #[must_use]
+    pub fn is_reflective(self) -> bool {
+        self.contains(BsdfFlags::REFLECTION)
+    }
+
+    /// The raw bits (REFLECTION 1, DIFFUSE 2, GLOSSY 4, SPECULAR 8).
+    ///
+    /// ```
+    /// # use diffraction::BsdfFlags;
+    /// assert_eq!((BsdfFlags::REFLECTION | BsdfFlags::SPECULAR).bits(), 9);
+    /// ```
+    #[must_use]
+    pub fn bits(self) -> u8 {
+        self.0
+    }
+}
+
+impl BitOr for BsdfFlags {
+    type Output = BsdfFlags;
+    fn bitor(self, rhs: BsdfFlags) -> BsdfFlags {
+        BsdfFlags(self.0 | rhs.0)
+    }
+}
+
+/// One sampled direction (pbrt-v4's `BSDFSample`).
+///
+/// ```
+/// use diffraction::{BsdfFlags, BsdfSample};
+/// use glam::DVec3;
+/// let s = BsdfSample::new(DVec3::Z, 0.5, 2.0, BsdfFlags::REFLECTION | BsdfFlags::GLOSSY);
+/// assert_eq!(s.weight(), 0.25); // f·cos θi/pdf
+/// assert_eq!(s.order, None);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct BsdfSample {
+    /// The sampled direction toward the light, unit, local frame, z > 0.
+    pub wi: DVec3,
+    /// The BSDF value f(wo, wi, λ), 1/sr, cosine excluded (for a SPECULAR sample: without the
+    /// delta factor, see the [module docs](self)).
+    pub f: f64,
+    /// The density of the sampling procedure at `wi`, in solid angle, > 0 (for a SPECULAR
+    /// sample: without the delta factor; a discrete probability for a pure delta lobe).
+    pub pdf: f64,
+    /// What was sampled.
+    pub flags: BsdfFlags,
+    /// The diffraction order whose lobe (period) was sampled, for models that have orders.
+    pub order: Option<i32>,
+}
+
+impl BsdfSample {
+    /// A sample without an order.
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample};
+    /// use glam::DVec3;
+    /// let s = BsdfSample::new(DVec3::Z, 1.0, 1.0, BsdfFlags::REFLECTION | BsdfFlags::DIFFUSE);
+    /// assert_eq!((s.f, s.pdf), (1.0, 1.0));
+    /// ```
+    #[must_use]
+    pub fn new(wi: DVec3, f: f64, pdf: f64, flags: BsdfFlags) -> BsdfSample {
+        BsdfSample {
+            wi,
+            f,
+            pdf,
+            flags,
+            order: None,
+        }
+    }
+
+    /// The same sample tagged with its diffraction order.
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample};
+    /// use glam::DVec3;
+    /// let s = BsdfSample::new(DVec3::Z, 1.0, 1.0, BsdfFlags::GLOSSY).with_order(-2);
+    /// assert_eq!(s.order, Some(-2));
+    /// ```
+    #[must_use]
+    pub fn with_order(self, order: i32) -> BsdfSample {
+        BsdfSample {
+            order: Some(order),
+            ..self
+        }
+    }
+
+    /// The Monte-Carlo weight f·cos θi/pdf (0 when pdf is 0).
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample};
+    /// use glam::DVec3;
+    /// let wi = DVec3::new(0.6, 0.0, 0.8);
+    /// assert!((BsdfSample::new(wi, 1.0, 0.4, BsdfFlags::GLOSSY).weight() - 2.0).abs() < 1e-15);
+    /// ```
+    #[must_use]
+    pub fn weight(&self) -> f64 {
+        if self.pdf > 0.0 {
+            self.f * self.wi.z / self.pdf
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Four wavelengths carried by one path, with the densities they were sampled with
+/// (pbrt-v4's `SampledWavelengths`). Index 0 is the **hero** wavelength: the one
+/// [`Bsdf::sample`] follows.
+///
+/// Two ways to use the four with a dispersive BSDF (the sampled direction depends on λ):
+///
+/// * **Hero-wavelength MIS** (Wilkie et al., "Hero Wavelength Spectral Sampling", EGSR 2014):
+///   the direction was sampled for the hero; weight wavelength j's contribution by the balance
+///   heuristic over the four, `p_j / Σ_k p_k` with `p_k = pdf4(wo, wi)[k]` (and the
+///   wavelength densities), see [`balance_heuristic`](Self::balance_heuristic). Unbiased, and
+///   where the lobes of the four overlap (small N) all four contribute.
+/// * **Terminate the secondaries** (pbrt-v4's `TerminateSecondary`): keep the hero only and
+///   divide by its density alone ([`terminate_secondary`](Self::terminate_secondary)).
+///
+/// For gratings the crate recommends **hero MIS with [`Bsdf::pdf4`]** for glossy samples: the
+/// lobes of order m sit at u = m·λ/d, so for large N the secondaries' pdfs at the hero's
+/// direction are tiny and the balance heuristic gives them weight ≈ 0 by itself (it degrades
+/// gracefully into termination, with no bias and no branch), while for small N, where the
+/// lobes overlap, it keeps their contribution. For **SPECULAR** samples (N = ∞ or an ideal
+/// groove) the secondaries' densities are exactly 0 and `pdf4` cannot express the delta: there
+/// terminate the secondaries, as pbrt does for dispersive specular surfaces.
+///
+/// ```
+/// use diffraction::{Band, SampledWavelengths};
+/// let mut l = SampledWavelengths::sample_uniform(0.0, Band::VISIBLE);
+/// assert_eq!(l.lambda(), [360.0, 477.5, 595.0, 712.5]); // stratified: B/4 apart
+/// assert_eq!(l.pdf(), [1.0 / 470.0; 4]);
+/// l.terminate_secondary();
+/// assert!(l.secondary_terminated());
+/// assert_eq!(l.pdf(), [0.25 / 470.0, 0.0, 0.0, 0.0]); // the hero now stands for all four
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampledWavelengths {
+    lambda: [f64; 4],
+    pdf: [f64; 4],
+}
+
+impl SampledWavelengths {
+    /// Stratified uniform wavelengths: the hero at `band.min + u·B`, the others B/4 apart
+    /// (wrapping around the band), each with density 1/B. `u` outside [0, 1) is taken modulo 1
+    /// (NaN and infinities as 0).
+    ///
+    /// ```
+    /// use diffraction::{Band, SampledWavelengths};
+    /// let l = SampledWavelengths::sample_uniform(0.5, Band::new(400.0, 800.0)?);
+    /// assert_eq!(l.lambda(), [600.0, 700.0, 400.0, 500.0]);
+    /// assert_eq!(l.hero(), 600.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn sample_uniform(u: f64, band: Band) -> SampledWavelengths {
+        let u = if u.is_finite() {
+            u - math::floor(u)
+        } else {
+            0.0
+        };
+        let b = band.width_nm();
+        let mut lambda = [0.0; 4];
+        for (i, l) in lambda.iter_mut().enumerate() {
+            let mut t = u + 0.25 * i as f64;
+            if t >= 1.0 {
+                t -= 1.0;
+            }
+            *l = (band.min_nm() + t * b).min(band.max_nm());
+        }
+        SampledWavelengths {
+            lambda,
+            pdf: [1.0 / b; 4],
+        }
+    }
+
+    /// Four wavelengths (finite, > 0) with their densities (finite, ≥ 0), for example from a
+    /// grating's own wavelength sampler. Errors name `lambda_nm` or `pdf`.
+    ///
+    /// ```
+    /// use diffraction::SampledWavelengths;
+    /// let l = SampledWavelengths::new([500.0, 510.0, 520.0, 530.0], [0.01; 4])?;
+    /// assert_eq!(l.lambda()[3], 530.0);
+    /// assert_eq!(SampledWavelengths::new([0.0; 4], [0.01; 4]).unwrap_err().parameter(), "lambda_nm");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn new(lambda: [f64; 4], pdf: [f64; 4]) -> Result<SampledWavelengths, Error> {
+        for &l in &lambda {
+            crate::error::positive("lambda_nm", l)?;
+        }
+        for &p in &pdf {
+            if !(p.is_finite() && p >= 0.0) {
+                return Err(Error::invalid(
+                    "pdf",
+                    p,
+                    Requirement::Within {
+                        min: 0.0,
+                        max: f64::MAX,
+                    },
+                ));
+            }
+        }
+        Ok(SampledWavelengths { lambda, pdf })
+    }
+
+    /// The four wavelengths, nm (index 0 is the hero).
+    ///
+    /// ```
+    /// # use diffraction::{Band, SampledWavelengths};
+    /// assert_eq!(SampledWavelengths::sample_uniform(0.0, Band::VISIBLE).lambda()[0], 360.0);
+    /// ```
+    #[must_use]
+    pub fn lambda(&self) -> [f64; 4] {
+        self.lambda
+    }
+
+    /// The hero wavelength, nm.
+    ///
+    /// ```
+    /// # use diffraction::{Band, SampledWavelengths};
+    /// assert_eq!(SampledWavelengths::sample_uniform(0.25, Band::new(400.0, 800.0)?).hero(), 500.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn hero(&self) -> f64 {
+        self.lambda[0]
+    }
+
+    /// The densities, 1/nm (0 for terminated secondaries).
+    ///
+    /// ```
+    /// # use diffraction::{Band, SampledWavelengths};
+    /// assert_eq!(SampledWavelengths::sample_uniform(0.0, Band::new(400.0, 800.0)?).pdf()[1], 1.0 / 400.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn pdf(&self) -> [f64; 4] {
+        self.pdf
+    }
+
+    /// Keeps the hero only (pbrt-v4's `TerminateSecondary`): the secondaries' densities become
+    /// 0 and the hero's is divided by 4, since it now stands for all four strata. Idempotent.
+    ///
+    /// ```
+    /// # use diffraction::{Band, SampledWavelengths};
+    /// let mut l = SampledWavelengths::sample_uniform(0.1, Band::new(400.0, 800.0)?);
+    /// l.terminate_secondary();
+    /// l.terminate_secondary();
+    /// assert_eq!(l.pdf(), [1.0 / 1600.0, 0.0, 0.0, 0.0]);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn terminate_secondary(&mut self) {
+        if self.secondary_terminated() {
+            return;
+        }
+        for i in 1..4 {
+            self.pdf[i] = 0.0;
+        }
+        self.pdf[0] *= 0.25;
+    }
+
+    /// Whether the secondaries were terminated.
+    ///
+    /// ```
+    /// # use diffraction::{Band, SampledWavelengths};
+    /// assert!(!SampledWavelengths::sample_uniform(0.1, Band::VISIBLE).secondary_terminated());
+    /// ```
+    #[must_use]
+    pub fn secondary_terminated(&self) -> bool {
+        self.pdf[1..].iter().all(|&p| p == 0.0)
+    }
+
+    /// The balance-heuristic weight of wavelength `index` for a direction whose sampling
+    /// densities under the four wavelengths are `pdf4`: `pdf4[index] / Σ pdf4` (0 when the sum
+    /// is 0 or `index` > 3). Multiply wavelength j's contribution f_j·cos/pdf4\[j\] by it, or
+    /// equivalently use f_j·cos/Σ pdf4 for every j (Wilkie et al. 2014).
+    ///
+    /// ```
+    /// use diffraction::SampledWavelengths;
+    /// let w = SampledWavelengths::balance_heuristic([3.0, 1.0, 0.0, 0.0], 0);
+    /// assert_eq!(w, 0.75);
+    /// assert_eq!(SampledWavelengths::balance_heuristic([0.0; 4], 0), 0.0);
+    /// ```
+    #[must_use]
+    pub fn balance_heuristic(pdf4: [f64; 4], index: usize) -> f64 {
+        let sum: f64 = pdf4.iter().sum();
+        if index > 3 || !(sum > 0.0 && sum.is_finite()) {
+            return 0.0;
+        }
+        pdf4[index] / sum
+    }
+}
+
+/// A radiometric, samplable BSDF (pbrt-v4's `BxDF`), extending the colour interface
+/// [`DiffractionBrdf`]. See the [module docs](self) for conventions, the Mitsuba mapping and why
+/// [`AguHill`](crate::AguHill) does not implement it.
+///
+/// Every method returns finite, non-negative values for finite input, and 0 / `None` for
+/// directions below the surface or a non-positive wavelength.
+///
+/// ```
+/// use diffraction::{Bsdf, BsdfFlags, Grating, GratingBsdf};
+/// use glam::DVec3;
+/// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 30)?);
+/// assert_eq!(b.flags(), BsdfFlags::REFLECTION | BsdfFlags::GLOSSY);
+/// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
+/// assert_eq!(b.f(wo, wi, 480.0), b.f(wi, wo, 480.0)); // reciprocal
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+pub trait Bsdf: DiffractionBrdf {
+    /// The BSDF value f(wo, wi, λ) in 1/sr, cosine excluded (0 for delta lobes).
+    ///
+    /// ```
+    /// use diffraction::{Bsdf, Grating, GratingBsdf};
+    /// use glam::DVec3;
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert_eq!(b.f(DVec3::Z, -DVec3::Z, 550.0), 0.0); // light below the surface
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64;
+
+    /// `f` at the four wavelengths of `lambdas`. Models override it to share the work that
+    /// does not depend on λ; the default calls `f` four times.
+    ///
+    /// ```
+    /// use diffraction::{Band, Bsdf, Grating, GratingBsdf, SampledWavelengths};
+    /// use glam::DVec3;
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// let l = SampledWavelengths::sample_uniform(0.3, Band::VISIBLE);
+    /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
+    /// let four = b.f4(wo, wi, &l);
+    /// for i in 0..4 {
+    ///     assert!((four[i] - b.f(wo, wi, l.lambda()[i])).abs() <= 1e-12 * four[i].max(1e-300));
+    /// }
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn f4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
+        let l = lambdas.lambda();
+        [
+            self.f(wo, wi, l[0]),
+            self.f(wo, wi, l[1]),
+            self.f(wo, wi, l[2]),
+            self.f(wo, wi, l[3]),
+        ]
+    }
+
+    /// Samples wi for `wo` at wavelength `lambda_nm` from the uniform numbers `uc` (lobe
+    /// choice) and `u2` (position), each in [0, 1). `None` when the procedure produced no
+    /// direction above the surface (its pdf then integrates to the probability of `Some`).
+    ///
+    /// ```
+    /// use diffraction::{Bsdf, Grating, GratingBsdf};
+    /// use glam::{DVec2, DVec3};
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert!(b.sample(-DVec3::Z, 550.0, 0.5, DVec2::splat(0.5)).is_none()); // wo below
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn sample(&self, wo: DVec3, lambda_nm: f64, uc: f64, u2: DVec2) -> Option<BsdfSample>;
+
+    /// The density in solid angle with which `sample(wo, λ, ..)` produces `wi` (0 for delta
+    /// lobes).
+    ///
+    /// ```
+    /// use diffraction::{Bsdf, Grating, GratingBsdf};
+    /// use glam::DVec3;
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert!(b.pdf(DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()), 480.0) > 0.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn pdf(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64;
+
+    /// `pdf` at the four wavelengths of `lambdas` (the densities for hero-wavelength MIS);
+    /// the default calls `pdf` four times.
+    ///
+    /// ```
+    /// use diffraction::{Band, Bsdf, Grating, GratingBsdf, SampledWavelengths};
+    /// use glam::DVec3;
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// let l = SampledWavelengths::sample_uniform(0.3, Band::VISIBLE);
+    /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
+    /// assert_eq!(b.pdf4(wo, wi, &l)[2], b.pdf(wo, wi, l.lambda()[2]));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn pdf4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
+        let l = lambdas.lambda();
+        [
+            self.pdf(wo, wi, l[0]),
+            self.pdf(wo, wi, l[1]),
+            self.pdf(wo, wi, l[2]),
+            self.pdf(wo, wi, l[3]),
+        ]
+    }
+
+    /// The kinds of lobe the model has.
+    ///
+    /// ```
+    /// use diffraction::{Bsdf, Grating, GratingBsdf};
+    /// let b = GratingBsdf::new(Grating::infinite(1600.0, 800.0)?);
+    /// assert!(b.flags().is_specular()); // N = ∞: delta orders
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn flags(&self) -> BsdfFlags;
+
+    /// Widens near-delta lobes (pbrt-v4's `Regularize`), for the paths where a narrow lobe
+    /// only adds noise (after a diffuse bounce, say). What "near-delta" means and how much the
+    /// lobes widen is model-specific and documented by each implementation; models without
+    /// such lobes leave themselves unchanged.
+    ///
+    /// ```
+    /// use diffraction::{Bsdf, Grating, GratingBsdf, Slits};
+    /// let mut b = GratingBsdf::new(Grating::infinite(1600.0, 800.0)?);
+    /// b.regularize();
+    /// assert!(!b.flags().is_specular());
+    /// assert!(matches!(b.grating().slits(), Slits::Finite(_)));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn regularize(&mut self);
+}
+
+/// The default sampler of models without their own: a cosine-weighted direction on the upper
+/// hemisphere (Malley's method: a uniform point on the unit disk, concentric map, lifted).
+/// Its density is [`cosine_hemisphere_pdf`]`(wi.z)` = cos θ/π. `u` is clamped into [0, 1].
+///
+/// ```
+/// use diffraction::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+/// use glam::DVec2;
+/// let w = sample_cosine_hemisphere(DVec2::new(0.5, 0.5));
+/// assert_eq!(w, glam::DVec3::Z); // the disk's centre lifts to the normal
+/// assert!((cosine_hemisphere_pdf(w.z) - 1.0 / std::f64::consts::PI).abs() < 1e-16);
+/// ```
+#[must_use]
+pub fn sample_cosine_hemisphere(u: DVec2) -> DVec3 {
+    use core::f64::consts::FRAC_PI_4;
+    let clamp = |x: f64| {
+        if x.is_finite() {
+            x.clamp(0.0, 1.0)
+        } else {
+            0.5
+        }
+    };
+    let (a, b) = (2.0 * clamp(u.x) - 1.0, 2.0 * clamp(u.y) - 1.0);
+    if a == 0.0 && b == 0.0 {
+        return DVec3::Z;
+    }
+    let (r, phi) = if a.abs() > b.abs() {
+        (a, FRAC_PI_4 * (b / a))
+    } else {
+        (b, core::f64::consts::FRAC_PI_2 - FRAC_PI_4 * (a / b))
+    };
+    let (x, y) = (r * math::cos(phi), r * math::sin(phi));
+    let z = math::sqrt((1.0 - x * x - y * y).max(0.0));
+    DVec3::new(x, y, z)
+}
+
+/// The density cos θ/π of [`sample_cosine_hemisphere`] (0 for cos θ ≤ 0 or NaN).
+///
+/// ```
+/// use diffraction::bsdf::cosine_hemisphere_pdf;
+/// assert_eq!(cosine_hemisphere_pdf(-0.5), 0.0);
+/// assert!((cosine_hemisphere_pdf(1.0) - std::f64::consts::FRAC_1_PI).abs() < 1e-17);
+/// ```
+#[must_use]
+pub fn cosine_hemisphere_pdf(cos_theta: f64) -> f64 {
+    if cos_theta > 0.0 {
+        cos_theta * core::f64::consts::FRAC_1_PI
+    } else {
+        0.0
+    }
+}

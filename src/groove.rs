@@ -1,0 +1,351 @@
+//! The spread g(v) of a grating's lobes along the grooves.
+//!
+//! In the radiometric model ([`GratingBsdf`](crate::GratingBsdf)) the light of each order is
+//! spread in v = (wi + wo)·y (y along the grooves) by a lobe g(v) of unit integral. Its physical
+//! choices ([`GrooveSpread`]):
+//!
+//! * a **coherence length** L along the grooves: the Fraunhofer pattern of a coherently lit
+//!   length L, g(v) = (L/λ)·sinc²(π·L·v/λ), whose width λ/L depends on the wavelength (the
+//!   default L = N·d is a square coherently lit patch);
+//! * a **Gaussian** of standard deviation σ (groove roughness, the same at every λ):
+//!   g(v) = exp(−v²/(2σ²))/(σ·√(2π));
+//! * the **ideal** limit δ(v): every order stays on its cone; the lobes are then specular in v.
+//!
+//! Each choice comes with its value, a sampler with an exact density (a Cauchy proxy of the
+//! lobe, inverse CDF v = s·tan(π(ξ − ½))), and the closed-form mass and mean over an interval
+//! (for footprint filtering and the albedo): sinc² by the sine integral, the Gaussian by erf.
+//!
+//! ```
+//! use diffraction::GrooveSpread;
+//! let g = GrooveSpread::CoherenceLength { length_nm: 50_000.0 };
+//! // Unit integral: the mass over |v| < 1 is 1 less the sinc² tails beyond t = L·v/λ = 100,
+//! // 1/(π²·100) to 5·10⁻⁹ (mpmath).
+//! let tail = 1.0 / (std::f64::consts::PI.powi(2) * 100.0);
+//! assert!((g.mass(-1.0, 1.0, 500.0) - (1.0 - tail)).abs() < 1e-8);
+//! // The peak is L/λ.
+//! assert_eq!(g.value(0.0, 500.0), 100.0);
+//! ```
+
+use core::f64::consts::PI;
+
+use crate::error::{positive, Error, Requirement};
+use crate::kernel::single_slit_cycles;
+use crate::math;
+use crate::special::{erf, erfc, sinc2_integral};
+
+/// Scale of the Cauchy proxy of sinc²(a), in a = π·L·v/λ: with c = 1.2,
+/// sinc²(a)·(c² + a²)/c ≤ 1.4504 for all a (the sup is at a = 0 … 1.3; c = 1.165 would give
+/// 1.4492).
+const SINC2_PROXY_SCALE: f64 = 1.2;
+/// sup g/q for the coherence-length lobe and its proxy (measured on a 5·10⁻⁵ grid to a = 400,
+/// beyond which the ratio is below 1/c·(1 + c²/a²) < 0.84), rounded up.
+pub const COHERENCE_PROXY_BOUND: f64 = 1.4504;
+/// sup g/q for the Gaussian and its Cauchy proxy of the same scale σ: √(2π)·e^{−½} = 1.52035.
+pub const GAUSSIAN_PROXY_BOUND: f64 = 1.5204;
+/// The largest accepted Gaussian σ (v spans [−2, 2]).
+pub const MAX_GROOVE_SIGMA: f64 = 1.0;
+/// 1/√(2π).
+const INV_SQRT_TAU: f64 = 0.3989422804014327;
+
+/// The lobe g(v) of a grating along its grooves (see the [module docs](self)).
+///
+/// ```
+/// use diffraction::GrooveSpread;
+/// let rough = GrooveSpread::Gaussian { sigma: 0.01 };
+/// assert!((rough.value(0.0, 550.0) - 1.0 / (0.01 * (2.0 * std::f64::consts::PI).sqrt())).abs() < 1e-9);
+/// assert_eq!(GrooveSpread::Ideal.value(0.0, 550.0), 0.0); // a delta has no finite value
+/// assert!(GrooveSpread::Ideal.is_delta());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum GrooveSpread {
+    /// A coherence length L along the grooves: g(v) = (L/λ)·sinc²(π·L·v/λ).
+    CoherenceLength {
+        /// L, nm (finite, > 0).
+        length_nm: f64,
+    },
+    /// Groove roughness: a Gaussian of standard deviation σ in v, the same at every λ.
+    Gaussian {
+        /// σ, in units of v (finite, 0 < σ ≤ [`MAX_GROOVE_SIGMA`]).
+        sigma: f64,
+    },
+    /// The ideal grating: g = δ(v).
+    Ideal,
+}
+
+impl GrooveSpread {
+    /// Checks the parameter: `length_nm` finite and > 0; `sigma` finite, > 0 and at most
+    /// [`MAX_GROOVE_SIGMA`]. The error names `length_nm` or `sigma`.
+    ///
+    /// ```
+    /// use diffraction::GrooveSpread;
+    /// assert!(GrooveSpread::Gaussian { sigma: 0.05 }.validate().is_ok());
+    /// let e = GrooveSpread::CoherenceLength { length_nm: -1.0 }.validate().unwrap_err();
+    /// assert_eq!(e.parameter(), "length_nm");
+    /// assert_eq!(GrooveSpread::Gaussian { sigma: 2.0 }.validate().unwrap_err().parameter(), "sigma");
+    /// ```
+    pub fn validate(self) -> Result<GrooveSpread, Error> {
+        match self {
+            GrooveSpread::CoherenceLength { length_nm } => {
+                positive("length_nm", length_nm)?;
+            }
+            GrooveSpread::Gaussian { sigma } => {
+                positive("sigma", sigma)?;
+                if sigma > MAX_GROOVE_SIGMA {
+                    return Err(Error::invalid(
+                        "sigma",
+                        sigma,
+                        Requirement::AtMost {
+                            bound_name: "MAX_GROOVE_SIGMA",
+                            bound: MAX_GROOVE_SIGMA,
+                        },
+                    ));
+                }
+            }
+            GrooveSpread::Ideal => {}
+        }
+        Ok(self)
+    }
+
+    /// Whether the parameter passes [`validate`](Self::validate). The fields are public, so an
+    /// unvalidated value can reach the methods: they then return 0 (no lobe) rather than a
+    /// negative or non-finite value.
+    ///
+    /// ```
+    /// # use diffraction::GrooveSpread;
+    /// let bad = GrooveSpread::Gaussian { sigma: -1.0 };
+    /// assert!(!bad.is_valid());
+    /// assert_eq!(bad.value(0.0, 500.0), 0.0);
+    /// ```
+    #[must_use]
+    pub fn is_valid(self) -> bool {
+        match self {
+            GrooveSpread::CoherenceLength { length_nm } => length_nm.is_finite() && length_nm > 0.0,
+            GrooveSpread::Gaussian { sigma } => {
+                sigma.is_finite() && sigma > 0.0 && sigma <= MAX_GROOVE_SIGMA
+            }
+            GrooveSpread::Ideal => true,
+        }
+    }
+
+    /// Whether g is the delta δ(v) (then `value` and `pdf` are 0 and the lobes are specular in v).
+    ///
+    /// ```
+    /// # use diffraction::GrooveSpread;
+    /// assert!(!GrooveSpread::Gaussian { sigma: 0.1 }.is_delta());
+    /// ```
+    #[must_use]
+    pub fn is_delta(self) -> bool {
+        matches!(self, GrooveSpread::Ideal)
+    }
+
+    /// g(v) at wavelength λ, 1/(unit of v); 0 for the ideal lobe, for λ ≤ 0 and non-finite
+    /// input.
+    ///
+    /// ```
+    /// use diffraction::GrooveSpread;
+    /// let g = GrooveSpread::CoherenceLength { length_nm: 1000.0 };
+    /// assert!(g.value(0.5, 500.0) < 1e-30); // L·v/λ = 1: the first zero
+    /// ```
+    #[must_use]
+    pub fn value(self, v: f64, lambda_nm: f64) -> f64 {
+        if !(v.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite() && self.is_valid()) {
+            return 0.0;
+        }
+        let g = match self {
+            GrooveSpread::CoherenceLength { length_nm } => {
+                let k = length_nm / lambda_nm;
+                let t = k * v;
+                if !t.is_finite() {
+                    return 0.0;
+                }
+                k * single_slit_cycles(t)
+            }
+            GrooveSpread::Gaussian { sigma } => {
+                let t = v / sigma;
+                INV_SQRT_TAU / sigma * math::exp(-0.5 * t * t)
+            }
+            GrooveSpread::Ideal => 0.0,
+        };
+        if g.is_finite() {
+            g
+        } else {
+            0.0
+        }
+    }
+
+    /// The scale s of the Cauchy proxy q(v) = s/(π·(s² + v²)): 1.2·λ/(π·L) for the coherence
+    /// length, σ for the Gaussian, 0 for the ideal lobe.
+    ///
+    /// ```
+    /// # use diffraction::GrooveSpread;
+    /// assert_eq!(GrooveSpread::Gaussian { sigma: 0.02 }.proxy_scale(500.0), 0.02);
+    /// ```
+    #[must_use]
+    pub fn proxy_scale(self, lambda_nm: f64) -> f64 {
+        if !self.is_valid() {
+            return 0.0;
+        }
+        match self {
+            GrooveSpread::CoherenceLength { length_nm } => {
+                SINC2_PROXY_SCALE * lambda_nm / (PI * length_nm)
+            }
+            GrooveSpread::Gaussian { sigma } => sigma,
+            GrooveSpread::Ideal => 0.0,
+        }
+    }
+
+    /// Samples v from the proxy: v = s·tan(π·(ξ − ½)), ξ in [0, 1) (clamped; NaN as ½).
+    /// The ideal lobe gives v = 0. Its density is [`pdf`](Self::pdf).
+    ///
+    /// ```
+    /// use diffraction::GrooveSpread;
+    /// let g = GrooveSpread::Gaussian { sigma: 0.1 };
+    /// assert_eq!(g.sample(0.5, 550.0), 0.0);
+    /// assert!((g.sample(0.75, 550.0) - 0.1).abs() < 1e-15); // the proxy's quartile is s
+    /// ```
+    #[must_use]
+    pub fn sample(self, xi: f64, lambda_nm: f64) -> f64 {
+        let s = self.proxy_scale(lambda_nm);
+        if !(s > 0.0 && s.is_finite()) {
+            return 0.0;
+        }
+        let xi = if xi.is_nan() { 0.5 } else { xi.clamp(0.0, 1.0) };
+        let v = s * crate::special::tan(PI * (xi - 0.5));
+        if v.is_finite() {
+            v
+        } else {
+            0.0
+        }
+    }
+
+    /// The density of [`sample`](Self::sample) at v: s/(π·(s² + v²)); 0 for the ideal lobe.
+    ///
+    /// ```
+    /// use diffraction::GrooveSpread;
+    /// let g = GrooveSpread::Gaussian { sigma: 0.1 };
+    /// assert!((g.pdf(0.0, 550.0) - 1.0 / (std::f64::consts::PI * 0.1)).abs() < 1e-12);
+    /// ```
+    #[must_use]
+    pub fn pdf(self, v: f64, lambda_nm: f64) -> f64 {
+        let s = self.proxy_scale(lambda_nm);
+        if !(s > 0.0 && s.is_finite() && v.is_finite()) {
+            return 0.0;
+        }
+        let t = v / s;
+        let p = 1.0 / (PI * s * (1.0 + t * t));
+        if p.is_finite() {
+            p
+        } else {
+            0.0
+        }
+    }
+
+    /// sup g/q over v: the most the sampler's weight g/pdf can be
+    /// ([`COHERENCE_PROXY_BOUND`], [`GAUSSIAN_PROXY_BOUND`]; 1 for the ideal lobe, whose sample is
+    /// exact).
+    ///
+    /// ```
+    /// # use diffraction::GrooveSpread;
+    /// assert!(GrooveSpread::Gaussian { sigma: 0.1 }.proxy_bound() < 1.53);
+    /// ```
+    #[must_use]
+    pub fn proxy_bound(self) -> f64 {
+        match self {
+            GrooveSpread::CoherenceLength { .. } => COHERENCE_PROXY_BOUND,
+            GrooveSpread::Gaussian { .. } => GAUSSIAN_PROXY_BOUND,
+            GrooveSpread::Ideal => 1.0,
+        }
+    }
+
+    /// ∫ g over [v0, v1] (the order of the ends does not matter; the result is ≥ 0), in closed
+    /// form: (Φ(L·v1/λ) − Φ(L·v0/λ)) with Φ(t) = (Si(2πt) − sin²(πt)/(πt))/π for the
+    /// coherence length, ½(erf(v1/(σ√2)) − erf(v0/(σ√2))) for the Gaussian (erfc in the tails),
+    /// and 1 or 0 for the ideal lobe (1 when v0 ≤ 0 < v1). 0 for λ ≤ 0 or NaN.
+    ///
+    /// ```
+    /// use diffraction::GrooveSpread;
+    /// let g = GrooveSpread::Gaussian { sigma: 0.1 };
+    /// assert!((g.mass(-0.1, 0.1, 500.0) - 0.682689492137086).abs() < 1e-14); // one σ
+    /// assert_eq!(GrooveSpread::Ideal.mass(-0.1, 0.1, 500.0), 1.0);
+    /// assert_eq!(GrooveSpread::Ideal.mass(0.1, 0.2, 500.0), 0.0);
+    /// ```
+    #[must_use]
+    pub fn mass(self, v0: f64, v1: f64, lambda_nm: f64) -> f64 {
+        if v0.is_nan() || v1.is_nan() || lambda_nm.is_nan() || lambda_nm <= 0.0 || !self.is_valid()
+        {
+            return 0.0;
+        }
+        let (a, b) = if v0 <= v1 { (v0, v1) } else { (v1, v0) };
+        let m = match self {
+            GrooveSpread::CoherenceLength { length_nm } => {
+                let k = length_nm / lambda_nm;
+                let phi = |v: f64| {
+                    let t = k * v;
+                    if t.is_finite() {
+                        sinc2_integral(t)
+                    } else if t > 0.0 {
+                        0.5
+                    } else {
+                        -0.5
+                    }
+                };
+                phi(b) - phi(a)
+            }
+            GrooveSpread::Gaussian { sigma } => {
+                let s = sigma * core::f64::consts::SQRT_2;
+                let (ta, tb) = (a / s, b / s);
+                if ta > 0.0 {
+                    0.5 * (erfc(ta) - erfc(tb))
+                } else if tb < 0.0 {
+                    0.5 * (erfc(-tb) - erfc(-ta))
+                } else {
+                    0.5 * (erf(tb) - erf(ta))
+                }
+            }
+            GrooveSpread::Ideal => {
+                if a <= 0.0 && 0.0 < b {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+        };
+        if m.is_finite() {
+            m.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The mean of g over [v0, v1], mass/(v1 − v0): what a footprint of that extent sees. For an
+    /// empty or degenerate interval (|v1 − v0| below 10⁻⁹ of the lobe's scale) the value at the
+    /// midpoint; for the ideal lobe a degenerate interval gives 0.
+    ///
+    /// ```
+    /// use diffraction::GrooveSpread;
+    /// let g = GrooveSpread::CoherenceLength { length_nm: 10_000.0 };
+    /// // Over one lobe width either side of the centre: most of the unit mass, spread over 2λ/L.
+    /// let mean = g.mean(-0.05, 0.05, 500.0);
+    /// assert!((mean * 0.1 - 0.9028).abs() < 1e-4);
+    /// assert_eq!(g.mean(0.0, 0.0, 500.0), g.value(0.0, 500.0));
+    /// ```
+    #[must_use]
+    pub fn mean(self, v0: f64, v1: f64, lambda_nm: f64) -> f64 {
+        let width = (v1 - v0).abs();
+        let scale = match self {
+            GrooveSpread::CoherenceLength { length_nm } => lambda_nm / length_nm,
+            GrooveSpread::Gaussian { sigma } => sigma,
+            GrooveSpread::Ideal => 0.0,
+        };
+        if width.is_nan() || width <= 1e-9 * scale || !width.is_finite() {
+            return self.value(0.5 * (v0 + v1), lambda_nm);
+        }
+        let m = self.mass(v0, v1, lambda_nm) / width;
+        if m.is_finite() {
+            m
+        } else {
+            0.0
+        }
+    }
+}
