@@ -19,10 +19,14 @@ mod font;
 mod geometry;
 mod material;
 mod output;
+mod path;
+mod radiometric;
 mod render;
 mod scene;
 mod texture;
 
+#[cfg(test)]
+mod path_tests;
 #[cfg(test)]
 mod tests;
 
@@ -100,6 +104,9 @@ fn prepare(path: &Path, opts: &Options) -> Result<Scene, String> {
     if let Some(spp) = opts.spp {
         s.spp = spp;
     }
+    if let Some(depth) = opts.max_depth {
+        s.max_depth = depth;
+    }
     if let Some(seed) = opts.seed {
         s.seed = seed;
     }
@@ -133,12 +140,13 @@ fn still(
     if !scene.description.is_empty() {
         note(opts, &format!("{}: {}", scene.name, scene.description));
     }
-    let image = render::render(
+    let image = path::render_with(
+        opts.integrator,
         scene,
         &scene.camera,
         render::progress_wanted(opts.quiet),
         &scene.name,
-    );
+    )?;
     if opts.compare_clip {
         if let Some(p) = png {
             output::write_png(p, &output::clip_panels(&image))?;
@@ -158,11 +166,12 @@ fn still(
     note(
         opts,
         &format!(
-            "{}: {}x{}, {} spp, {}, clip {} in {:.2} s -> {}",
+            "{}: {}x{}, {} spp, {}, {}, clip {} in {:.2} s -> {}",
             scene.name,
             s.width,
             s.height,
             s.spp,
+            opts.integrator,
             s.strategy,
             if opts.compare_clip {
                 "all".to_string()
@@ -185,12 +194,13 @@ fn animation(scene: &Scene, frames: u32, dir: &Path, opts: &Options) -> Result<(
     for i in 0..frames {
         let angle = std::f64::consts::TAU * i as f64 / frames as f64;
         let camera = render::orbit(&scene.camera, angle);
-        let image = render::render(
+        let image = path::render_with(
+            opts.integrator,
             scene,
             &camera,
             bar,
             &format!("{} {}/{}", scene.name, i + 1, frames),
-        );
+        )?;
         let png = output::to_rgb8(&image, scene.settings.clip);
         output::write_png(&dir.join(format!("{}_{i:04}.png", scene.name)), &png)?;
         pictures.push(png);

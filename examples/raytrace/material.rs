@@ -66,6 +66,8 @@ pub enum Model {
     /// Stam's Fourier optics (sinusoidal or binary profile).
     #[cfg(feature = "stam")]
     Stam(Stam),
+    /// The energy-normalised grating in physical units (scenes with `[radiometry]`).
+    Radiometric(diffraction::GratingBsdf),
 }
 
 impl Model {
@@ -76,6 +78,7 @@ impl Model {
             Model::Thorman(m) => m,
             #[cfg(feature = "stam")]
             Model::Stam(m) => m,
+            Model::Radiometric(m) => m,
         }
     }
 }
@@ -173,6 +176,8 @@ pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f
 pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
     let (brdf, period) = match model {
         Model::AguHill(m) => return exposure(spectral, m.grating(), strategy),
+        // Physical units: the light and the camera set the brightness.
+        Model::Radiometric(_) => return 1.0,
         Model::Thorman(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
         #[cfg(feature = "stam")]
         Model::Stam(m) => (m as &dyn DiffractionBrdf, m.period_nm()),

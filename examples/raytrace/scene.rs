@@ -56,6 +56,7 @@ struct RawScene {
     lights: Vec<RawLight>,
     #[serde(default)]
     objects: Vec<RawObject>,
+    radiometry: Option<crate::radiometric::RawRadiometry>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -150,6 +151,7 @@ struct RawMaterial {
     fraction: Option<f64>,
     coherence_nm: Option<f64>,
     reflectance: Option<f64>,
+    groove_sigma: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -226,6 +228,8 @@ pub struct Scene {
     pub objects: Vec<Primitive>,
     pub materials: Vec<Material>,
     pub spectral: Spectral,
+    /// The physical units of a radiometric scene (its `[radiometry]` table).
+    pub radiometry: Option<crate::radiometric::Radiometry>,
     /// Which materials' strategy came from the scene's `[render]` default (and follows
     /// [`Scene::set_strategy`]).
     follows_default: Vec<bool>,
@@ -545,6 +549,12 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         follows_default.push(follows);
     }
 
+    let radiometry = crate::radiometric::build(
+        raw.radiometry.as_ref(),
+        (&lights, raw.lights.iter().map(|l| (l.color, l.intensity))),
+        &materials,
+        illuminant,
+    )?;
     Ok(Scene {
         name: name.to_string(),
         description: raw.description.unwrap_or_default(),
@@ -557,6 +567,7 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         objects,
         materials,
         spectral,
+        radiometry,
         follows_default,
     })
 }
@@ -596,6 +607,7 @@ fn build_material(
         ("fraction", m.fraction.is_some()),
         ("coherence_nm", m.coherence_nm.is_some()),
         ("reflectance", m.reflectance.is_some()),
+        ("groove_sigma", m.groove_sigma.is_some()),
     ];
     const COMMON: [&str; 4] = ["ambient", "diffuse", "mirror", "mirror_color"];
     let allowed: Vec<&str> = match m.kind.as_str() {
@@ -617,6 +629,7 @@ fn build_material(
             "fraction",
             "coherence_nm",
             "reflectance",
+            "groove_sigma",
         ],
         other => {
             return Err(FieldError::new(
@@ -752,7 +765,7 @@ fn build_model(
 ) -> Check<Model> {
     let f = |name: &str| format!("{path}.{name}");
     let name = m.model.as_deref().unwrap_or("agu-hill");
-    const PARAMETERS: [&str; 7] = [
+    const PARAMETERS: [&str; 8] = [
         "slit_width_nm",
         "slits",
         "lobe_width",
@@ -760,16 +773,18 @@ fn build_model(
         "fraction",
         "coherence_nm",
         "reflectance",
+        "groove_sigma",
     ];
     let takes: &[&str] = match name {
         "agu-hill" => &["slit_width_nm", "slits"],
         "thorman" => &["lobe_width"],
         "stam-sine" => &["depth_nm", "coherence_nm", "reflectance"],
         "stam-binary" => &["depth_nm", "fraction", "coherence_nm", "reflectance"],
+        "radiometric" => &["slit_width_nm", "slits", "coherence_nm", "groove_sigma"],
         other => {
             return Err(FieldError::new(
                 f("model"),
-                format!("expected one of \"agu-hill\", \"thorman\", \"stam-sine\", \"stam-binary\", got \"{other}\""),
+                format!("expected one of \"agu-hill\", \"thorman\", \"stam-sine\", \"stam-binary\", \"radiometric\", got \"{other}\""),
             ))
         }
     };
@@ -807,6 +822,14 @@ fn build_model(
                 .map_err(crate_error)?;
             Ok(Model::AguHill(model))
         }
+        "radiometric" => crate::radiometric::grating_model(
+            period,
+            m.slit_width_nm,
+            m.slits,
+            m.coherence_nm,
+            m.groove_sigma,
+            path,
+        ),
         "thorman" => Ok(Model::Thorman(
             Thorman::new(period, m.lobe_width.unwrap_or(0.005)).map_err(crate_error)?,
         )),
