@@ -5,6 +5,7 @@
 
 use glam::{DVec3, Vec3};
 
+use crate::error::{Error, Requirement};
 use crate::{Band, Grating, Peak};
 
 mod agu_hill;
@@ -173,12 +174,12 @@ pub trait DiffractionBrdf {
 }
 
 /// A model's value as a multiple of the Agu-Hill intensity of a grating (see
-/// [`DiffractionBrdf::grating_response`]).
+/// [`DiffractionBrdf::grating_response`]): `scale · envelope(λ) · grating.intensity(u, λ)`.
 ///
 /// ```
-/// use diffraction::{Grating, GratingResponse};
+/// use diffraction::{Envelope, Grating, GratingResponse};
 /// let r = GratingResponse::new(Grating::new(1600.0, 800.0, 100)?, 0.3, 2.0);
-/// assert_eq!((r.u, r.scale), (0.3, 2.0));
+/// assert_eq!((r.u, r.scale, r.envelope), (0.3, 2.0, Envelope::ONE));
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -190,10 +191,12 @@ pub struct GratingResponse {
     pub u: f64,
     /// The factor k ≥ 0, the same at every wavelength.
     pub scale: f64,
+    /// The smooth factor of wavelength (1 for the paper's model).
+    pub envelope: Envelope,
 }
 
 impl GratingResponse {
-    /// `scale · grating.intensity(u, λ)`.
+    /// `scale · grating.intensity(u, λ)`, with no factor of wavelength.
     ///
     /// ```
     /// use diffraction::{Grating, GratingResponse};
@@ -203,7 +206,125 @@ impl GratingResponse {
     /// ```
     #[must_use]
     pub fn new(grating: Grating, u: f64, scale: f64) -> GratingResponse {
-        GratingResponse { grating, u, scale }
+        GratingResponse {
+            grating,
+            u,
+            scale,
+            envelope: Envelope::ONE,
+        }
+    }
+
+    /// The same response times `envelope(λ)`.
+    ///
+    /// ```
+    /// use diffraction::{Envelope, Grating, GratingResponse};
+    /// let g = Grating::new(1600.0, 800.0, 100)?;
+    /// let r = GratingResponse::new(g, 0.3, 1.0).with_envelope(Envelope::new(1, 0.0)?);
+    /// assert_eq!(r.envelope.at(500.0), 1.0 / 500.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_envelope(self, envelope: Envelope) -> GratingResponse {
+        GratingResponse { envelope, ..self }
+    }
+}
+
+/// A smooth factor of wavelength in a model's response to a grating:
+/// k(λ) = λ^(−p) · sinc²(π·c/λ), with sinc t = sin t / t, an integer power p ∈ [0, 4] and a length
+/// c ≥ 0 (nm; c = 0 gives no sinc factor).
+///
+/// The energy-normalised grating ([`GratingBsdf`]) is the Agu-Hill intensity times
+/// (N·d/λ)·g(v, λ): p = 1 for a groove spread g that does not depend on λ, and p = 2 with
+/// c = L·v for a coherence length L, whose g is (L/λ)·sinc²(π·L·v/λ). The colour integrator
+/// ([`Spectral`](crate::spectrum::Spectral::with_envelope)) multiplies its spectral weight by
+/// k(λ), which changes over many table rows, so every strategy keeps its bound.
+///
+/// ```
+/// use diffraction::Envelope;
+/// assert_eq!(Envelope::ONE.at(550.0), 1.0);
+/// let e = Envelope::new(2, 275.0)?; // λ⁻² · sinc²(π·275/λ)
+/// assert!((e.at(550.0) - (2.0 / std::f64::consts::PI).powi(2) / 550.0f64.powi(2)).abs() < 1e-20);
+/// assert_eq!(Envelope::new(5, 0.0).unwrap_err().parameter(), "inverse_power");
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Envelope {
+    inverse_power: u8,
+    sinc_length_nm: f64,
+}
+
+impl Envelope {
+    /// k(λ) = 1.
+    pub const ONE: Envelope = Envelope {
+        inverse_power: 0,
+        sinc_length_nm: 0.0,
+    };
+
+    /// The factor λ^(−inverse_power) · sinc²(π·sinc_length_nm/λ); `inverse_power` at most 4,
+    /// `sinc_length_nm` finite and ≥ 0.
+    ///
+    /// ```
+    /// use diffraction::Envelope;
+    /// assert_eq!(Envelope::new(1, 0.0)?.at(400.0), 1.0 / 400.0);
+    /// assert_eq!(Envelope::new(0, -1.0).unwrap_err().parameter(), "sinc_length_nm");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn new(inverse_power: u8, sinc_length_nm: f64) -> Result<Envelope, Error> {
+        if inverse_power > 4 {
+            return Err(Error::invalid(
+                "inverse_power",
+                inverse_power as f64,
+                Requirement::Within { min: 0.0, max: 4.0 },
+            ));
+        }
+        if !(sinc_length_nm.is_finite() && sinc_length_nm >= 0.0) {
+            return Err(Error::invalid(
+                "sinc_length_nm",
+                sinc_length_nm,
+                Requirement::NonNegative,
+            ));
+        }
+        Ok(Envelope {
+            inverse_power,
+            sinc_length_nm,
+        })
+    }
+
+    /// k(λ); 0 for λ ≤ 0 or non-finite λ, and finite for every λ the crate integrates over.
+    ///
+    /// ```
+    /// use diffraction::Envelope;
+    /// let e = Envelope::new(0, 500.0)?;
+    /// assert!(e.at(500.0) < 1e-30); // sinc²(π) = 0
+    /// assert_eq!(e.at(-1.0), 0.0);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn at(&self, lambda_nm: f64) -> f64 {
+        if !(lambda_nm > 0.0 && lambda_nm.is_finite()) {
+            return 0.0;
+        }
+        let mut k = 1.0;
+        for _ in 0..self.inverse_power {
+            k /= lambda_nm;
+        }
+        if self.sinc_length_nm != 0.0 {
+            k *= crate::kernel::single_slit_cycles(self.sinc_length_nm / lambda_nm);
+        }
+        k
+    }
+
+    /// Whether k(λ) = 1 everywhere.
+    ///
+    /// ```
+    /// use diffraction::Envelope;
+    /// assert!(Envelope::ONE.is_one() && !Envelope::new(1, 0.0)?.is_one());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn is_one(&self) -> bool {
+        self.inverse_power == 0 && self.sinc_length_nm == 0.0
     }
 }
 

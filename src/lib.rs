@@ -130,7 +130,7 @@ pub use band::Band;
 #[cfg(feature = "stam")]
 pub use bxdf::stam;
 pub use bxdf::{
-    baselines, bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf,
+    baselines, bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf, Envelope,
     GratingBsdf, GratingResponse, PeakSummary, SampledWavelengths, Thorman, WavelengthSample,
 };
 #[cfg(feature = "stam")]

@@ -85,7 +85,7 @@ use glam::DVec3;
 use crate::cie;
 pub use crate::cie::Illuminant;
 use crate::color::Xyz;
-use crate::{Band, Grating};
+use crate::{Band, Envelope, Grating};
 
 mod auto;
 mod dense;
@@ -140,6 +140,8 @@ pub struct Spectral {
     /// Ē = ∫E·ȳ / ∫ȳ.
     mean_power: f64,
     white: Xyz,
+    /// The factor of wavelength every spectral weight carries (1 unless set).
+    envelope: Envelope,
 }
 
 impl Spectral {
@@ -159,12 +161,61 @@ impl Spectral {
         let channel = |c| cie::integrate_product_of_rows(e, |i| cie::cmf_row(i, c));
         let (x, y, z) = (channel(0), channel(1), channel(2));
         let ybar = cie::cmf_areas()[1];
+        let white = Xyz::new(x / y, 1.0, z / y);
         Spectral {
             illuminant,
             norm: 1.0 / y,
             mean_power: y / ybar,
-            white: Xyz::new(x / y, 1.0, z / y),
+            white,
+            envelope: Envelope::ONE,
         }
+    }
+
+    /// The same integrator with every spectral weight multiplied by `envelope(λ)`: the colour of
+    /// a model that is `envelope(λ)·I(u, λ)` of a grating (the energy-normalised grating, for
+    /// instance, carries (N·d/λ)·g(v, λ)). Every strategy keeps its bound, since the envelope
+    /// changes slowly next to the lobes; the normalisation and [`white`](Self::white) stay those
+    /// of the illuminant, and the colour of the mirror direction (I = 1) is the envelope's
+    /// integral. [`Spectral::xyz_brdf`] applies a model's envelope by itself.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::{Envelope, Grating};
+    /// let s = Spectral::new(Illuminant::E);
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let per_nm = s.with_envelope(Envelope::new(1, 0.0)?);
+    /// // Order 1 at 544 nm: about 1/544 of the plain colour.
+    /// let (a, b) = (s.xyz(&g, 0.34, Strategy::Exact).y, per_nm.xyz(&g, 0.34, Strategy::Exact).y);
+    /// assert!((b * 544.0 / a - 1.0).abs() < 2e-3);
+    /// assert!(per_nm.xyz(&g, 0.0, Strategy::Exact).y < 1.0 / 360.0); // ∫E·ȳ/λ / ∫E·ȳ
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_envelope(self, envelope: Envelope) -> Spectral {
+        Spectral { envelope, ..self }
+    }
+
+    /// The colour of I ≡ 1 (the mirror direction): the white, times the envelope where there is
+    /// one (8-point Gauss-Legendre on every nanometre: the envelope is smooth).
+    pub(super) fn flat(&self) -> Xyz {
+        if self.envelope.is_one() {
+            return self.white;
+        }
+        let v = gauss_legendre_rule(BAND.width_nm() as u32, &|l| self.weight(l));
+        Xyz::new(v.x, v.y, v.z)
+    }
+
+    /// The envelope every spectral weight carries ([`Envelope::ONE`] unless set by
+    /// [`with_envelope`](Self::with_envelope)).
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::Envelope;
+    /// assert_eq!(Spectral::new(Illuminant::D65).envelope(), Envelope::ONE);
+    /// ```
+    #[must_use]
+    pub fn envelope(&self) -> Envelope {
+        self.envelope
     }
 
     /// The illuminant.
@@ -194,7 +245,10 @@ impl Spectral {
     /// E(λ)·cmf(λ)·norm at one wavelength, the weight of a spectral sample.
     #[inline]
     pub(super) fn weight(&self, lambda_nm: f64) -> DVec3 {
-        let e = self.illuminant.power(lambda_nm) * self.norm;
+        let mut e = self.illuminant.power(lambda_nm) * self.norm;
+        if !self.envelope.is_one() {
+            e *= self.envelope.at(lambda_nm);
+        }
         let c = cie::cmf(lambda_nm);
         DVec3::new(e * c[0], e * c[1], e * c[2])
     }
@@ -224,7 +278,7 @@ impl Spectral {
         }
         if u == 0.0 {
             // I(0, λ) = S(0)·F_N(0) = 1 at every wavelength.
-            return self.white;
+            return self.flat();
         }
         let v = match strategy {
             Strategy::Uniform { samples } => {

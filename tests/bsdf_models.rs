@@ -22,6 +22,7 @@ const HEMI_THETA_PIECES: usize = 160;
 const HEMI_PHI_PIECES: usize = 320;
 
 fn models() -> Vec<(String, Box<dyn Bsdf>)> {
+    #[cfg_attr(not(feature = "stam"), allow(unused_mut))]
     let mut v: Vec<(String, Box<dyn Bsdf>)> = vec![
         (
             "thorman".into(),

@@ -4,6 +4,10 @@
 //!
 //! `sweep` (a few seconds in release) draws a fixed number of cases from a seeded generator
 //! over pools of extreme values; `sweep_long` (ignored) draws fifty times as many.
+//!
+//! It covers the `stam` models too, so it is built with that feature (the README's test command
+//! enables every feature).
+#![cfg(feature = "stam")]
 
 use std::cell::Cell;
 

@@ -287,6 +287,7 @@ proptest! {
 /// The models of the generic-path tests: Thorman with narrow, broad and sub-nanometre lobes,
 /// Stam (feature `stam`) and the Agu-Hill grating behind `Opaque`.
 fn generic_models() -> Vec<(&'static str, Box<dyn DiffractionBrdf>)> {
+    #[cfg_attr(not(feature = "stam"), allow(unused_mut))]
     let mut v: Vec<(&'static str, Box<dyn DiffractionBrdf>)> = vec![
         (
             "thorman σ=0.002",

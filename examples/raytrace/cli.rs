@@ -28,6 +28,10 @@ OPTIONS:
                        uniform:K (K <= 4096), gauss:K (K <= 512), auto or auto:ACCURACY
                        (ACCURACY in [1e-6, 1])
     --clip SCHEME      gamut clipping: clamp, intensity (default), constant
+    --integrator NAME  whitted (default) or path (spectral path tracing with MIS; needs a
+                       scene with a [radiometry] table, e.g. cd_area_light)
+    --max-depth D      bounces: mirror recursion (whitted) or path length (path; 1 = direct
+                       light only), 0-64
     --out PATH         one scene: the output file (.png, or .pfm for linear floats);
                        several scenes or --frames: the output directory (default out/)
     --pfm FILE         also write the linear, unclipped image as a PFM (one scene)
@@ -63,6 +67,8 @@ pub struct Options {
     pub seed: Option<u64>,
     pub strategy: Option<Strategy>,
     pub clip: Option<Clip>,
+    pub integrator: crate::path::Integrator,
+    pub max_depth: Option<u32>,
     pub out: Option<PathBuf>,
     pub pfm: Option<PathBuf>,
     pub frames: Option<u32>,
@@ -127,6 +133,15 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
             "--clip" => {
                 let v = value()?;
                 opts.clip = Some(v.parse().map_err(|e| format!("--clip: {e}, got \"{v}\""))?);
+            }
+            "--integrator" => {
+                let v = value()?;
+                opts.integrator = v
+                    .parse()
+                    .map_err(|e| format!("--integrator: {e}, got \"{v}\""))?;
+            }
+            "--max-depth" => {
+                opts.max_depth = Some(int(flag, &value()?, 0, crate::limits::MAX_DEPTH)?)
             }
             "--out" | "-o" => opts.out = Some(PathBuf::from(value()?)),
             "--pfm" => opts.pfm = Some(PathBuf::from(value()?)),

@@ -20,11 +20,15 @@ mod geometry;
 mod limits;
 mod material;
 mod output;
+mod path;
+mod radiometric;
 mod render;
 mod scene;
 mod schema;
 mod texture;
 
+#[cfg(test)]
+mod path_tests;
 #[cfg(test)]
 mod tests;
 
@@ -103,6 +107,9 @@ fn prepare(path: &Path, opts: &Options) -> Result<Scene, String> {
     if let Some(spp) = opts.spp {
         s.spp = spp;
     }
+    if let Some(depth) = opts.max_depth {
+        s.max_depth = depth;
+    }
     if let Some(seed) = opts.seed {
         s.seed = seed;
     }
@@ -151,12 +158,13 @@ fn still(
     if !scene.description.is_empty() {
         note(opts, &format!("{}: {}", scene.name, scene.description));
     }
-    let image = render::render(
+    let image = path::render_with(
+        opts.integrator,
         scene,
         &scene.camera,
         render::progress_wanted(opts.quiet),
         &scene.name,
-    );
+    )?;
     if let Some(t) = png {
         let picture = if opts.compare_clip {
             output::clip_panels(&image)
@@ -177,11 +185,12 @@ fn still(
     note(
         opts,
         &format!(
-            "{}: {}x{}, {} spp, {}, clip {} in {:.2} s -> {}",
+            "{}: {}x{}, {} spp, {}, {}, clip {} in {:.2} s -> {}",
             scene.name,
             s.width,
             s.height,
             s.spp,
+            opts.integrator,
             s.strategy,
             if opts.compare_clip {
                 "all".to_string()
@@ -211,12 +220,13 @@ fn animation(
     for (i, frame) in frames.iter().enumerate() {
         let angle = std::f64::consts::TAU * i as f64 / n as f64;
         let camera = render::orbit(&scene.camera, angle);
-        let image = render::render(
+        let image = path::render_with(
+            opts.integrator,
             scene,
             &camera,
             bar,
             &format!("{} {}/{}", scene.name, i + 1, n),
-        );
+        )?;
         let png = output::to_rgb8(&image, scene.settings.clip);
         output::write_png(&frame.path, &png)?;
         encoder.add(&png)?;

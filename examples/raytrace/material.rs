@@ -65,6 +65,8 @@ pub enum Model {
     /// Stam's Fourier optics (sinusoidal or binary profile).
     #[cfg(feature = "stam")]
     Stam(Stam),
+    /// The energy-normalised grating in physical units (scenes with `[radiometry]`).
+    Radiometric(Box<diffraction::GratingBsdf>),
 }
 
 impl Model {
@@ -75,6 +77,7 @@ impl Model {
             Model::Thorman(m) => m,
             #[cfg(feature = "stam")]
             Model::Stam(m) => m,
+            Model::Radiometric(m) => m.as_ref(),
         }
     }
 }
@@ -176,6 +179,8 @@ fn exposure_of(max_y: f64) -> f64 {
 pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
     let (brdf, period) = match model {
         Model::AguHill(m) => return exposure(spectral, m.grating(), strategy),
+        // Physical units: the light and the camera set the brightness.
+        Model::Radiometric(_) => return 1.0,
         Model::Thorman(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
         #[cfg(feature = "stam")]
         Model::Stam(m) => (m as &dyn DiffractionBrdf, m.period_nm()),

@@ -278,6 +278,9 @@ fn visibility(scene: &Scene, origin: DVec3, light: &Light, rng: &mut Rng) -> f64
 
 /// The linear sRGB radiance along `ray`.
 pub fn trace(scene: &Scene, ray: &Ray, depth: u32, rng: &mut Rng) -> DVec3 {
+    if let Some(r) = &scene.radiometry {
+        return crate::radiometric::whitted(scene, r, ray, depth, rng);
+    }
     match nearest(scene, ray) {
         None => sky(scene, ray.dir),
         Some(hit) => shade(scene, ray, &hit, depth, rng),

@@ -85,6 +85,8 @@ pub struct Scene {
     /// Which materials' strategy came from the scene's `[render]` default (and follows
     /// [`Scene::set_strategy`]).
     follows_default: Vec<bool>,
+    /// The physical units of a radiometric scene (its `[radiometry]` table).
+    pub radiometry: Option<crate::radiometric::Radiometry>,
 }
 
 impl Scene {
@@ -470,6 +472,12 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         follows_default.push(follows);
     }
 
+    let radiometry = crate::radiometric::build(
+        raw.radiometry.as_ref(),
+        (&lights, raw.lights.iter().map(|l| (l.color, l.intensity))),
+        &materials,
+        illuminant,
+    )?;
     Ok(Scene {
         name: name.to_string(),
         description: raw.description.unwrap_or_default(),
@@ -483,6 +491,7 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         materials,
         spectral: loader.spectral,
         follows_default,
+        radiometry,
     })
 }
 
@@ -688,10 +697,11 @@ fn build_model(g: &RawGrating, path: &str, period: f64) -> Check<Model> {
         "thorman" => &["lobe_width"],
         "stam-sine" => &["depth_nm", "coherence_nm", "reflectance"],
         "stam-binary" => &["depth_nm", "fraction", "coherence_nm", "reflectance"],
+        "radiometric" => &["slit_width_nm", "slits", "coherence_nm", "groove_sigma"],
         other => {
             return Err(FieldError::new(
                 f("model"),
-                format!("expected one of \"agu-hill\", \"thorman\", \"stam-sine\", \"stam-binary\", got \"{other}\""),
+                format!("expected one of \"agu-hill\", \"thorman\", \"stam-sine\", \"stam-binary\", \"radiometric\", got \"{other}\""),
             ))
         }
     };
@@ -735,6 +745,14 @@ fn build_model(g: &RawGrating, path: &str, period: f64) -> Check<Model> {
                 Thorman::new(period, lobe).map_err(crate_error)?,
             ))
         }
+        "radiometric" => crate::radiometric::grating_model(
+            period,
+            g.slit_width_nm,
+            g.slits,
+            g.coherence_nm,
+            g.groove_sigma,
+            path,
+        ),
         _ => {
             for (key, v, range) in [
                 ("depth_nm", g.depth_nm, limits::DEPTH_NM),

@@ -27,6 +27,7 @@ pub struct RawScene {
     pub lights: Vec<RawLight>,
     #[serde(default)]
     pub objects: Vec<RawObject>,
+    pub radiometry: Option<crate::radiometric::RawRadiometry>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -145,11 +146,12 @@ pub struct RawGrating {
     pub fraction: Option<f64>,
     pub coherence_nm: Option<f64>,
     pub reflectance: Option<f64>,
+    pub groove_sigma: Option<f64>,
 }
 
 impl RawGrating {
     /// The model parameters present, by key.
-    pub fn parameters(&self) -> [(&'static str, bool); 7] {
+    pub fn parameters(&self) -> [(&'static str, bool); 8] {
         [
             ("slit_width_nm", self.slit_width_nm.is_some()),
             ("slits", self.slits.is_some()),
@@ -158,6 +160,7 @@ impl RawGrating {
             ("fraction", self.fraction.is_some()),
             ("coherence_nm", self.coherence_nm.is_some()),
             ("reflectance", self.reflectance.is_some()),
+            ("groove_sigma", self.groove_sigma.is_some()),
         ]
     }
 }

@@ -98,7 +98,7 @@ use crate::kernel::single_slit_cycles;
 use crate::math;
 use crate::special::{atan, tan};
 use crate::{Band, Grating, Peak, Slits};
-use crate::{DiffractionBrdf, PeakSummary};
+use crate::{DiffractionBrdf, Envelope, GratingResponse, PeakSummary};
 
 /// The share ε of the envelope bound U_m in the order weights w_m = S(π·ρ·m) + ε·U_m.
 pub const DEFENSIVE_ORDER_SHARE: f64 = 0.125;
@@ -1087,6 +1087,38 @@ impl DiffractionBrdf for GratingBsdf {
 
     fn cosine_included(&self) -> bool {
         false
+    }
+
+    /// For finite N, f·cos θi = cos θi·ρ²·N·d·(g(v, λ)/λ)·I(u, λ): the grating's intensity times
+    /// the envelope λ⁻¹ (a groove spread that does not depend on λ) or λ⁻²·sinc²(π·L·v/λ) (a
+    /// coherence length L, whose g is (L/λ)·sinc²(π·L·v/λ)), so the colour integrator takes its
+    /// lobe-exact paths. `None` for N = ∞ and the ideal groove (delta lobes: `eval` is 0 and
+    /// the colour is the peaks' areas) and below the horizon.
+    fn grating_response(&self, wi: DVec3, wo: DVec3) -> Option<GratingResponse> {
+        if !(wi.z >= MIN_COS_THETA && wo.z >= MIN_COS_THETA && wi.is_finite() && wo.is_finite()) {
+            return None;
+        }
+        let Slits::Finite(n) = self.grating.slits() else {
+            return None;
+        };
+        let (u, v) = (wi.x + wo.x, wi.y + wo.y);
+        let rho = self.duty();
+        let base = wi.z * rho * rho * n as f64 * self.grating.period_nm();
+        let (scale, envelope) = match self.groove {
+            GrooveSpread::CoherenceLength { length_nm } => (
+                base * length_nm,
+                Envelope::new(2, (length_nm * v).abs()).ok()?,
+            ),
+            GrooveSpread::Gaussian { .. } => (
+                // g(v) at any wavelength: it does not depend on λ.
+                base * self.groove.value(v, 1.0),
+                Envelope::new(1, 0.0).ok()?,
+            ),
+            _ => return None,
+        };
+        scale
+            .is_finite()
+            .then(|| GratingResponse::new(self.grating, u, scale).with_envelope(envelope))
     }
 }
 

@@ -20,7 +20,10 @@ impl Spectral {
         };
         let q = grating.period_nm() * u;
         if Self::order0_everywhere(grating, q) {
-            return DVec3::new(self.white.x, self.white.y, self.white.z);
+            return {
+                let w = self.flat();
+                DVec3::new(w.x, w.y, w.z)
+            };
         }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
         let lobes = Lobes::new(self, grating, q, n);

@@ -79,7 +79,12 @@ impl Spectral {
             return Xyz::default();
         }
         if let Some(r) = brdf.grating_response(wi, wo) {
-            return self.xyz(&r.grating, r.u, strategy) * r.scale;
+            let spectral = if r.envelope.is_one() {
+                *self
+            } else {
+                self.with_envelope(r.envelope)
+            };
+            return spectral.xyz(&r.grating, r.u, strategy) * r.scale;
         }
         let cos = if brdf.cosine_included() {
             1.0
@@ -149,7 +154,10 @@ impl Spectral {
                         mean += brdf.eval(wi, wo, BAND.min_nm() + (j as f64 + 0.5) * step);
                     }
                     let k = mean / ORDER0_INTERVALS as f64 * cos;
-                    acc += DVec3::new(self.white.x, self.white.y, self.white.z) * k;
+                    acc += {
+                        let w = self.flat();
+                        DVec3::new(w.x, w.y, w.z)
+                    } * k;
                 }
             }
             Strategy::Exact | Strategy::Auto { .. } => acc = self.exact_generic(brdf, wi, wo, &f),

@@ -15,7 +15,10 @@ impl Spectral {
         let peaks = grating.peaks(u, BAND);
         let mut acc = DVec3::ZERO;
         if peaks.specular() {
-            acc = DVec3::new(self.white.x, self.white.y, self.white.z);
+            acc = {
+                let w = self.flat();
+                DVec3::new(w.x, w.y, w.z)
+            };
         }
         let scale = 1.0 / self.mean_power;
         for p in peaks {

@@ -26,7 +26,10 @@ impl Spectral {
         };
         let q = grating.period_nm() * u;
         if Self::order0_everywhere(grating, q) {
-            return DVec3::new(self.white.x, self.white.y, self.white.z);
+            return {
+                let w = self.flat();
+                DVec3::new(w.x, w.y, w.z)
+            };
         }
         if Self::is_dense(q) {
             // Too many orders to walk one by one: the same sum in closed form (see `dense`).

@@ -1,0 +1,377 @@
+//! Tests of the radiometric scenes and of the path integrator: closed forms (a Lambertian
+//! plane under a constant sky, under a spherical light), the MIS weights, and tiny renders.
+
+use std::path::Path;
+
+use diffraction::color::LinearSrgb;
+use diffraction::{Band, SampledWavelengths};
+use glam::DVec3;
+
+use crate::geometry::Ray;
+use crate::material::Model;
+use crate::path::{self, mis_weights, PathOptions};
+use crate::render::Rng;
+use crate::scene::{self, Scene};
+
+/// ∫ ȳ dλ over 360-830 nm of the CIE 1931 2° observer at 1 nm (the sum of the table's ȳ
+/// column, 106.8566 in CIE 15:2004's table; colour-science gives the same).
+const YBAR_INTEGRAL: f64 = 106.8566;
+/// The relative tolerance of that value against the crate's linearly interpolated table (the
+/// trapezoid rule of the 1 nm rows differs from their plain sum by the half end rows, ~1e-6).
+const YBAR_TOLERANCE: f64 = 1e-4;
+/// Monte-Carlo tolerance of the closed-form checks, in standard errors (measured errors were
+/// within 1.5σ; 4σ fails a tenfold regression of the estimator's bias at these sample counts).
+const SIGMAS: f64 = 4.0;
+/// Relative tolerance of the Whitted renderer's 64 × 64 stratified light directions on the
+/// sphere's closed form (measured 5·10⁻⁵; ten times that).
+const WHITTED_TOLERANCE: f64 = 5e-4;
+
+fn parse(src: &str) -> Scene {
+    scene::parse(src, "test.toml", "test", Path::new(".")).unwrap()
+}
+
+/// A plane (albedo `albedo`, grey) at y = 0 seen from above, an E-spectrum sky of radiance
+/// `sky`, optionally a spherical light straight above.
+fn plane_scene(albedo: f64, sky: f64, light: Option<(f64, f64, f64)>) -> Scene {
+    let light = light.map_or(String::new(), |(height, radius, radiance)| {
+        format!(
+            "[[lights]]\nposition = [0.0, {height}, 0.0]\nradius = {radius}\nintensity = {radiance}\nsamples = 64\n"
+        )
+    });
+    parse(&format!(
+        r#"
+[render]
+illuminant = "E"
+[camera]
+position = [0.0, 1.0, 0.0]
+look_at = [0.0, 0.0, 0.3]
+[radiometry]
+exposure = 1.0
+sky_horizon = {sky}
+{light}
+[[objects]]
+shape = "quad"
+scale = 1000.0
+[objects.material]
+type = "diffuse"
+color = [{albedo}, {albedo}, {albedo}]
+"#
+    ))
+}
+
+/// Mean and standard error of Y over `n` paths along `ray` (film units).
+fn mean_y(scene: &Scene, ray: &Ray, n: u32, options: PathOptions) -> (f64, f64) {
+    let r = scene.radiometry.as_ref().unwrap();
+    let mut rng = Rng::new(11);
+    let (mut s, mut s2) = (0.0, 0.0);
+    for i in 0..n {
+        let u = (i as f64 + rng.next_f64()) / n as f64;
+        let l = SampledWavelengths::sample_uniform(u, Band::VISIBLE);
+        let y = path::film_xyz(&l, path::li(scene, r, ray, l, &mut rng, options)).y * r.exposure;
+        s += y;
+        s2 += y * y;
+    }
+    let m = s / n as f64;
+    (m, ((s2 / n as f64 - m * m).max(0.0) / n as f64).sqrt())
+}
+
+#[test]
+fn the_ybar_integral_of_the_units_is_the_tables() {
+    let r = plane_scene(0.5, 1.0, None).radiometry.unwrap();
+    // Illuminant E: s = 1, so ∫ s·ȳ is the observer's own integral.
+    assert!(
+        (r.ys / YBAR_INTEGRAL - 1.0).abs() < YBAR_TOLERANCE,
+        "{}",
+        r.ys
+    );
+}
+
+#[test]
+fn white_furnace_a_lambertian_plane_under_a_constant_sky() {
+    // Everything the plane sees is sky: L_o = a·L at every bounce count.
+    let (a, sky) = (0.5, 2.0);
+    let scene = plane_scene(a, sky, None);
+    let ray = Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.1, -1.0, 0.2));
+    for depth in [1, 5] {
+        let options = PathOptions {
+            grating_sampler: true,
+            max_depth: depth,
+        };
+        let (y, se) = mean_y(&scene, &ray, 4000, options);
+        let expected = a * sky * YBAR_INTEGRAL;
+        assert!(
+            (y - expected).abs() < SIGMAS * se + 1e-3 * expected,
+            "depth {depth}: {y} ± {se}, expected {expected}"
+        );
+    }
+}
+
+#[test]
+fn direct_light_of_a_sphere_on_a_lambertian_plane() {
+    // A sphere of radiance L, radius R at height H over the plane: irradiance π·L·(R/H)²
+    // below its centre, so L_o = a·L·(R/H)². Both integrators, direct light only, no sky.
+    let (a, height, radius, radiance) = (0.8, 2.0, 0.5, 3.0);
+    let scene = plane_scene(a, 0.0, Some((height, radius, radiance)));
+    let expected = a * radiance * (radius / height).powi(2) * YBAR_INTEGRAL;
+    let ray = Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y);
+    let r = scene.radiometry.as_ref().unwrap();
+    for sampler in [true, false] {
+        let options = PathOptions {
+            grating_sampler: sampler,
+            max_depth: 1,
+        };
+        let (y, se) = mean_y(&scene, &ray, 4000, options);
+        assert!(
+            (y - expected).abs() < SIGMAS * se + 1e-3 * expected,
+            "path: {y} ± {se}, expected {expected}"
+        );
+    }
+    // Whitted: 64 stratified directions in the light's cone, 64 times.
+    let mut rng = Rng::new(3);
+    let mut y = 0.0;
+    for _ in 0..64 {
+        let c = crate::radiometric::whitted(&scene, r, &ray, 0, &mut rng);
+        y += LinearSrgb::new(c.x, c.y, c.z).to_xyz().y / 64.0;
+    }
+    assert!(
+        (y / expected - 1.0).abs() < WHITTED_TOLERANCE,
+        "whitted: {y}, expected {expected}"
+    );
+}
+
+#[test]
+fn the_mis_weights_of_the_eight_techniques_sum_to_one() {
+    // Equal densities under the four wavelengths: the two-strategy balance heuristic.
+    let (p_l, p_b) = (3.0, 1.0);
+    let (wl, wb) = mis_weights([1.0; 4], p_l, [p_b; 4]);
+    for k in 0..4 {
+        assert!((wl[k] - p_l / (p_l + p_b) / 4.0).abs() < 1e-15);
+        assert!((wb[k] - p_b / (p_l + p_b) / 4.0).abs() < 1e-15);
+    }
+    // A grating's dispersive densities at a direction in the hero's lobe.
+    use diffraction::{Bsdf, Grating, GratingBsdf};
+    let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 30).unwrap());
+    let l = SampledWavelengths::sample_uniform(0.3, Band::VISIBLE);
+    let wo = DVec3::new(0.1, 0.05, (1.0f64 - 0.0125).sqrt());
+    let mut rng = Rng::new(5);
+    for _ in 0..100 {
+        let u2 = glam::DVec2::new(rng.next_f64(), rng.next_f64());
+        let Some(s) = b.sample(wo, l.hero(), rng.next_f64(), u2) else {
+            continue;
+        };
+        let pdf4 = b.pdf4(wo, s.wi, &l);
+        let r_u = [1.0, 0.5, 2.0, 0.25];
+        let (wl, wb) = mis_weights(r_u, 0.7, pdf4);
+        let sum: f64 = wl.iter().chain(&wb).sum();
+        assert!((sum - 1.0).abs() < 1e-12, "{sum}");
+        assert!(wl.iter().chain(&wb).all(|w| (0.0..=1.0).contains(w)));
+    }
+    assert_eq!(mis_weights([1.0; 4], 0.0, [0.0; 4]), ([0.0; 4], [0.0; 4]));
+}
+
+#[test]
+fn the_cd_scene_loads_and_both_integrators_render_it() {
+    let mut scene = scene::load(&crate::scenes_dir().join("cd_area_light.toml")).unwrap();
+    assert!(scene.radiometry.is_some());
+    assert!(scene
+        .materials
+        .iter()
+        .filter_map(|m| m.grating.as_ref())
+        .all(|g| matches!(g.model, Model::Radiometric(_))));
+    scene.settings.width = 16;
+    scene.settings.height = 12;
+    scene.settings.spp = 2;
+    for integrator in [path::Integrator::Whitted, path::Integrator::Path] {
+        let img = path::render_with(integrator, &scene, &scene.camera, false, "").unwrap();
+        for c in &img.pixels {
+            let xyz = LinearSrgb::new(c.x, c.y, c.z).to_xyz();
+            assert!(c.is_finite(), "{integrator}: {c}");
+            // Linear sRGB of spectral colours can be negative; XYZ cannot.
+            for v in [xyz.x, xyz.y, xyz.z] {
+                assert!(v >= -1e-9, "{integrator}: {xyz:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn radiometric_scene_errors_name_the_field() {
+    let base = r#"
+[camera]
+position = [0.0, 1.0, 0.0]
+look_at = [0.0, 0.0, 0.3]
+[[objects]]
+shape = "quad"
+[objects.material]
+type = "grating"
+period_nm = 1600.0
+"#;
+    let err = |s: &str| {
+        scene::parse(s, "t.toml", "t", Path::new("."))
+            .unwrap_err()
+            .to_string()
+    };
+    let e = err(&format!("{base}model = \"radiometric\"\n"));
+    assert!(e.contains("objects[0].material.model"), "{e}");
+    let e = err(&format!("[radiometry]\nexposure = 1.0\n{base}"));
+    assert!(e.contains("radiometric"), "{e}");
+    let e = err(&format!(
+        "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\ngroove_sigma = 3.0\ndiffuse = 0.0\n"
+    ));
+    assert!(e.contains("groove_sigma"), "{e}");
+    // Passivity: diffuse 1 × colour 0.7 + w/d 0.5 > 1.
+    let e = err(&format!(
+        "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\n"
+    ));
+    assert!(e.contains("passive"), "{e}");
+    let e = err(&format!(
+        "[radiometry]\nexposure = -1.0\n{base}model = \"radiometric\"\ndiffuse = 0.0\n"
+    ));
+    assert!(e.contains("radiometry.exposure"), "{e}");
+}
+
+/// The comparisons of the docs (`cargo test --release --example raytrace -- --ignored
+/// cd_area_light_comparison --nocapture`): (a) Whitted against (b) path-traced direct light of
+/// `cd_area_light` without the sky, mean ΔE2000 of the clipped pictures; (c) at equal time, the
+/// pixel variance of path tracing with and without the grating sampler in the MIS, over
+/// independent renders. Writes the pictures into docs/images/.
+#[test]
+#[ignore = "minutes of rendering; the figures of the docs"]
+fn cd_area_light_comparison() {
+    use diffraction::color::Lab;
+    use std::time::Instant;
+    let images = crate::scenes_dir().join("../../docs/images");
+    let base = scene::load(&crate::scenes_dir().join("cd_area_light.toml")).unwrap();
+    let white = diffraction::color::WhitePoint::new(base.spectral.white()).unwrap();
+    let clip = base.settings.clip;
+    let lab = |img: &crate::render::Image| -> Vec<Lab> {
+        img.pixels
+            .iter()
+            .map(|c| {
+                LinearSrgb::new(c.x, c.y, c.z)
+                    .clip(clip)
+                    .to_xyz()
+                    .to_lab(white)
+            })
+            .collect()
+    };
+    let save = |img: &crate::render::Image, name: &str| {
+        crate::output::write_png(&images.join(name), &crate::output::to_rgb8(img, clip)).unwrap();
+    };
+    let env = |k: &str, d: u32| {
+        std::env::var(k)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(d)
+    };
+
+    // (a) and (b): direct light of the spherical light only.
+    let mut direct = base.clone();
+    direct.radiometry.as_mut().unwrap().sky = [0.0; 2];
+    direct.settings.spp = env("WHITTED_SPP", 64);
+    let t = Instant::now();
+    let whitted = crate::render::render(&direct, &direct.camera, false, "");
+    let t_whitted = t.elapsed().as_secs_f64();
+    direct.settings.spp = env("DIRECT_SPP", 1024);
+    let t = Instant::now();
+    let options = PathOptions {
+        grating_sampler: true,
+        max_depth: 1,
+    };
+    let traced = path::render(&direct, &direct.camera, options, false).unwrap();
+    let t_traced = t.elapsed().as_secs_f64();
+    let (a, b) = (lab(&whitted), lab(&traced));
+    let de: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x.delta_e2000(*y)).collect();
+    let mean = de.iter().sum::<f64>() / de.len() as f64;
+    let mut sorted = de.clone();
+    sorted.sort_by(f64::total_cmp);
+    println!(
+        "(a) whitted {} spp × 16 light samples: {t_whitted:.1} s; (b) path direct {} spp: \
+         {t_traced:.1} s; mean ΔE2000 {mean:.3}, median {:.3}, 99th percentile {:.3}",
+        env("WHITTED_SPP", 64),
+        env("DIRECT_SPP", 1024),
+        sorted[sorted.len() / 2],
+        sorted[sorted.len() * 99 / 100]
+    );
+    save(&whitted, "cd_area_whitted.png");
+    save(&traced, "cd_area_path_direct.png");
+
+    // (c) Full paths with the sky, with and without the grating sampler, at equal time.
+    let runs = env("RUNS", 4);
+    let spp = env("EQUAL_SPP", 16);
+    let mut full = base.clone();
+    let mut time_of = |sampler: bool, spp: u32, seed: u64| {
+        full.settings.spp = spp;
+        full.settings.seed = seed;
+        let options = PathOptions {
+            grating_sampler: sampler,
+            max_depth: full.settings.max_depth,
+        };
+        let t = Instant::now();
+        let img = path::render(&full, &full.camera, options, false).unwrap();
+        (img, t.elapsed().as_secs_f64())
+    };
+    // Cost per sample of each, to give both the same time.
+    let (_, t_s) = time_of(true, spp, 100);
+    let (_, t_c) = time_of(false, spp, 100);
+    let spp_cosine = ((spp as f64 * t_s / t_c).round() as u32).max(1);
+    let mut variance = |sampler: bool, spp: u32| -> (f64, f64, crate::render::Image, f64) {
+        let mut imgs = Vec::new();
+        let mut time = 0.0;
+        for k in 0..runs {
+            let (img, t) = time_of(sampler, spp, 1000 + k as u64);
+            time += t;
+            imgs.push(img);
+        }
+        // Per-pixel variance of the film's XYZ (summed over X, Y, Z), unclipped, over the runs.
+        let n = imgs[0].pixels.len();
+        let mut total = 0.0;
+        let mut on_cd = (0.0, 0usize);
+        for p in 0..n {
+            let xyz: Vec<[f64; 3]> = imgs
+                .iter()
+                .map(|im| {
+                    let c = im.pixels[p];
+                    let x = LinearSrgb::new(c.x, c.y, c.z).to_xyz();
+                    [x.x, x.y, x.z]
+                })
+                .collect();
+            let mut v = 0.0;
+            for ch in 0..3 {
+                let m = xyz.iter().map(|x| x[ch]).sum::<f64>() / runs as f64;
+                v += xyz.iter().map(|x| (x[ch] - m).powi(2)).sum::<f64>() / (runs as f64 - 1.0);
+            }
+            total += v;
+            // The grating's pixels: the first render's hit is the CD (the middle of the frame).
+            let (x, y) = (p % imgs[0].width as usize, p / imgs[0].width as usize);
+            let (w, h) = (imgs[0].width as usize, imgs[0].height as usize);
+            let in_disc = {
+                let (dx, dy) = (x as f64 / w as f64 - 0.47, y as f64 / h as f64 - 0.58);
+                (dx / 0.25).powi(2) + (dy / 0.16).powi(2) < 1.0
+            };
+            if in_disc {
+                on_cd.0 += v;
+                on_cd.1 += 1;
+            }
+        }
+        (
+            total / n as f64,
+            on_cd.0 / on_cd.1.max(1) as f64,
+            imgs.swap_remove(0),
+            time / runs as f64,
+        )
+    };
+    let (v_s, v_s_cd, img_s, time_s) = variance(true, spp);
+    let (v_c, v_c_cd, img_c, time_c) = variance(false, spp_cosine);
+    println!(
+        "(c) grating sampler {spp} spp: {time_s:.2} s, variance {v_s:.4e} (CD {v_s_cd:.4e}); \
+         cosine {spp_cosine} spp: {time_c:.2} s, variance {v_c:.4e} (CD {v_c_cd:.4e}); \
+         ratio cosine/sampler {:.2} (CD {:.2}), time-normalised {:.2} (CD {:.2})",
+        v_c / v_s,
+        v_c_cd / v_s_cd,
+        v_c * time_c / (v_s * time_s),
+        v_c_cd * time_c / (v_s_cd * time_s),
+    );
+    save(&img_s, "cd_area_path_equal_time.png");
+    save(&img_c, "cd_area_path_nosampler.png");
+}
