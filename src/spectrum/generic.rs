@@ -152,7 +152,9 @@ impl Spectral {
                     acc += DVec3::new(self.white.x, self.white.y, self.white.z) * k;
                 }
             }
-            Strategy::Exact | Strategy::Auto { .. } => acc = self.exact_generic(brdf, wi, wo, &f),
+            Strategy::Exact | Strategy::Asymptotic | Strategy::Auto { .. } => {
+                acc = self.exact_generic(brdf, wi, wo, &f)
+            }
         }
         Xyz::new(acc.x.max(0.0), acc.y.max(0.0), acc.z.max(0.0))
     }
