@@ -21,7 +21,7 @@
 //! | `PeakSearch { refine: false }` | O(visible orders), independent of N (a few µs where order 0's light reaches the band) | 3.5/N of the brightest order; 2e-3 of order 0's light |
 //! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
 //! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
-//! | `Asymptotic` | O(visible orders): 4 lobes × 8 points per bright order, one point per faint order, the envelope in 32 nm pieces | 2e-4 of the brightest order (worst measured 8.1e-5, N ≥ 5); 1e-3 of order 0's light |
+//! | `Asymptotic` | O(visible orders): 4 lobes × 8 points per bright order, one point per faint order, the envelope in 32 nm pieces | 5e-4 of the brightest order (worst measured 1.4e-4, N ≥ 5); 1e-3 of order 0's light |
 //! | `Exact` | lobe by lobe when N·Δx ≤ 4096 lobes, else O(orders·128 lobes + log N per period) | below 1e-7 relative |
 //! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
 //!
@@ -81,10 +81,11 @@
 //!   which occur for small N and in order 0's half period near the mirror direction: the
 //!   expansion needs h smooth on the scale of a lobe, so they too are integrated lobe by lobe.
 //! - **Between the windows**, ∫G in 4-point pieces of at most 32 nm (split at the illuminant's
-//!   nodes), with the nearest integer's tangent line p of h subtracted and ∫p/(2 sin²πx) added
+//!   nodes in order 0's half period only, where G is the whole colour), with the nearest integer's tangent line p of h subtracted and ∫p/(2 sin²πx) added
 //!   analytically (−cot(πr)/(2π) and −r·cot(πr)/(2π) + ln|sin πr|/(2π²), r = x − m); −[G']/(4π²N²)
-//!   at each window edge (h' by a one-sided difference over a quarter lobe); the illuminant's
-//!   nodes' ΔG'_j terms. The first neglected term is 7.8e-4/T⁵ of the tail beyond T = 2 lobes.
+//!   at each window edge (h' by a one-sided difference over a quarter lobe). The first neglected
+//!   end term is 7.8e-4/T⁵ of the tail beyond T = 2 lobes; the kinks' ΔG'_j terms are
+//!   neglected (below 10⁻⁵ of the brightest order on the test grids).
 //! - **Faint orders** (peak value below 1e-7·5.19/8·N, i.e. the peak search's error 8/N of them
 //!   below 10⁻⁷ of the brightest order's floor) whose whole period lies between the band ends
 //!   get the plain peak-search weight h(m)/N for their period; this keeps coarse gratings (100
@@ -92,9 +93,9 @@
 //!
 //! Below 5 slits the strategy is `Exact`. Measured against `Exact` (`tests/asymptotic.rs`: N = 5
 //! … 10⁶, d = 400 nm … 100 µm, w = d/2 and d/10, 128 directions, E and D65) and the python
-//! reference: at most 8.1e-5 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
+//! reference: at most 1.4e-4 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
 //! and 5.7e-4 of max(colour, brightest order) where order 0's half period does; `Spectral::choose`
-//! relies on 2e-4 and 1e-3.
+//! relies on 5e-4 and 1e-3.
 //!
 //! **The paper's peak colours** (its rendering steps 6-8) evaluate eq. 13 at the peak wavelengths
 //! only, each with its peak intensity S(β_m) whatever N is, and convert each to colour:

@@ -37,7 +37,7 @@ impl Spectral {
     /// Bounds (measured over the test grids of `tests/spectral_reference.rs` and
     /// `tests/asymptotic.rs`, and kept with a margin): peak search 8/N (worst measured 3.5/N),
     /// plus 2e-3 of the order-0 light where order 0's half period reaches into the band
-    /// (d·|u|/830 nm < ½); `Asymptotic` 2e-4 (worst 8.1e-5) plus 1e-3 of the order-0 light
+    /// (d·|u|/830 nm < ½); `Asymptotic` 5e-4 (worst 1.4e-4) plus 1e-3 of the order-0 light
     /// (worst 5.7e-4), for N ≥ 5; `Exact` 1e-7. The peak search is taken only where the band
     /// holds more than 64 lobes, then `Asymptotic`, then `Exact`.
     ///
@@ -49,7 +49,7 @@ impl Spectral {
     /// assert_eq!(s.choose(&few, 0.4, 1e-3), Strategy::Exact);
     /// let many = Grating::new(1600.0, 800.0, 100_000)?; // 8/N = 8e-5 meets 1e-3
     /// assert_eq!(s.choose(&many, 0.4, 1e-3), Strategy::PeakSearch { refine: false });
-    /// let cd = Grating::new(1600.0, 800.0, 21)?; // 8/N is too coarse; 2e-4 meets 1e-3
+    /// let cd = Grating::new(1600.0, 800.0, 21)?; // 8/N is too coarse; 5e-4 meets 1e-3
     /// assert_eq!(s.choose(&cd, 0.4, 1e-3), Strategy::Asymptotic);
     /// assert_eq!(s.choose(&cd, 0.4, 1e-4), Strategy::Exact);
     /// # Ok::<(), diffraction::Error>(())
