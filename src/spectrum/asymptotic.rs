@@ -8,7 +8,9 @@
 //! G = h/(2N² sin²πx) with its end corrections (`Walk::envelope`); faint orders by their peak
 //! value over their whole period (`Walk::plain_period`). The work is O(visible orders), as for
 //! the peak search. The smooth weight h comes from `Lobes::envelope_at` alone, so a further
-//! smooth per-wavelength factor multiplies in there.
+//! smooth per-wavelength factor multiplies in there. At the extremes of d·|u| (the band inside
+//! order 0's central lobe, or more than `DENSE_ORDERS` orders) it is `Exact`, whose closed forms
+//! bound the work there.
 
 use glam::DVec3;
 
@@ -72,6 +74,11 @@ impl Spectral {
             return self.exact(grating, u);
         }
         let q = grating.period_nm() * u;
+        if Self::order0_everywhere(grating, q) || Self::is_dense(q) {
+            // The white, or a comb of more than `DENSE_ORDERS` orders: `Exact`'s closed forms
+            // (bounded work, see `dense`).
+            return self.exact(grating, u);
+        }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
         let lobes = Lobes::new(self, grating, q, n);
         let mut walk = Walk {
