@@ -222,3 +222,48 @@ fn asymptotic_is_finite_at_extremes() {
         }
     }
 }
+
+/// Wall-clock time per XYZ over the accuracy report's grid (printed; criterion's
+/// `benches/spectral.rs` is the measurement of record).
+#[test]
+#[ignore = "timing listing"]
+fn list_times_over_the_report_grid() {
+    let s = Spectral::new(Illuminant::D65);
+    let us = u_grid(false);
+    let strategies = [
+        Strategy::Asymptotic,
+        Strategy::PeakSearch { refine: false },
+        Strategy::Auto { accuracy: 1e-3 },
+    ];
+    let mut cells = vec![Vec::new(); strategies.len()];
+    for d in [740.0, 1600.0, 10_000.0, 100_000.0] {
+        for n in [1u32, 2, 5, 30, 300, 1000, 3000, 30_000, 1_000_000] {
+            let g = Grating::new(d, d / 2.0, n).unwrap();
+            let mut line = format!("d={d:>7} N={n:>8}");
+            for (k, &st) in strategies.iter().enumerate() {
+                let mut best = f64::INFINITY;
+                for _ in 0..5 {
+                    let t = std::time::Instant::now();
+                    let mut acc = 0.0;
+                    for &u in &us {
+                        acc += s.xyz(&g, std::hint::black_box(u), st).y;
+                    }
+                    std::hint::black_box(acc);
+                    best = best.min(t.elapsed().as_nanos() as f64 / us.len() as f64);
+                }
+                cells[k].push(best);
+                line += &format!("  {st}: {best:>9.0} ns");
+            }
+            println!("{line}");
+        }
+    }
+    for (k, st) in strategies.iter().enumerate() {
+        let v = &mut cells[k];
+        v.sort_by(f64::total_cmp);
+        println!(
+            "{st}: median {:.0} ns per XYZ over {} cells",
+            v[v.len() / 2],
+            v.len()
+        );
+    }
+}
