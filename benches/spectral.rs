@@ -46,6 +46,7 @@ fn strategies() -> Vec<Strategy> {
         Strategy::PeakSearch { refine: true },
         Strategy::PaperPeaks,
         Strategy::Exact,
+        Strategy::Asymptotic,
         Strategy::Auto { accuracy: 1e-2 },
         Strategy::Auto { accuracy: 1e-3 },
         Strategy::Auto { accuracy: 1e-4 },

@@ -45,6 +45,10 @@ mod imp {
     pub fn cbrt(x: f64) -> f64 {
         x.cbrt()
     }
+    #[inline]
+    pub fn ln(x: f64) -> f64 {
+        x.ln()
+    }
 }
 
 #[cfg(all(not(feature = "std"), feature = "libm"))]
@@ -88,6 +92,10 @@ mod imp {
     #[inline]
     pub fn cbrt(x: f64) -> f64 {
         libm::cbrt(x)
+    }
+    #[inline]
+    pub fn ln(x: f64) -> f64 {
+        libm::log(x)
     }
 }
 

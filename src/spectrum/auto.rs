@@ -1,5 +1,6 @@
 //! `Auto`: the cheapest strategy whose error bound meets a requested accuracy.
 
+use super::asymptotic;
 use super::{Spectral, Strategy, BAND, DEFAULT_ACCURACY};
 use crate::kernel::sinpi;
 use crate::math::rint;
@@ -33,10 +34,12 @@ impl Spectral {
     /// The strategy [`Strategy::Auto`] picks for `accuracy`: the cheapest whose error bound,
     /// relative to the XYZ of the brightest order of this grating, is within it.
     ///
-    /// Bounds (measured over the test grid of `tests/spectral_reference.rs`, where the worst
-    /// is 3.5/N, and kept with a margin): peak search 8/N, plus 2e-3 of the order-0 light where
-    /// order 0's half period reaches into the band (d·|u|/830 nm < ½); `Exact` 1e-7. Where the
-    /// band holds at most 64 lobes, `Exact` costs no more than the peak search and is chosen.
+    /// Bounds (measured over the test grids of `tests/spectral_reference.rs` and
+    /// `tests/asymptotic.rs`, and kept with a margin): peak search 8/N (worst measured 3.5/N),
+    /// plus 2e-3 of the order-0 light where order 0's half period reaches into the band
+    /// (d·|u|/830 nm < ½); `Asymptotic` 5e-4 (worst 1.4e-4) plus 1e-3 of the order-0 light
+    /// (worst 5.7e-4), for N ≥ 5; `Exact` 1e-7. The peak search is taken only where the band
+    /// holds more than 64 lobes, then `Asymptotic`, then `Exact`.
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -46,6 +49,9 @@ impl Spectral {
     /// assert_eq!(s.choose(&few, 0.4, 1e-3), Strategy::Exact);
     /// let many = Grating::new(1600.0, 800.0, 100_000)?; // 8/N = 8e-5 meets 1e-3
     /// assert_eq!(s.choose(&many, 0.4, 1e-3), Strategy::PeakSearch { refine: false });
+    /// let cd = Grating::new(1600.0, 800.0, 21)?; // 8/N is too coarse; 5e-4 meets 1e-3
+    /// assert_eq!(s.choose(&cd, 0.4, 1e-3), Strategy::Asymptotic);
+    /// assert_eq!(s.choose(&cd, 0.4, 1e-4), Strategy::Exact);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
@@ -66,7 +72,8 @@ impl Spectral {
         // the brightest order (Y ≈ BRIGHTEST_ORDER_Y_TIMES_N / N) that error is
         // ORDER0_RELATIVE_ERROR · F_N(x_lo) · N / BRIGHTEST_ORDER_Y_TIMES_N.
         let x_lo = q / BAND.max_nm();
-        let to_brightest = ORDER0_RELATIVE_ERROR * n / BRIGHTEST_ORDER_Y_TIMES_N;
+        // (The same with asymptotic::ORDER0_BOUND for `Asymptotic`.)
+        let to_brightest = n / BRIGHTEST_ORDER_Y_TIMES_N;
         let order0 = if x_lo >= 0.5 {
             0.0
         } else if x_lo * n < 1.0 {
@@ -75,8 +82,14 @@ impl Spectral {
             let f = 1.0 / (n * sinpi(x_lo - rint(x_lo)));
             f * f * to_brightest
         };
-        if lobes > EXACT_BELOW_LOBES && PEAK_SEARCH_BOUND_N / n + order0 <= accuracy {
+        if lobes > EXACT_BELOW_LOBES
+            && PEAK_SEARCH_BOUND_N / n + ORDER0_RELATIVE_ERROR * order0 <= accuracy
+        {
             Strategy::PeakSearch { refine: false }
+        } else if n >= asymptotic::MIN_SLITS
+            && asymptotic::ORDERS_BOUND + asymptotic::ORDER0_BOUND * order0 <= accuracy
+        {
+            Strategy::Asymptotic
         } else {
             Strategy::Exact
         }

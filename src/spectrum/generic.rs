@@ -160,7 +160,9 @@ impl Spectral {
                     } * k;
                 }
             }
-            Strategy::Exact | Strategy::Auto { .. } => acc = self.exact_generic(brdf, wi, wo, &f),
+            Strategy::Exact | Strategy::Asymptotic | Strategy::Auto { .. } => {
+                acc = self.exact_generic(brdf, wi, wo, &f)
+            }
         }
         Xyz::new(acc.x.max(0.0), acc.y.max(0.0), acc.z.max(0.0))
     }

@@ -19,9 +19,9 @@ pub(super) type PieceRule<'a> = fn(&Lobes<'a>, f64, f64, &mut DVec3, &dyn Fn(f64
 
 /// Quadrature in the phase x = q/λ (q = d·|u|) of E·S·cmf·F_N·norm·q/x².
 pub(super) struct Lobes<'a> {
-    s: &'a Spectral,
-    q: f64,
-    n: f64,
+    pub(super) s: &'a Spectral,
+    pub(super) q: f64,
+    pub(super) n: f64,
     n_int: u32,
     duty: f64,
 }
@@ -39,7 +39,7 @@ impl<'a> Lobes<'a> {
 
     /// E·S·cmf·norm·|dλ/dx| at phase x, without F_N.
     #[inline]
-    fn envelope_at(&self, x: f64) -> DVec3 {
+    pub(super) fn envelope_at(&self, x: f64) -> DVec3 {
         let l = self.q / x;
         let jac = l / x;
         let s = single_slit_cycles(self.duty * x);
@@ -61,7 +61,7 @@ impl<'a> Lobes<'a> {
 
     /// ∫ over [a, b] of the full integrand, one lobe (between zeros x = k/N) at a time, each
     /// lobe handed to `rule`.
-    fn lobes_by(&self, a: f64, b: f64, rule: PieceRule<'a>) -> DVec3 {
+    pub(super) fn lobes_by(&self, a: f64, b: f64, rule: PieceRule<'a>) -> DVec3 {
         let mut acc = DVec3::ZERO;
         if b.is_nan() || a.is_nan() || b <= a {
             return acc;

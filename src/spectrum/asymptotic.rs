@@ -1,0 +1,408 @@
+//! `Strategy::Asymptotic`: the peak search with its leading correction (the derivation, the
+//! treatment of the kinks, the band ends and order 0, and the measured bound are in the
+//! `spectrum` module docs).
+//!
+//! The band [d·|u|/830, d·|u|/360] in x is walked from left to right: windows integrated lobe
+//! by lobe (`Lobes::lobes_by` with `window_rule`) around every integer, at both band ends and
+//! over the lobes wider than LOBE_NM, merged where they overlap; between them the envelope
+//! G = h/(2N² sin²πx) with its end corrections (`Walk::envelope`); faint orders by their peak
+//! value over their whole period (`Walk::plain_period`). The work is O(visible orders), as for
+//! the peak search. The smooth weight h comes from `Lobes::envelope_at` alone, so a further
+//! smooth per-wavelength factor multiplies in there. At the extremes of d·|u| (the band inside
+//! order 0's central lobe, or more than `DENSE_ORDERS` orders) it is `Exact`, whose closed forms
+//! bound the work there.
+
+use glam::DVec3;
+
+use super::lobes::Lobes;
+use super::rules::{gl4, gl8};
+use super::{Spectral, BAND};
+use crate::cie::Illuminant;
+use crate::kernel::sinpi;
+use crate::math::{ceil, floor, ln, rint, sqrt};
+use crate::{Grating, Slits};
+use core::f64::consts::PI;
+
+/// Lobes on each side of every integer x integrated lobe by lobe.
+const PEAK_LOBES: f64 = 2.0;
+/// Whole lobes after the partial lobe at each band end integrated lobe by lobe.
+const END_LOBES: f64 = 1.0;
+/// Largest span in wavelength of one 4-point piece of the envelope, not split at the
+/// illuminant's nodes.
+const ENVELOPE_SPAN_NM: f64 = 32.0;
+/// Lobes wider than this, in wavelength, or than the illuminant's node spacing, are
+/// integrated lobe by lobe.
+const LOBE_NM: f64 = 8.0;
+/// Largest span in wavelength of one 4-point Gauss-Legendre piece.
+const SPAN_NM: f64 = 16.0;
+/// An order treated by the plain peak search contributes less than this, relative to the
+/// brightest order's floor, to the error.
+const FAINT: f64 = 1e-7;
+/// The bound `Spectral::choose` relies on, relative to the brightest order's XYZ where only
+/// orders m ≠ 0 reach the band (measured: 1.4e-4 over `tests/asymptotic.rs`, N = 5…10⁶).
+pub(super) const ORDERS_BOUND: f64 = 5e-4;
+/// The bound relative to order 0's own light where its half period reaches into the band
+/// (measured: 5.7e-4).
+pub(super) const ORDER0_BOUND: f64 = 1e-3;
+/// Below this many slits the strategy is `Exact`.
+pub(super) const MIN_SLITS: f64 = 5.0;
+
+/// The spacing of the illuminant's own rows, nm, where its linear interpolation has large kinks
+/// (D65 is tabulated at 5 nm and interpolated linearly to the 1 nm table, see `cie`); 0 when it
+/// has none (E is flat; A is Planck's law at every 1 nm row, as smooth as the observer).
+fn node_spacing_nm(illuminant: Illuminant) -> f64 {
+    match illuminant {
+        Illuminant::D65 => 5.0,
+        Illuminant::E | Illuminant::A => 0.0,
+    }
+}
+
+/// cos(π·r) for |r| ≤ ½.
+#[inline]
+fn cospi(r: f64) -> f64 {
+    sinpi(0.5 - r.abs())
+}
+
+impl Spectral {
+    /// The corrected peak search (see the module docs).
+    pub(super) fn asymptotic(&self, grating: &Grating, u: f64) -> DVec3 {
+        let n = match grating.slits() {
+            Slits::Finite(n) => n as f64,
+            Slits::Infinite => return DVec3::ZERO,
+        };
+        if n < MIN_SLITS {
+            return self.exact(grating, u);
+        }
+        let q = grating.period_nm() * u;
+        if Self::order0_everywhere(grating, q) || Self::is_dense(q) {
+            // The white, or a comb of more than `DENSE_ORDERS` orders: `Exact`'s closed forms
+            // (bounded work, see `dense`).
+            return self.exact(grating, u);
+        }
+        let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
+        let lobes = Lobes::new(self, grating, q, n);
+        let mut walk = Walk {
+            lobes: &lobes,
+            start: x_lo,
+            end: x_hi,
+            cursor: x_lo,
+            cursor_on_zero: false,
+            pending: None,
+            acc: DVec3::ZERO,
+        };
+        if x_lo.is_nan() || x_hi.is_nan() || x_lo >= x_hi {
+            return walk.acc;
+        }
+        let t = PEAK_LOBES / n;
+        // The band end, and every lobe wider than LOBE_NM (the envelope's expansion needs h
+        // smooth on the scale of a lobe, q/(N·x²) nm wide).
+        let node = node_spacing_nm(self.illuminant);
+        let lobe_nm = if node > 0.0 {
+            LOBE_NM.min(node)
+        } else {
+            LOBE_NM
+        };
+        let wide = ceil(sqrt(q / (n * lobe_nm)) * n);
+        let left = (floor(x_lo * n) + 1.0 + END_LOBES).max(wide) / n;
+        walk.exact_window(x_lo, left);
+        let right = (ceil(x_hi * n) - 1.0 - END_LOBES) / n;
+        // An order whose whole period lies between the end windows and whose peak value is
+        // below this gets the plain peak-search weight h(m)/N (its error, under 8/N of it, is
+        // below FAINT of the brightest order's floor 5.19/N).
+        let faint = FAINT * 5.19 / 8.0 * n;
+        let mut right_done = false;
+        // Every integer whose window reaches into the band, order 0 (x = 0) included.
+        let mut m = ceil(x_lo - t).max(0.0);
+        while m - t <= x_hi {
+            if !right_done && m - t >= right {
+                walk.exact_window(right, x_hi);
+                right_done = true;
+            }
+            let h = if m >= 1.0 && m - 0.5 >= left && m + 0.5 <= right {
+                let h = lobes.envelope_at(m);
+                (h.abs().max_element() <= faint).then_some(h)
+            } else {
+                None
+            };
+            match h {
+                Some(h) => walk.plain_period(m, h),
+                None => walk.exact_window(m - t, m + t),
+            }
+            m += 1.0;
+        }
+        if !right_done {
+            walk.exact_window(right, x_hi);
+        }
+        walk.finish();
+        // The integral is non-negative; the corrections can undershoot a vanishing channel by
+        // rounding.
+        walk.acc.max(DVec3::ZERO)
+    }
+}
+
+/// Left-to-right integration over [start, end]: lobe by lobe inside the windows handed to
+/// `exact_window` (in order of their starts), the mean-½ envelope with its end corrections in
+/// the gaps between them.
+struct Walk<'s, 'a> {
+    lobes: &'s Lobes<'a>,
+    start: f64,
+    end: f64,
+    /// Everything below is integrated.
+    cursor: f64,
+    /// Whether the cursor is on a zero of sin(πNx) (a window's edge).
+    cursor_on_zero: bool,
+    /// A window not yet integrated (it may still grow).
+    pending: Option<(f64, f64)>,
+    acc: DVec3,
+}
+
+impl Walk<'_, '_> {
+    fn exact_window(&mut self, a: f64, b: f64) {
+        let (a, b) = (a.max(self.start), b.min(self.end));
+        if a.is_nan() || b.is_nan() || b <= a {
+            return;
+        }
+        match self.pending {
+            Some((pa, pb)) if a <= pb => self.pending = Some((pa, pb.max(b))),
+            Some((pa, pb)) => {
+                self.flush(pa, pb);
+                self.envelope(pb, a, true);
+                self.pending = Some((a, b));
+            }
+            None => {
+                if a > self.cursor {
+                    self.envelope(self.cursor, a, true);
+                }
+                self.pending = Some((a.max(self.cursor), b));
+            }
+        }
+    }
+
+    /// The period [m − ½, m + ½] by the peak search: h(m)/N.
+    fn plain_period(&mut self, m: f64, h: DVec3) {
+        let a = m - 0.5;
+        match self.pending.take() {
+            Some((pa, pb)) => {
+                self.flush(pa, pb);
+                self.envelope(pb, a, false);
+            }
+            None => self.envelope(self.cursor, a, false),
+        }
+        self.acc += h / self.lobes.n;
+        self.cursor = m + 0.5;
+        self.cursor_on_zero = false;
+    }
+
+    fn finish(&mut self) {
+        if let Some((pa, pb)) = self.pending.take() {
+            self.flush(pa, pb);
+            if pb < self.end {
+                self.envelope(pb, self.end, false);
+            }
+        } else if self.cursor < self.end {
+            self.envelope(self.cursor, self.end, false);
+        }
+    }
+
+    fn flush(&mut self, a: f64, b: f64) {
+        self.acc += self.lobes.lobes_by(a, b, window_rule);
+        self.cursor = b;
+        self.cursor_on_zero = true;
+    }
+
+    /// ∫ F_N·h over [a, b] for a, b zeros of sin(πNx) (or a = ½, the end of order 0's
+    /// half period) at least PEAK_LOBES lobes from every integer: ∫ h/(2N² sin²πx) with
+    /// −[G']/(4π²N²), G = h/(2N² sin²πx), from the oscillating part (two integrations by
+    /// parts).
+    ///
+    /// The end corrections are taken at a when the cursor sits on a window's edge and at b when
+    /// `b_on_zero`; elsewhere (half-integers, where sin(2πNx) = 0 and G' is of order h'/N²)
+    /// they are negligible.
+    fn envelope(&mut self, a: f64, b: f64, b_on_zero: bool) {
+        if a.is_nan() || b.is_nan() || b <= a {
+            return;
+        }
+        let n = self.lobes.n;
+        let inv_n2 = 1.0 / (n * n);
+        let k = inv_n2 * inv_n2 / (4.0 * PI * PI);
+        let mut sum = DVec3::ZERO;
+        // Pieces within one half period on either side of an integer m, each with the
+        // tangent of h at its end nearer to m (a window's edge).
+        let mut lo = a;
+        while lo < b {
+            let m = floor(lo + 0.5);
+            let hi = if lo < m { m } else { m + 0.5 }.min(b);
+            let hi = if hi > lo { hi } else { b };
+            let (c, side) = if lo < m { (hi, -1.0) } else { (lo, 1.0) };
+            let tangent = self.tangent(c, side);
+            self.half_period(m, c, tangent, lo, hi, &mut sum);
+            // End corrections at the window edges, with the same tangent where it is there.
+            if lo == a && self.cursor_on_zero {
+                let t = if c == a {
+                    tangent
+                } else {
+                    self.tangent(a, 1.0)
+                };
+                self.acc += slope_of_g(a, t) * k;
+            }
+            if hi == b && b_on_zero {
+                let t = if c == b {
+                    tangent
+                } else {
+                    self.tangent(b, -1.0)
+                };
+                self.acc -= slope_of_g(b, t) * k;
+            }
+            lo = hi;
+        }
+        self.acc += sum * inv_n2;
+        self.cursor = b;
+    }
+
+    /// h(c) and its one-sided slope toward `side` (±1), by a difference over a quarter lobe.
+    fn tangent(&self, c: f64, side: f64) -> (DVec3, DVec3) {
+        let step = side * 0.25 / self.lobes.n;
+        let h = self.lobes.envelope_at(c);
+        let h1 = self.lobes.envelope_at(c + step);
+        (h, (h1 - h) / step)
+    }
+
+    /// ∫ h/(2 sin²πx) over [a, b], on one side of the integer m and within half a period of
+    /// it: the tangent p of h at c analytically, h − p by Gauss-Legendre.
+    fn half_period(
+        &self,
+        m: f64,
+        c: f64,
+        (hc, slope): (DVec3, DVec3),
+        a: f64,
+        b: f64,
+        sum: &mut DVec3,
+    ) {
+        // p(x) = value + slope·(x − m).
+        let value = hc - slope * (c - m);
+        let lobes = self.lobes;
+        let rest = |x: f64| {
+            let r = x - m;
+            let s = sinpi(r);
+            let w = 0.5 / (s * s);
+            (lobes.envelope_at(x) - value - slope * r) * w
+        };
+        // Split at the illuminant's nodes only in order 0's half period, where the envelope is
+        // the whole colour; next to the orders it is a correction of relative size 1/N.
+        let node = if m == 0.0 {
+            node_spacing_nm(lobes.s.illuminant)
+        } else {
+            0.0
+        };
+        pieces(lobes.q, node, ENVELOPE_SPAN_NM, &gl4, a, b, sum, &rest);
+        // ∫ dr/(2 sin²πr) = −cot(πr)/(2π); ∫ r dr/(2 sin²πr) = −r·cot(πr)/(2π) + ln|sin πr|/(2π²).
+        let (r0, r1) = (a - m, b - m);
+        let (s0, s1) = (sinpi(r0), sinpi(r1));
+        let (c0, c1) = (cospi(r0) / s0, cospi(r1) / s1);
+        let i0 = (c0 - c1) / (2.0 * PI);
+        let i1 = (r0 * c0 - r1 * c1) / (2.0 * PI) + ln(s1 / s0) / (2.0 * PI * PI);
+        *sum += value * i0 + slope * i1;
+    }
+}
+
+/// d/dx [h/(2 sin²πx)] = N²·G' at c, from h(c) and h'(c).
+fn slope_of_g(c: f64, (h, slope): (DVec3, DVec3)) -> DVec3 {
+    let r = c - rint(c);
+    let s = sinpi(r);
+    let a = 0.5 / (s * s);
+    let b = PI * cospi(r) / (s * s * s);
+    slope * a - h * b
+}
+
+/// The piece rule inside the windows: split at the illuminant's nodes and into pieces of at
+/// most SPAN_NM.
+fn window_rule(l: &Lobes<'_>, a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    let node = node_spacing_nm(l.s.illuminant);
+    pieces(l.q, node, SPAN_NM, &lobe_rule(l.n, l.q), a, b, acc, f);
+}
+
+/// The Gauss-Legendre rule for a piece of a lobe: 8 points where the piece is more than half a
+/// lobe (the error of 4 points on a whole lobe of sin² is 7e-4), 4 points up to half a lobe
+/// (3e-6), 2 points up to 0.15 lobe (2e-6) where the piece also spans at most 6 nm (h, smooth
+/// between the illuminant's nodes, changes little over it).
+fn lobe_rule(n: f64, q: f64) -> impl Fn(f64, f64, &mut DVec3, &dyn Fn(f64) -> DVec3) {
+    move |a, b, acc, f| {
+        let lobes = (b - a) * n;
+        if lobes > 0.5 {
+            gl8(a, b, acc, f);
+        } else if lobes > 0.15 || q / a - q / b > 6.0 {
+            gl4(a, b, acc, f);
+        } else {
+            gl2(a, b, acc, f);
+        }
+    }
+}
+
+/// 2-point Gauss-Legendre over [a, b].
+#[inline]
+fn gl2(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    const X: f64 = 0.5773502691896257; // 1/√3
+    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    *acc += (f(mid - half * X) + f(mid + half * X)) * half;
+}
+
+/// 4-point Gauss-Legendre over [a, b] (in x) split where λ = q/x crosses a node of the
+/// illuminant (every `node_nm`; none when 0) and into pieces spanning at most SPAN_NM.
+#[allow(clippy::too_many_arguments)]
+fn pieces(
+    q: f64,
+    node_nm: f64,
+    max_nm: f64,
+    gauss: Rule<'_>,
+    a: f64,
+    b: f64,
+    acc: &mut DVec3,
+    f: &dyn Fn(f64) -> DVec3,
+) {
+    let mut lo = a;
+    let (l_hi, l_lo) = (q / a, q / b);
+    // Nodes strictly between, from the long-wavelength end (small x) on.
+    let mut node = if node_nm > 0.0 {
+        ceil(l_hi / node_nm) * node_nm - node_nm
+    } else {
+        0.0
+    };
+    while lo < b {
+        let next_node = if node > l_lo { q / node } else { b };
+        let stop = next_node.min(b);
+        span_pieces(q, max_nm, gauss, lo, stop, acc, f);
+        lo = stop;
+        node -= node_nm;
+        if node_nm <= 0.0 {
+            break;
+        }
+    }
+}
+
+/// A Gauss-Legendre rule on one piece.
+type Rule<'r> = &'r dyn Fn(f64, f64, &mut DVec3, &dyn Fn(f64) -> DVec3);
+
+/// Gauss-Legendre on equal pieces of [a, b] spanning at most SPAN_NM each.
+fn span_pieces(
+    q: f64,
+    max_nm: f64,
+    gauss: Rule<'_>,
+    a: f64,
+    b: f64,
+    acc: &mut DVec3,
+    f: &dyn Fn(f64) -> DVec3,
+) {
+    if a.is_nan() || b.is_nan() || b <= a {
+        return;
+    }
+    let span = q / a - q / b;
+    let count = ceil(span / max_nm).max(1.0);
+    let step = (b - a) / count;
+    let count = count as u32;
+    let mut t = a;
+    for j in 1..=count {
+        let e = if j == count { b } else { a + j as f64 * step };
+        gauss(t, e, acc, f);
+        t = e;
+    }
+}

@@ -1,0 +1,269 @@
+//! `Strategy::Asymptotic` against the independent reference of `python_ref/`
+//! (`tests/data/spectral_xyz.csv`) and against `Strategy::Exact` over a sweep of gratings and
+//! directions.
+//!
+//! Errors are taken as in `tests/spectral_reference.rs` and docs/accuracy.md: the largest channel
+//! difference over the grating's brightest diffraction colour Y_b (the largest Y over the u with
+//! d·|u| ≥ 360 nm, floored at 555/(N·∫ȳ)). Where order 0's half period reaches into the band
+//! (d·|u|/830 nm < ½) the colour can be far brighter than Y_b (the white near the mirror
+//! direction); there the error is taken over max(colour, Y_b).
+
+use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+use diffraction::{Grating, Slits};
+use std::collections::HashMap;
+
+/// The bound `Spectral::choose` uses for the diffracted orders, relative to Y_b. Measured worst:
+/// 1.42e-4 over the full sweep (N = 100; N = 5…10⁶, d = 400 nm…100 µm, w = d/2 and d/10, E and
+/// D65), 7.1e-5 on the reference data; a margin of 3.5×.
+const ORDERS_BOUND: f64 = 5e-4;
+/// The bound relative to max(colour, Y_b) where order 0's half period reaches into the band.
+/// Measured worst: 5.7e-4 on the reference data (N = 10⁶), 2.1e-4 over the sweep; margin 1.75×.
+const ORDER0_BOUND: f64 = 1e-3;
+/// ∫ȳ dλ over the band: the floor of the exposure is an ideal first order at 555 nm.
+const YBAR_INTEGRAL: f64 = 106.857;
+
+struct Case {
+    d: f64,
+    w: f64,
+    n: u32,
+    ill: Illuminant,
+    u: f64,
+    want: [f64; 3],
+    got: [f64; 3],
+}
+
+/// The worst errors (orders, order-0 region) of `cases`, grouped by N, with the worst case.
+fn worst_by_n(cases: &[Case]) -> Vec<(u32, f64, f64, String)> {
+    let mut bright: HashMap<(u64, u64, u32, Illuminant), f64> = HashMap::new();
+    for c in cases {
+        let e = bright
+            .entry((c.d.to_bits(), c.w.to_bits(), c.n, c.ill))
+            .or_insert(555.0 / (c.n as f64 * YBAR_INTEGRAL));
+        if c.d * c.u.abs() >= 360.0 {
+            *e = e.max(c.want[1]);
+        }
+    }
+    let mut by_n: std::collections::BTreeMap<u32, (f64, f64, String)> = Default::default();
+    for c in cases {
+        let yb = bright[&(c.d.to_bits(), c.w.to_bits(), c.n, c.ill)];
+        let err = (0..3)
+            .map(|i| (c.got[i] - c.want[i]).abs())
+            .fold(0.0, f64::max);
+        let e = by_n.entry(c.n).or_default();
+        let order0 = c.d * c.u.abs() / 830.0 < 0.5;
+        let rel = if order0 {
+            let size = c.want.iter().fold(yb, |a, &b| a.max(b));
+            let rel = err / size;
+            e.1 = e.1.max(rel);
+            rel / ORDER0_BOUND
+        } else {
+            let rel = err / yb;
+            e.0 = e.0.max(rel);
+            rel / ORDERS_BOUND
+        };
+        if rel >= 1.0 || e.2.is_empty() {
+            e.2 = format!(
+                "d={} w={} u={} {:?}: got {:?} want {:?}",
+                c.d, c.w, c.u, c.ill, c.got, c.want
+            );
+        }
+    }
+    by_n.into_iter()
+        .map(|(n, (a, b, s))| (n, a, b, s))
+        .collect()
+}
+
+fn check(cases: &[Case], what: &str) {
+    for (n, orders, order0, case) in worst_by_n(cases) {
+        println!("{what} N = {n:>8}: orders {orders:.2e} of Y_b, order-0 region {order0:.2e}");
+        assert!(orders <= ORDERS_BOUND, "{what} N={n}: {orders:e} ({case})");
+        assert!(order0 <= ORDER0_BOUND, "{what} N={n}: {order0:e} ({case})");
+    }
+}
+
+fn reference_rows() -> Vec<(f64, f64, u32, f64, Illuminant, [f64; 3])> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spectral_xyz.csv");
+    let text = std::fs::read_to_string(path).expect("tests/data/spectral_xyz.csv");
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    assert_eq!(
+        lines.next(),
+        Some("period_nm,slit_width_nm,n,u,illuminant,X,Y,Z")
+    );
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let p = |i: usize| f[i].parse::<f64>().unwrap();
+            (
+                p(0),
+                p(1),
+                f[2].parse().unwrap(),
+                p(3),
+                f[4].parse().unwrap(),
+                [p(5), p(6), p(7)],
+            )
+        })
+        .collect()
+}
+
+/// Against the python reference (float64 lobe-by-lobe quadrature, cross-checked with mpmath):
+/// every row with N ≥ 5 (the strategy is `Exact` below).
+#[test]
+fn asymptotic_matches_reference_data() {
+    let spectral = [Spectral::new(Illuminant::E), Spectral::new(Illuminant::D65)];
+    let mut cases = Vec::new();
+    for (d, w, n, u, ill, want) in reference_rows() {
+        if n < 5 {
+            continue;
+        }
+        let s = &spectral[(ill == Illuminant::D65) as usize];
+        let g = Grating::with_slits(d, w, Slits::Finite(n)).unwrap();
+        let c = s.xyz(&g, u, Strategy::Asymptotic);
+        cases.push(Case {
+            d,
+            w,
+            n,
+            ill,
+            u,
+            want,
+            got: [c.x, c.y, c.z],
+        });
+    }
+    assert!(cases.len() > 1000);
+    check(&cases, "reference");
+}
+
+/// The directions of the accuracy report (64) and, with `extra`, 64 more from a Weyl sequence.
+fn u_grid(extra: bool) -> Vec<f64> {
+    let mut v: Vec<f64> = (0..6).map(|k| 10f64.powf(-8.0 + k as f64)).collect();
+    let ratio = (0.15f64 / 0.002).powf(1.0 / 13.0);
+    v.extend((0..14).map(|k| 0.002 * ratio.powi(k)));
+    v.extend((0..44).map(|k| 0.15 + 1.83 * (k as f64 + 0.5) / 44.0));
+    if extra {
+        v.extend((1..=64).map(|k| 0.0005 + 1.99 * ((k as f64 * 0.618_033_988_749_895) % 1.0)));
+    }
+    v
+}
+
+fn sweep(slits: &[u32], periods: &[f64], duties: &[f64], us: &[f64]) -> Vec<Case> {
+    let mut out = Vec::new();
+    for ill in [Illuminant::E, Illuminant::D65] {
+        let s = Spectral::new(ill);
+        for &d in periods {
+            for &duty in duties {
+                for &n in slits {
+                    let g = Grating::new(d, d * duty, n).unwrap();
+                    for &u in us {
+                        let e = s.xyz(&g, u, Strategy::Exact);
+                        let a = s.xyz(&g, u, Strategy::Asymptotic);
+                        out.push(Case {
+                            d,
+                            w: d * duty,
+                            n,
+                            ill,
+                            u,
+                            want: [e.x, e.y, e.z],
+                            got: [a.x, a.y, a.z],
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Against `Exact` (within 1e-7 of the reference) on a small sweep.
+#[test]
+fn asymptotic_matches_exact() {
+    let us: Vec<f64> = u_grid(false).into_iter().step_by(3).collect();
+    let cases = sweep(
+        &[5, 21, 300, 1_000_000],
+        &[740.0, 10_000.0],
+        &[0.5, 0.1],
+        &us,
+    );
+    check(&cases, "exact (small sweep)");
+}
+
+/// The sweep behind the bounds (about a minute in release).
+#[test]
+#[ignore = "slow sweep (about a minute in release)"]
+fn asymptotic_matches_exact_full_sweep() {
+    let slits = [5, 10, 21, 30, 100, 300, 1000, 3000, 30_000, 1_000_000];
+    let periods = [400.0, 740.0, 1600.0, 10_000.0, 100_000.0];
+    let cases = sweep(&slits, &periods, &[0.5, 0.1], &u_grid(true));
+    check(&cases, "exact");
+}
+
+#[test]
+fn asymptotic_name_round_trips() {
+    assert_eq!(Strategy::Asymptotic.to_string(), "asymptotic");
+    assert_eq!("asymptotic".parse(), Ok(Strategy::Asymptotic));
+}
+
+/// Finite, non-negative and bounded work at the extremes: N = 5 and 10⁷, u = 0 and 2,
+/// coarse and fine gratings, slit width equal to the period.
+#[test]
+fn asymptotic_is_finite_at_extremes() {
+    for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
+        let s = Spectral::new(ill);
+        for (d, w) in [(400.0, 400.0), (1600.0, 800.0), (1e6, 10.0)] {
+            for n in [5u32, 7, 10_000_000] {
+                let g = Grating::new(d, w, n).unwrap();
+                for u in [0.0, 1e-12, 1e-6, 0.5, 1.0, 2.0, -2.0, 1e3] {
+                    let c = s.xyz(&g, u, Strategy::Asymptotic);
+                    assert!(
+                        c.x.is_finite() && c.y.is_finite() && c.z.is_finite(),
+                        "d={d} w={w} N={n} u={u}: {c:?}"
+                    );
+                    assert!(c.x >= 0.0 && c.y >= 0.0 && c.z >= 0.0, "{c:?}");
+                }
+            }
+        }
+    }
+}
+
+/// Wall-clock time per XYZ over the accuracy report's grid (printed; criterion's
+/// `benches/spectral.rs` is the measurement of record).
+#[test]
+#[ignore = "timing listing"]
+fn list_times_over_the_report_grid() {
+    let s = Spectral::new(Illuminant::D65);
+    let us = u_grid(false);
+    let strategies = [
+        Strategy::Asymptotic,
+        Strategy::PeakSearch { refine: false },
+        Strategy::Auto { accuracy: 1e-3 },
+    ];
+    let mut cells = vec![Vec::new(); strategies.len()];
+    for d in [740.0, 1600.0, 10_000.0, 100_000.0] {
+        for n in [1u32, 2, 5, 30, 300, 1000, 3000, 30_000, 1_000_000] {
+            let g = Grating::new(d, d / 2.0, n).unwrap();
+            let mut line = format!("d={d:>7} N={n:>8}");
+            for (k, &st) in strategies.iter().enumerate() {
+                let mut best = f64::INFINITY;
+                for _ in 0..5 {
+                    let t = std::time::Instant::now();
+                    let mut acc = 0.0;
+                    for &u in &us {
+                        acc += s.xyz(&g, std::hint::black_box(u), st).y;
+                    }
+                    std::hint::black_box(acc);
+                    best = best.min(t.elapsed().as_nanos() as f64 / us.len() as f64);
+                }
+                cells[k].push(best);
+                line += &format!("  {st}: {best:>9.0} ns");
+            }
+            println!("{line}");
+        }
+    }
+    for (k, st) in strategies.iter().enumerate() {
+        let v = &mut cells[k];
+        v.sort_by(f64::total_cmp);
+        println!(
+            "{st}: median {:.0} ns per XYZ over {} cells",
+            v[v.len() / 2],
+            v.len()
+        );
+    }
+}
