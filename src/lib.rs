@@ -96,10 +96,15 @@
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 mod brdf;
 pub mod cie;
 mod cie_data;
 pub mod color;
+#[cfg(feature = "alloc")]
+mod color_table;
 mod error;
 mod float;
 pub mod frame;
@@ -112,6 +117,8 @@ pub mod stam;
 mod thorman;
 
 pub use brdf::{AguHill, DiffractionBrdf, PeakSummary};
+#[cfg(feature = "alloc")]
+pub use color_table::ColorTable;
 pub use error::{Error, Requirement};
 pub use float::Float;
 #[cfg(feature = "stam")]
