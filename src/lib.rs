@@ -106,6 +106,9 @@
 #[cfg(not(any(feature = "std", feature = "libm")))]
 compile_error!("diffraction needs either the `std` (default) or the `libm` feature for its maths");
 
+#[cfg(feature = "alloc")]
+extern crate alloc;
+
 mod band;
 #[cfg(feature = "stam")]
 mod bessel;
@@ -113,6 +116,8 @@ mod bxdf;
 pub mod cie;
 mod cie_data;
 pub mod color;
+#[cfg(feature = "alloc")]
+mod color_table;
 mod error;
 mod float;
 pub mod frame;
@@ -135,6 +140,8 @@ pub use bxdf::{
 };
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
+#[cfg(feature = "alloc")]
+pub use color_table::ColorTable;
 pub use error::{Error, Requirement};
 pub use float::Float;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};

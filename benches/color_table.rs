@@ -1,0 +1,109 @@
+//! Cost of `ColorTable`: one lookup, one footprint mean, and one build, with `Spectral::xyz`
+//! (`Exact`, and the peak search) in the same run as the baselines a renderer would otherwise call
+//! at every hit.
+//!
+//! Lookups and means take a batch of 1024 phase projections u (half uniform on (−2, 2), half
+//! log-uniform in |u| down to 10⁻⁹), so the figure per element is ns per colour averaged over
+//! directions; `Spectral::xyz` takes the first 16 of them. Means are over intervals of width
+//! 10⁻³ centred there. Tables are built with accuracy 3·10⁻⁴ under D65, slit width d/2.
+//!
+//! `cargo bench --bench color_table -- --warm-up-time 1 --measurement-time 2`
+
+use criterion::{black_box, BenchmarkId, Criterion, Throughput};
+use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+use diffraction::{ColorTable, Grating};
+use std::time::Duration;
+
+const ACCURACY: f64 = 3e-4;
+/// (period nm, N) of the lookup benchmarks.
+const LOOKUP_GRATINGS: [(f64, u32); 3] = [(1600.0, 1000), (740.0, 1_000_000), (10_000.0, 30)];
+/// (period nm, N) of the build benchmarks.
+const BUILD_GRATINGS: [(f64, u32); 3] = [(400.0, 30), (1600.0, 21), (1600.0, 1000)];
+const BATCH: usize = 1024;
+const BASELINE_BATCH: usize = 16;
+
+fn batch() -> Vec<f64> {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..BATCH)
+        .map(|k| {
+            let sign = if next() < 0.5 { -1.0 } else { 1.0 };
+            let a = if k % 2 == 0 {
+                2.0 * next()
+            } else {
+                2.0 * 10f64.powf(-9.0 * next())
+            };
+            sign * a
+        })
+        .collect()
+}
+
+fn bench_lookup(c: &mut Criterion) {
+    let s = Spectral::new(Illuminant::D65);
+    let us = batch();
+    for (d, n) in LOOKUP_GRATINGS {
+        let g = Grating::new(d, d / 2.0, n).unwrap();
+        let table = ColorTable::new(&s, &g, ACCURACY).unwrap();
+        let mut group = c.benchmark_group(format!("color_table/d{d}_n{n}"));
+        group.throughput(Throughput::Elements(BATCH as u64));
+        group.bench_function("lookup", |b| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &u in &us {
+                    acc += table.lookup(black_box(u)).y;
+                }
+                acc
+            })
+        });
+        group.bench_function("mean_1e-3", |b| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &u in &us {
+                    acc += table.mean(black_box(u - 5e-4), black_box(u + 5e-4)).y;
+                }
+                acc
+            })
+        });
+        group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
+        for strategy in [Strategy::Exact, Strategy::PeakSearch { refine: false }] {
+            group.bench_function(BenchmarkId::new("xyz", strategy), |b| {
+                b.iter(|| {
+                    let mut acc = 0.0;
+                    for &u in &us[..BASELINE_BATCH] {
+                        acc += s.xyz(&g, black_box(u), strategy).y;
+                    }
+                    acc
+                })
+            });
+        }
+        group.finish();
+    }
+}
+
+fn bench_build(c: &mut Criterion) {
+    let s = Spectral::new(Illuminant::D65);
+    let mut group = c.benchmark_group("color_table/build");
+    group
+        .sample_size(10)
+        .sampling_mode(criterion::SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(100));
+    for (d, n) in BUILD_GRATINGS {
+        let g = Grating::new(d, d / 2.0, n).unwrap();
+        group.bench_function(format!("d{d}_n{n}"), |b| {
+            b.iter(|| ColorTable::new(&s, black_box(&g), ACCURACY).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    bench_lookup(&mut c);
+    bench_build(&mut c);
+    c.final_summary();
+}

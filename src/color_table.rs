@@ -1,0 +1,748 @@
+//! A per-grating colour table: XYZ(|u|) tabulated once, looked up in nanoseconds, and averaged
+//! over an interval of u in O(1) for footprint filtering (see [`ColorTable`]).
+
+use alloc::vec::Vec;
+
+use crate::cie;
+use crate::color::Xyz;
+use crate::error::{Error, Requirement};
+use crate::math::cbrt;
+use crate::spectrum::{Illuminant, Spectral, Strategy};
+use crate::{Grating, Slits};
+
+/// Blocks per octave of u, as a power of two: the lookup reads the block from the exponent and the
+/// top `SUB_BITS` bits of the mantissa.
+const SUB_BITS: u32 = 3;
+/// Right shift of the bits of a positive f64 that leaves (exponent, top mantissa bits).
+const SHIFT: u32 = 52 - SUB_BITS;
+/// The largest |u| of unit directions.
+const U_MAX: f64 = 2.0;
+/// Shortest wavelength of the band, nm: order 0's first zero is at u = λ/(N·d), at least this
+/// over N·d.
+const LAMBDA_MIN_NM: f64 = 360.0;
+/// The first block [0, u₀) ends below λ_min/(`LOBE_FRACTION`·N·d): 1 − F_N < π²/(3·20²) < 1 %.
+const LOBE_FRACTION: f64 = 20.0;
+/// The first block ends at least here, 2⁻⁶⁴, so that there are at most 65 octaves (520 blocks,
+/// 1041 initial nodes) whatever N·d is; a lobe narrower than that (N·d > 10¹⁹ nm) is resolved
+/// inside the first block, up to its 1024 intervals.
+const MIN_U_LO: f64 = 1.0 / 18_446_744_073_709_551_616.0;
+/// Wavelength of the ideal first-order peak that floors the error scale, nm.
+const FLOOR_PEAK_NM: f64 = 555.0;
+/// Smallest accuracy accepted: ten times the error of [`Strategy::Exact`] (10⁻⁷).
+const MIN_ACCURACY: f64 = 1e-6;
+/// Largest accuracy accepted (relative).
+const MAX_ACCURACY: f64 = 1.0;
+/// Most intervals in one block (1/8 octave): a spacing of u/8192, fine enough for the band-end
+/// steps of N ≤ 1000 (relative width 1/(m·N)); narrower steps cannot be resolved and must not
+/// take the whole node budget.
+const MAX_BLOCK_INTERVALS: usize = 1024;
+/// An interval shorter than this fraction of its cell is averaged as the lookup at its midpoint
+/// (the difference is of order (fraction)² of the cell's curvature; the cumulative form would
+/// lose digits instead).
+const TINY_FRACTION: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// One uniform block of the grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Block {
+    /// First u of the block.
+    u0: f64,
+    /// Node spacing.
+    h: f64,
+    /// 1 / spacing.
+    inv_h: f64,
+    /// Index of the block's first node.
+    first: u32,
+    /// Number of intervals (≥ 1).
+    n: u32,
+}
+
+/// The value and the derivative in u at a node.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Node {
+    f: [f64; 3],
+    d: [f64; 3],
+}
+
+/// The colour XYZ(|u|) of one grating under one illuminant, tabulated over [0, 2] on a graded
+/// grid, with O(1) lookup and O(1) means over intervals of u.
+///
+/// For a fixed [`Grating`] and illuminant the reference colour [`Spectral::xyz`] depends on the
+/// phase projection u alone, and only on |u| (the intensity I(u, λ) = S(β)·F_N(α) is even in u).
+/// The table samples it on [0, 2] (the range of u = (wi + wo)·t for unit directions) and
+/// interpolates it. Needs the `alloc` feature (on with `std`, the default).
+///
+/// # The grid
+///
+/// The colour has structure on every scale of u: order 0's lobe is λ/(N·d) wide around u = 0,
+/// its side lobes and its 1/u² tail follow, and every order m ≠ 0 spans u ∈ [m·360/d, m·830/d]
+/// with features that are a fixed fraction of u wide (a 10 nm feature of the colour-matching
+/// functions at λ_m = d·u/m is a relative change δu/u = 10 nm/λ_m). So the grid is graded
+/// geometrically: [0, 2] is cut into *blocks*, one block [0, u₀) with
+/// u₀ = 2^⌊log₂(360 nm/(20·N·d))⌋ (where 1 − F_N < 1 %), then eight blocks per octave of u up
+/// to 2, each 1/8 of its octave wide. Each block is uniform with its own number of intervals, a
+/// power of two from 2 to 1024, doubled until the interpolant meets the accuracy at the midpoint
+/// of every interval (where the error of cubic Hermite interpolation peaks), rechecked after every
+/// round (a neighbour's refinement changes the derivatives), or until the node budget
+/// [`MAX_NODES`](Self::MAX_NODES) is spent (worst blocks first).
+///
+/// **Lookup** is O(1): the block of u is read off the bits of u (its exponent and the top three
+/// bits of its mantissa: one shift), the interval from the block's uniform spacing, and the colour
+/// is the cubic Hermite interpolant of its two nodes, with derivatives estimated from the five
+/// nearest nodes (a fourth-order Lagrange derivative; mirrored through u = 0, where the derivative
+/// is 0 by symmetry). No search.
+///
+/// **Footprint filtering.** The table stores the integral of the interpolant from 0 to every node,
+/// so the mean over [u0, u1] is a difference of cumulative values plus two partial cells, O(1)
+/// ([`mean`](Self::mean)). The grid resolves order 0's lobe (it starts 20 times inside its first
+/// zero), so the integral through the lobe has the interpolant's accuracy however narrow the lobe
+/// (`tests/color_table.rs` checks it at N·d = 10⁹ nm against a quadrature of `Exact`).
+///
+/// # Accuracy
+///
+/// Errors are relative to the scale Y_b of the grating's brightest diffracted colour, the scale of
+/// [`Strategy::Auto`]: the largest Y at the table's u with d·|u| ≥ 360 nm (where an order m ≠ 0
+/// can reach the band), at least 555/(N·∫ȳ dλ), the Y of an ideal first-order peak at 555 nm
+/// ([`scale`](Self::scale)); where the colour is brighter (order 0 near u = 0) to its own Y. With
+/// Y' = max(Y_b, Y) the exposure and t_c = XYZ_c/(white_c·Y'), every checked channel is within
+///
+/// `accuracy · white_c · Y' · max(t_c, (6/29)³)^(2/3)`
+///
+/// of `Exact`: the change that moves CIELAB's f(t) = t^(1/3) by accuracy/3. That is at most
+/// `accuracy · white_c · Y'` (relative to the brightest order) for channels up to the white, and
+/// 23 times less where the colour is dark (t < 0.0089), where CIELAB is most sensitive. Measured
+/// over the 90 gratings of `tests/color_table.rs` at 10⁴ random u each: with accuracy 3·10⁻⁴,
+/// within 7.2·10⁻⁴ of Y_b and 0.097 ΔE2000 of `Exact` at the brightest order's exposure
+/// (median 0.047 over the gratings; docs/color_table.md); accuracy 10⁻⁴ brought the worst
+/// gratings to 0.02. [`error_estimate`](Self::error_estimate) reports the worst check.
+///
+/// Not resolved: where an order's peak crosses a band end (u = m·360/d, m·830/d) the colour steps
+/// by that order's light at 360 or 830 nm over a width 360 nm/(N·d) in u; the step is below
+/// 2·10⁻⁴ of Y_b (the colour-matching functions are below 6·10⁻⁴ there) and, for N ≳ 10⁴, narrower
+/// than the finest block spacing u/8192; those blocks stop refining there
+/// ([`error_estimate`](Self::error_estimate) then exceeds the accuracy).
+///
+/// # Cost
+///
+/// The nodes are computed by [`STRATEGY`](Self::STRATEGY); a build costs about twice the node
+/// count in calls of [`Spectral::xyz`] with it (100-4000 nodes). Memory is 72 bytes per node plus
+/// 32 per block ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
+///
+/// # Limits
+///
+/// * N = ∞ ([`Slits::Infinite`]) is rejected: with the paper's normalisation the integral is 0
+///   except at u = 0, nothing to tabulate.
+/// * The paper's peak colours ([`Strategy::PaperPeaks`]) are not the integral and are not
+///   tabulated; they cost O(visible orders) per call already.
+/// * |u| > 2 (no pair of unit directions gives it) is taken as 2; NaN and ±∞ give black, as in
+///   [`Spectral::xyz`].
+/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) needs a
+///   per-wavelength weight in [`Spectral`], which it does not have yet.
+///
+/// ```
+/// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+/// use diffraction::{ColorTable, Grating};
+/// let g = Grating::new(1600.0, 800.0, 30)?;
+/// let s = Spectral::new(Illuminant::E);
+/// let table = ColorTable::new(&s, &g, 1e-3)?;
+/// assert_eq!(table.lookup(0.0), s.white()); // the mirror direction is white
+/// assert_eq!(table.lookup(-0.4), table.lookup(0.4)); // even in u
+/// let exact = s.xyz(&g, 0.4, Strategy::Exact);
+/// assert!((table.lookup(0.4).z - exact.z).abs() < 1e-2 * table.scale());
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColorTable {
+    grating: Grating,
+    illuminant: Illuminant,
+    accuracy: f64,
+    scale: f64,
+    error: f64,
+    /// End of block 0, and the key (bits >> SHIFT) of block 1.
+    u_lo: f64,
+    base_key: u64,
+    blocks: Vec<Block>,
+    nodes: Vec<Node>,
+    /// ∫₀^{u_i} of the interpolant at every node.
+    cumulative: Vec<[f64; 3]>,
+}
+
+/// A block while the grid is refined.
+struct Work {
+    u0: f64,
+    h: f64,
+    n: usize,
+    /// Values at the n + 1 nodes.
+    vals: Vec<[f64; 3]>,
+    /// Values at the n midpoints (empty until computed).
+    mids: Vec<[f64; 3]>,
+    /// Refinement stopped by the node budget.
+    capped: bool,
+    /// The worst midpoint error at the last check.
+    err: f64,
+}
+
+impl ColorTable {
+    /// The strategy that computes the nodes: the crate's most accurate integrator that is fast
+    /// enough to tabulate (`Exact`, below 10⁻⁷ relative).
+    ///
+    /// ```
+    /// use diffraction::spectrum::Strategy;
+    /// use diffraction::ColorTable;
+    /// assert_eq!(ColorTable::STRATEGY, Strategy::Exact);
+    /// ```
+    pub const STRATEGY: Strategy = Strategy::Exact;
+
+    /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
+    /// first, and [`error_estimate`](Self::error_estimate) says what was reached.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 5)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert!(t.node_count() <= ColorTable::MAX_NODES);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub const MAX_NODES: usize = 6144;
+
+    /// Tabulates the colour of `grating` under `spectral`'s illuminant, refining until every
+    /// interval's midpoint meets `accuracy` in the sense of the [Accuracy](Self#accuracy) section
+    /// (relative to [`scale`](Self::scale) per channel, tighter in the dark) or the node budget
+    /// [`MAX_NODES`](Self::MAX_NODES) is reached.
+    ///
+    /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md): 3·10⁻⁴ keeps lookups
+    /// within 0.1 ΔE2000 of [`Strategy::Exact`] at the brightest order's exposure over 90
+    /// gratings; 10⁻⁴ brought the worst of them to 0.02.
+    ///
+    /// # Errors
+    ///
+    /// `accuracy` outside [10⁻⁶, 1] or NaN ([`Requirement::Within`]); a grating with
+    /// N = ∞ (parameter `slits`, [`Requirement::Finite`]).
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let g = Grating::new(740.0, 370.0, 1000)?;
+    /// let t = ColorTable::new(&s, &g, 1e-3)?;
+    /// assert!(t.error_estimate() <= 1e-3);
+    /// assert_eq!(ColorTable::new(&s, &g, 0.0).unwrap_err().parameter(), "accuracy");
+    /// let ideal = Grating::infinite(740.0, 370.0)?;
+    /// assert_eq!(ColorTable::new(&s, &ideal, 1e-3).unwrap_err().parameter(), "slits");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn new(spectral: &Spectral, grating: &Grating, accuracy: f64) -> Result<ColorTable, Error> {
+        if !(MIN_ACCURACY..=MAX_ACCURACY).contains(&accuracy) {
+            return Err(Error::invalid(
+                "accuracy",
+                accuracy,
+                Requirement::Within {
+                    min: MIN_ACCURACY,
+                    max: MAX_ACCURACY,
+                },
+            ));
+        }
+        let n = match grating.slits() {
+            Slits::Finite(n) => n as f64,
+            Slits::Infinite => {
+                return Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite))
+            }
+        };
+        let eval = |u: f64| {
+            let c = spectral.xyz(grating, u, Self::STRATEGY);
+            [c.x, c.y, c.z]
+        };
+        let d = grating.period_nm();
+        let white = spectral.white();
+        let white = [white.x, white.y, white.z];
+        let ybar = cie::integrate_product_of_rows(|_| 1.0, |i| cie::cmf_row(i, 1));
+        let mut scale = FLOOR_PEAK_NM / (n * ybar);
+        let diffracted_from = LAMBDA_MIN_NM / d;
+
+        // Blocks: [0, u_lo), then 2^SUB_BITS per octave up to U_MAX.
+        let u_lo = power_of_two_below(LAMBDA_MIN_NM / (LOBE_FRACTION * n * d)).clamp(MIN_U_LO, 1.0);
+        let base_key = u_lo.to_bits() >> SHIFT;
+        let end_key = U_MAX.to_bits() >> SHIFT;
+        let mut bounds = Vec::with_capacity((end_key - base_key + 2) as usize);
+        bounds.push(0.0);
+        for key in base_key..=end_key {
+            bounds.push(f64::from_bits(key << SHIFT));
+        }
+        // Every block starts with two intervals, so that it is checked at two points.
+        let values: Vec<[f64; 3]> = bounds.iter().map(|&u| eval(u)).collect();
+        let mut work: Vec<Work> = bounds
+            .windows(2)
+            .zip(values.windows(2))
+            .map(|(b, v)| {
+                let h = 0.5 * (b[1] - b[0]);
+                Work {
+                    u0: b[0],
+                    h,
+                    n: 2,
+                    vals: alloc::vec![v[0], eval(b[0] + h), v[1]],
+                    mids: Vec::new(),
+                    capped: false,
+                    err: 0.0,
+                }
+            })
+            .collect();
+        let mut nodes_used = 2 * bounds.len() - 1;
+        for w in &work {
+            for (j, v) in w.vals.iter().enumerate() {
+                if w.u0 + j as f64 * w.h >= diffracted_from {
+                    scale = scale.max(v[1]);
+                }
+            }
+        }
+
+        loop {
+            let (xs, fs, starts) = assemble(&work);
+            let ds = derivatives(&xs, &fs);
+            // Every block is checked against the current derivatives (a neighbour's refinement
+            // changes them); only new midpoints cost an evaluation.
+            let mut failing: Vec<(usize, f64)> = Vec::new();
+            for (k, w) in work.iter_mut().enumerate() {
+                if w.mids.is_empty() {
+                    w.mids = (0..w.n)
+                        .map(|j| eval(w.u0 + (j as f64 + 0.5) * w.h))
+                        .collect();
+                    for (j, m) in w.mids.iter().enumerate() {
+                        if w.u0 + (j as f64 + 0.5) * w.h >= diffracted_from {
+                            scale = scale.max(m[1]);
+                        }
+                    }
+                }
+                let mut err = 0.0f64;
+                for (j, exact) in w.mids.iter().enumerate() {
+                    let i = starts[k] + j;
+                    for c in 0..3 {
+                        let interp = 0.5 * (fs[i][c] + fs[i + 1][c])
+                            + 0.125 * w.h * (ds[i][c] - ds[i + 1][c]);
+                        let tol = tolerance(exact, c, scale, white);
+                        err = err.max((interp - exact[c]).abs() / tol);
+                    }
+                }
+                w.err = err;
+                if err > accuracy && !w.capped {
+                    failing.push((k, err));
+                }
+            }
+            if failing.is_empty() {
+                break;
+            }
+            failing.sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
+            for (k, _) in failing {
+                let w = &mut work[k];
+                if nodes_used + w.n > Self::MAX_NODES || w.n >= MAX_BLOCK_INTERVALS {
+                    w.capped = true;
+                    continue;
+                }
+                nodes_used += w.n;
+                let mut vals = Vec::with_capacity(2 * w.n + 1);
+                for (j, m) in w.mids.iter().enumerate() {
+                    vals.push(w.vals[j]);
+                    vals.push(*m);
+                }
+                vals.push(w.vals[w.n]);
+                w.vals = vals;
+                w.mids = Vec::new();
+                w.n *= 2;
+                w.h *= 0.5;
+            }
+        }
+
+        let error = work.iter().fold(0.0f64, |m, w| m.max(w.err));
+        let (xs, fs, starts) = assemble(&work);
+        let ds = derivatives(&xs, &fs);
+        let blocks: Vec<Block> = work
+            .iter()
+            .zip(&starts)
+            .map(|(w, &first)| Block {
+                u0: w.u0,
+                h: w.h,
+                inv_h: 1.0 / w.h,
+                first: first as u32,
+                n: w.n as u32,
+            })
+            .collect();
+        let nodes: Vec<Node> = fs.iter().zip(&ds).map(|(&f, &d)| Node { f, d }).collect();
+        let mut cumulative = Vec::with_capacity(nodes.len());
+        let mut acc = [0.0; 3];
+        cumulative.push(acc);
+        for b in &blocks {
+            for j in 0..b.n as usize {
+                let i = b.first as usize + j;
+                let cell = cell_integral(&nodes[i], &nodes[i + 1], b.h, 1.0);
+                for c in 0..3 {
+                    acc[c] += cell[c];
+                }
+                cumulative.push(acc);
+            }
+        }
+        Ok(ColorTable {
+            grating: *grating,
+            illuminant: spectral.illuminant(),
+            accuracy,
+            scale,
+            error,
+            u_lo,
+            base_key,
+            blocks,
+            nodes,
+            cumulative,
+        })
+    }
+
+    /// The interpolated colour at u: XYZ(|u|), O(1). |u| > 2 is taken as 2; NaN and ±∞ give
+    /// black. Never negative.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::{color::Xyz, ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let t = ColorTable::new(&s, &g, 1e-4)?;
+    /// let exact = s.xyz(&g, 0.34, Strategy::Exact);
+    /// let got = t.lookup(0.34);
+    /// assert!((got.y - exact.y).abs() < 1e-3 * t.scale());
+    /// assert_eq!(t.lookup(5.0), t.lookup(2.0)); // clamped
+    /// assert_eq!(t.lookup(f64::NAN), Xyz::default());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[inline]
+    #[must_use]
+    pub fn lookup(&self, u: f64) -> Xyz {
+        let a = u.abs();
+        if !a.is_finite() {
+            return Xyz::default();
+        }
+        let (i, s, h) = self.locate(a.min(U_MAX));
+        let f = hermite(&self.nodes[i], &self.nodes[i + 1], h, s);
+        Xyz::new(f[0].max(0.0), f[1].max(0.0), f[2].max(0.0))
+    }
+
+    /// The mean colour over u ∈ [u0, u1] (either order): (1/|u1 − u0|)·∫ XYZ(|u|) du of the
+    /// interpolant, O(1); an interval through 0 takes both sides by symmetry, the part beyond
+    /// |u| = 2 counts as the colour at 2, and an interval too short for the cumulative form to keep
+    /// its digits (below 2⁻²⁰ of its cell, including zero width) gives
+    /// [`lookup`](Self::lookup) at its midpoint. A NaN or infinite end gives black.
+    ///
+    /// This is the colour of a pixel whose footprint (from ray differentials) or light's extent
+    /// spans that range of u.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 300)?;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let t = ColorTable::new(&s, &g, 1e-3)?;
+    /// assert_eq!(t.mean(0.3, 0.3), t.lookup(0.3)); // zero width
+    /// assert_eq!(t.mean(0.4, 0.2), t.mean(0.2, 0.4)); // either order
+    /// let through_zero = t.mean(-0.1, 0.1);
+    /// assert!((through_zero.y - t.mean(0.0, 0.1).y).abs() < 1e-12);
+    /// // The mean of two halves is the mean of the whole.
+    /// let (a, b) = (t.mean(0.2, 0.3), t.mean(0.3, 0.4));
+    /// assert!((0.5 * (a.y + b.y) - t.mean(0.2, 0.4).y).abs() < 1e-12);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn mean(&self, u0: f64, u1: f64) -> Xyz {
+        if !(u0.is_finite() && u1.is_finite()) {
+            return Xyz::default();
+        }
+        let (a, b) = if u0 <= u1 { (u0, u1) } else { (u1, u0) };
+        let len = b - a;
+        let mid = 0.5 * a + 0.5 * b;
+        let (_, _, h) = self.locate(mid.abs().min(U_MAX));
+        // Finite ends: len is not NaN (it may overflow to +∞, handled below).
+        if len <= TINY_FRACTION * h {
+            return self.lookup(mid);
+        }
+        // ∫_a^b XYZ(|u|) du = F(b) − F(a) with F odd, F(v) = ∫₀^v for v ≥ 0; clamped to [−2, 2].
+        let (ca, cb) = (a.clamp(-U_MAX, U_MAX), b.clamp(-U_MAX, U_MAX));
+        let inside = if ca >= 0.0 {
+            self.integral(ca, cb)
+        } else if cb <= 0.0 {
+            self.integral(-cb, -ca)
+        } else {
+            let (l, r) = (self.integral(0.0, -ca), self.integral(0.0, cb));
+            [l[0] + r[0], l[1] + r[1], l[2] + r[2]]
+        };
+        let mut m = [inside[0] / len, inside[1] / len, inside[2] / len];
+        let outside = 1.0 - (cb - ca) / len;
+        if outside > 0.0 {
+            let edge = self.lookup(U_MAX);
+            m[0] += outside * edge.x;
+            m[1] += outside * edge.y;
+            m[2] += outside * edge.z;
+        }
+        Xyz::new(m[0].max(0.0), m[1].max(0.0), m[2].max(0.0))
+    }
+
+    /// ∫ over [a, b] of the interpolant, 0 ≤ a ≤ b ≤ 2: whole cells from the cumulative sums,
+    /// the partial cells at each end directly, so that no digits are lost to large sums.
+    fn integral(&self, a: f64, b: f64) -> [f64; 3] {
+        let (ia, sa, ha) = self.locate(a);
+        let (ib, sb, hb) = self.locate(b);
+        if ia == ib {
+            let lo = cell_integral(&self.nodes[ia], &self.nodes[ia + 1], ha, sa);
+            let hi = cell_integral(&self.nodes[ib], &self.nodes[ib + 1], hb, sb);
+            return [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+        }
+        // [a, node ia + 1]: the cell's rest; whole cells ia + 1 .. ib; [node ib, b].
+        let whole_a = cell_integral(&self.nodes[ia], &self.nodes[ia + 1], ha, 1.0);
+        let part_a = cell_integral(&self.nodes[ia], &self.nodes[ia + 1], ha, sa);
+        let part_b = cell_integral(&self.nodes[ib], &self.nodes[ib + 1], hb, sb);
+        let (c0, c1) = (&self.cumulative[ia + 1], &self.cumulative[ib]);
+        let mut out = [0.0; 3];
+        for c in 0..3 {
+            out[c] = (whole_a[c] - part_a[c]) + (c1[c] - c0[c]) + part_b[c];
+        }
+        out
+    }
+
+    /// The node index, the fraction in [0, 1] and the spacing of the cell holding `a` ∈ [0, 2].
+    #[inline]
+    fn locate(&self, a: f64) -> (usize, f64, f64) {
+        let k = if a < self.u_lo {
+            0
+        } else {
+            // a ≥ u_lo, so its key is at least base_key.
+            ((a.to_bits() >> SHIFT) - self.base_key + 1) as usize
+        };
+        let b = &self.blocks[k.min(self.blocks.len() - 1)];
+        let t = (a - b.u0) * b.inv_h;
+        // t ≥ 0 (a ≥ u0); `as` truncates toward 0, which is floor here, and saturates.
+        let j = (t as u32).min(b.n - 1);
+        ((b.first + j) as usize, t - j as f64, b.h)
+    }
+
+    /// The error scale Y_b: the largest Y at the table's u with d·|u| ≥ 360 nm (the brightest
+    /// diffracted colour), at least 555/(N·∫ȳ dλ), the Y of an ideal first-order peak at 555 nm.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// let ideal = 555.0 / (1000.0 * 106.857); // ∫ȳ = 106.857 for the 1 nm CIE 1931 table
+    /// assert!(t.scale() >= ideal * (1.0 - 1e-4));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+
+    /// The worst error found at the midpoint checks when the table was built, in the units of
+    /// `accuracy` (see the [Accuracy](Self#accuracy) section: relative to [`scale`](Self::scale)
+    /// per channel, weighted as CIELAB is); above the requested accuracy only where refinement
+    /// stopped (band-end steps narrower than the finest spacing, or the node budget).
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 21)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert!(t.error_estimate() <= t.accuracy());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn error_estimate(&self) -> f64 {
+        self.error
+    }
+
+    /// The accuracy the table was asked for.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 2)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert_eq!(t.accuracy(), 1e-3);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn accuracy(&self) -> f64 {
+        self.accuracy
+    }
+
+    /// The tabulated grating.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 2)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert_eq!(t.grating(), &g);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn grating(&self) -> &Grating {
+        &self.grating
+    }
+
+    /// The illuminant.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 2)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::D65), &g, 1e-3)?;
+    /// assert_eq!(t.illuminant(), Illuminant::D65);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn illuminant(&self) -> Illuminant {
+        self.illuminant
+    }
+
+    /// The number of nodes.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 2)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert!(t.node_count() > 8 && t.node_count() <= ColorTable::MAX_NODES);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Heap and inline memory of the table, bytes.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert!(t.size_bytes() >= 72 * t.node_count());
+    /// assert!(t.size_bytes() <= 512 * 1024);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn size_bytes(&self) -> usize {
+        core::mem::size_of::<Self>()
+            + self.blocks.capacity() * core::mem::size_of::<Block>()
+            + self.nodes.capacity() * core::mem::size_of::<Node>()
+            + self.cumulative.capacity() * core::mem::size_of::<[f64; 3]>()
+    }
+}
+
+/// The error allowed in channel `c` of `exact`, over the accuracy: the change of that channel
+/// that moves CIELAB's f(t) = t^(1/3) (linear below t = (6/29)³) by 1/3, at the exposure
+/// Y' = max(`scale`, Y) (t = channel / (white · Y')). So it is white_c·Y'·max(t, (6/29)³)^(2/3):
+/// at most white_c·Y' for channels up to the white, 0.043·white_c·Y_b where the colour is dark.
+fn tolerance(exact: &[f64; 3], c: usize, scale: f64, white: [f64; 3]) -> f64 {
+    const DARK: f64 = (6.0 / 29.0) * (6.0 / 29.0) * (6.0 / 29.0);
+    let exposure = scale.max(exact[1]);
+    let t = (exact[c] / (white[c] * exposure)).max(DARK);
+    let r = cbrt(t);
+    white[c] * exposure * r * r
+}
+
+/// 2^⌊log₂ x⌋ for positive finite x (the smallest normal number for smaller x).
+fn power_of_two_below(x: f64) -> f64 {
+    let x = x.max(f64::MIN_POSITIVE);
+    f64::from_bits(x.to_bits() & !((1u64 << 52) - 1))
+}
+
+/// The nodes of all blocks in order (shared ends once), their values, and each block's first
+/// node index.
+fn assemble(work: &[Work]) -> (Vec<f64>, Vec<[f64; 3]>, Vec<usize>) {
+    let total = 1 + work.iter().map(|w| w.n).sum::<usize>();
+    let (mut xs, mut fs, mut starts) = (
+        Vec::with_capacity(total),
+        Vec::with_capacity(total),
+        Vec::with_capacity(work.len()),
+    );
+    for (k, w) in work.iter().enumerate() {
+        starts.push(if k == 0 { 0 } else { xs.len() - 1 });
+        let skip = (k > 0) as usize;
+        for j in skip..=w.n {
+            xs.push(w.u0 + j as f64 * w.h);
+            fs.push(w.vals[j]);
+        }
+    }
+    (xs, fs, starts)
+}
+
+/// Derivatives at the nodes: the derivative of the Lagrange polynomial through the five nearest
+/// nodes (shifted inward at u = 2; mirrored through u = 0, where the colour is even, so the
+/// derivative at 0 is 0).
+fn derivatives(xs: &[f64], fs: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let m = xs.len() as isize;
+    let point = |j: isize| -> (f64, [f64; 3]) {
+        if j >= 0 {
+            (xs[j as usize], fs[j as usize])
+        } else {
+            (-xs[(-j) as usize], fs[(-j) as usize])
+        }
+    };
+    let mut out = Vec::with_capacity(xs.len());
+    out.push([0.0; 3]);
+    for i in 1..m {
+        let lo = (i - 2).min(m - 5).max(-(m - 1));
+        let hi = (lo + 4).min(m - 1);
+        let (xc, _) = point(i);
+        let mut d = [0.0; 3];
+        for k in lo..=hi {
+            let (xk, fk) = point(k);
+            let weight = if k == i {
+                (lo..=hi)
+                    .filter(|&j| j != i)
+                    .map(|j| 1.0 / (xc - point(j).0))
+                    .sum::<f64>()
+            } else {
+                let mut num = 1.0;
+                let mut den = 1.0;
+                for j in lo..=hi {
+                    if j != k {
+                        den *= xk - point(j).0;
+                        if j != i {
+                            num *= xc - point(j).0;
+                        }
+                    }
+                }
+                num / den
+            };
+            for c in 0..3 {
+                d[c] += weight * fk[c];
+            }
+        }
+        out.push(d);
+    }
+    out
+}
+
+/// The cubic Hermite interpolant between nodes p and q (spacing h) at fraction s.
+#[inline]
+fn hermite(p: &Node, q: &Node, h: f64, s: f64) -> [f64; 3] {
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
+    let h10 = (s3 - 2.0 * s2 + s) * h;
+    let h01 = 3.0 * s2 - 2.0 * s3;
+    let h11 = (s3 - s2) * h;
+    [
+        h00 * p.f[0] + h10 * p.d[0] + h01 * q.f[0] + h11 * q.d[0],
+        h00 * p.f[1] + h10 * p.d[1] + h01 * q.f[1] + h11 * q.d[1],
+        h00 * p.f[2] + h10 * p.d[2] + h01 * q.f[2] + h11 * q.d[2],
+    ]
+}
+
+/// ∫ of the Hermite interpolant over the first fraction s of the cell [p, q] (spacing h).
+#[inline]
+fn cell_integral(p: &Node, q: &Node, h: f64, s: f64) -> [f64; 3] {
+    let s2 = s * s;
+    let s3 = s2 * s;
+    let s4 = s2 * s2;
+    let i00 = (s - s3 + 0.5 * s4) * h;
+    let i10 = (0.5 * s2 - 2.0 / 3.0 * s3 + 0.25 * s4) * h * h;
+    let i01 = (s3 - 0.5 * s4) * h;
+    let i11 = (0.25 * s4 - s3 / 3.0) * h * h;
+    core::array::from_fn(|c| i00 * p.f[c] + i10 * p.d[c] + i01 * q.f[c] + i11 * q.d[c])
+}
