@@ -19,8 +19,6 @@ const ORDERS_BOUND: f64 = 5e-4;
 /// The bound relative to max(colour, Y_b) where order 0's half period reaches into the band.
 /// Measured worst: 5.7e-4 on the reference data (N = 10⁶), 2.1e-4 over the sweep; margin 1.75×.
 const ORDER0_BOUND: f64 = 1e-3;
-/// ∫ȳ dλ over the band: the floor of the exposure is an ideal first order at 555 nm.
-const YBAR_INTEGRAL: f64 = 106.857;
 
 struct Case {
     d: f64,
@@ -38,7 +36,7 @@ fn worst_by_n(cases: &[Case]) -> Vec<(u32, f64, f64, String)> {
     for c in cases {
         let e = bright
             .entry((c.d.to_bits(), c.w.to_bits(), c.n, c.ill))
-            .or_insert(555.0 / (c.n as f64 * YBAR_INTEGRAL));
+            .or_insert(555.0 / (c.n as f64 * diffraction::cie::cmf_areas()[1]));
         if c.d * c.u.abs() >= 360.0 {
             *e = e.max(c.want[1]);
         }

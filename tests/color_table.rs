@@ -3,7 +3,7 @@
 //!
 //! Errors are measured as in docs/accuracy.md: relative to the grating's brightest diffracted
 //! colour Y_b (the largest reference Y over the sampled u with d·|u| ≥ 360 nm, at least
-//! 555/(N·106.857)), or to the reference's own Y where that is brighter (order 0 near u = 0); and
+//! 555/(N·∫ȳ)), or to the reference's own Y where that is brighter (order 0 near u = 0); and
 //! in ΔE2000 at that exposure. Y_b here comes from the reference, not from the table.
 //!
 //! The CI tests take a few gratings and about 3000 reference colours (about 5 s in release); the
@@ -67,7 +67,7 @@ fn sample_u(count: usize, seed: u64) -> Vec<f64> {
 
 /// The scale Y_b of the brightest diffracted colour, from reference values at `us`.
 fn brightest(grating: &Grating, n: u32, us: &[f64], reference: &[Xyz]) -> f64 {
-    let mut b = 555.0 / (n as f64 * 106.857);
+    let mut b = 555.0 / (n as f64 * diffraction::cie::cmf_areas()[1]);
     for (u, x) in us.iter().zip(reference) {
         if grating.period_nm() * u.abs() >= 360.0 {
             b = b.max(x.y);

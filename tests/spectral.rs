@@ -267,8 +267,8 @@ proptest! {
         let wo = DVec3::new(t.sin(), 0.0, t.cos());
         let special = s.xyz_brdf(&m, wi, wo, Strategy::Exact);
         let generic = s.xyz_brdf(&opaque, wi, wo, Strategy::Exact);
-        // The Y of an ideal first-order peak at 555 nm under E, 555/(N·∫ȳ), ∫ȳ = 106.857 nm.
-        let scale = 555.0 / (n as f64 * 106.857);
+        // The Y of an ideal first-order peak at 555 nm under E, 555/(N·∫ȳ).
+        let scale = 555.0 / (n as f64 * diffraction::cie::cmf_areas()[1]);
         prop_assert!((special.y - generic.y).abs() <= tol::EXACT_GENERIC_OF_BRIGHTEST * scale.max(special.y),
             "special {:?} generic {:?}", special, generic);
         let q = d * t.sin();

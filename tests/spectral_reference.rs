@@ -87,7 +87,7 @@ fn spectral_for(r: &Row) -> Spectral {
 /// error, which puts the grating's brightest diffraction colour at Y = 1. (The white order 0 at
 /// u = 0 always has Y = 1 and would hide the colours' errors.) See docs/accuracy.md.
 fn brightest(rows: &[Row]) -> HashMap<(u64, u64, u32, Illuminant), f64> {
-    let ybar_area = 106.85689; // ∫ȳ dλ of the 1 nm table, only to set a floor
+    let ybar_area = diffraction::cie::cmf_areas()[1]; // only to set a floor
     let mut m = HashMap::new();
     for r in rows {
         let k = (r.d.to_bits(), r.w.to_bits(), r.n, r.ill);

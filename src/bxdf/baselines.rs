@@ -86,61 +86,46 @@ fn cosine_pdf(wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
     }
 }
 
-impl Bsdf for Thorman {
-    /// `eval(wi, wo, λ)`, read as 1/sr (see the [module docs](crate::baselines)).
-    fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        if in_range(lambda_nm) {
-            self.eval(wi, wo, lambda_nm)
-        } else {
-            0.0
+/// `Bsdf` for a model whose `eval` is read as f in 1/sr, sampled by the cosine-weighted default.
+macro_rules! cosine_sampled_bsdf {
+    ($model:ty, $f_doc:literal) => {
+        impl Bsdf for $model {
+            #[doc = $f_doc]
+            fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+                if in_range(lambda_nm) {
+                    self.eval(wi, wo, lambda_nm)
+                } else {
+                    0.0
+                }
+            }
+
+            /// Cosine-weighted hemisphere.
+            fn sample(&self, wo: DVec3, lambda_nm: f64, _uc: f64, u2: DVec2) -> Option<BsdfSample> {
+                cosine_sample(wo, lambda_nm, u2, |wi| self.eval(wi, wo, lambda_nm))
+            }
+
+            /// cos θi/π.
+            fn pdf(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+                cosine_pdf(wo, wi, lambda_nm)
+            }
+
+            /// REFLECTION | GLOSSY.
+            fn flags(&self) -> BsdfFlags {
+                BsdfFlags::REFLECTION | BsdfFlags::GLOSSY
+            }
+
+            /// No change: the lobe widths are the published model's parameters.
+            fn regularize(&mut self) {}
         }
-    }
-
-    /// Cosine-weighted hemisphere.
-    fn sample(&self, wo: DVec3, lambda_nm: f64, _uc: f64, u2: DVec2) -> Option<BsdfSample> {
-        cosine_sample(wo, lambda_nm, u2, |wi| self.eval(wi, wo, lambda_nm))
-    }
-
-    /// cos θi/π.
-    fn pdf(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        cosine_pdf(wo, wi, lambda_nm)
-    }
-
-    /// REFLECTION | GLOSSY.
-    fn flags(&self) -> BsdfFlags {
-        BsdfFlags::REFLECTION | BsdfFlags::GLOSSY
-    }
-
-    /// No change: σ is the model's parameter.
-    fn regularize(&mut self) {}
+    };
 }
 
+cosine_sampled_bsdf!(
+    Thorman,
+    "`eval(wi, wo, λ)`, read as 1/sr (see the [module docs](crate::baselines))."
+);
 #[cfg(feature = "stam")]
-impl Bsdf for crate::Stam {
-    /// `eval(wi, wo, λ)`: Stam's BRDF, cosine excluded.
-    fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        if in_range(lambda_nm) {
-            self.eval(wi, wo, lambda_nm)
-        } else {
-            0.0
-        }
-    }
-
-    /// Cosine-weighted hemisphere.
-    fn sample(&self, wo: DVec3, lambda_nm: f64, _uc: f64, u2: DVec2) -> Option<BsdfSample> {
-        cosine_sample(wo, lambda_nm, u2, |wi| self.eval(wi, wo, lambda_nm))
-    }
-
-    /// cos θi/π.
-    fn pdf(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        cosine_pdf(wo, wi, lambda_nm)
-    }
-
-    /// REFLECTION | GLOSSY.
-    fn flags(&self) -> BsdfFlags {
-        BsdfFlags::REFLECTION | BsdfFlags::GLOSSY
-    }
-
-    /// No change: the coherence width is the model's parameter.
-    fn regularize(&mut self) {}
-}
+cosine_sampled_bsdf!(
+    crate::Stam,
+    "`eval(wi, wo, λ)`: Stam's BRDF, cosine excluded."
+);
