@@ -141,7 +141,9 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
             }
             "--filter" => {
                 let v = value()?;
-                opts.filter = v.parse().map_err(|e| format!("--filter: {e}, got \"{v}\""))?;
+                opts.filter = v
+                    .parse()
+                    .map_err(|e| format!("--filter: {e}, got \"{v}\""))?;
             }
             "--integrator" => {
                 let v = value()?;

@@ -141,7 +141,10 @@ pub fn reflect(scene: &Scene, fp: &Footprint, hit: &Hit, central: &Ray) -> Footp
         Some(h) => {
             let n = h.normal;
             let dir = r.dir - n * (2.0 * r.dir.dot(n));
-            Ray::new(h.point + n * (1e-7 * (1.0 + h.point.abs().max_element())), dir)
+            Ray::new(
+                h.point + n * (1e-7 * (1.0 + h.point.abs().max_element())),
+                dir,
+            )
         }
         None => *central,
     })

@@ -29,6 +29,8 @@ mod schema;
 mod texture;
 
 #[cfg(test)]
+mod footprint_tests;
+#[cfg(test)]
 mod path_tests;
 #[cfg(test)]
 mod tests;
