@@ -2,8 +2,9 @@
 //! grating, built at scene load, and each hit's interval of u from the pixel's footprint (ray
 //! differentials) and the light's angular size, averaged by [`ColorTable::mean`].
 //!
-//! A pixel sample carries four offset rays, through the image points ±½ pixel in x and in y
-//! around it. At a grating hit each offset ray is intersected with the same object (or, where it
+//! A pixel sample carries four offset rays, through the midpoints of the edges of its stratum
+//! cell (the pixel at 1 spp: ±½ pixel in x and in y around the pixel's centre), so that the
+//! interval does not move with the jitter and the cells' means add up to the pixel's. At a grating hit each offset ray is intersected with the same object (or, where it
 //! misses it, with the hit's tangent plane), and u = (wi + wo)·t is evaluated at the five points
 //! with each point's own normal, grating vector and direction to the light; a spherical light
 //! widens each by the range of wi·t over the cone of directions to its disc. The colour is the
@@ -53,7 +54,8 @@ impl FromStr for Filter {
     }
 }
 
-/// The four offset rays of a pixel sample: image points (x ± ½, y) and (x, y ± ½).
+/// The four offset rays of a pixel sample: the image points (x ± w/2, y) and (x, y ± h/2) of its
+/// stratum cell of centre (x, y) and size w × h.
 pub type Footprint = [Ray; 4];
 
 /// Whether a material's colour can come from a table: the paper's model with a finite slit

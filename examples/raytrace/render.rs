@@ -211,11 +211,18 @@ pub fn render(scene: &Scene, camera: &Camera, progress: bool, label: &str) -> Im
                     let (px, py) = (x as f64 + jx, y as f64 + jy);
                     let ray = rays.ray(px, py);
                     sum += if scene.filter == Filter::Footprint {
+                        // The footprint is the sample's stratum cell (the pixel at 1 spp):
+                        // the rays through the midpoints of its edges, whatever the jitter.
+                        let (cw, ch) = (1.0 / cols as f64, 1.0 / rows as f64);
+                        let (mx, my) = (
+                            x as f64 + (cx as f64 + 0.5) * cw,
+                            y as f64 + (cy as f64 + 0.5) * ch,
+                        );
                         let fp = [
-                            rays.ray(px - 0.5, py),
-                            rays.ray(px + 0.5, py),
-                            rays.ray(px, py - 0.5),
-                            rays.ray(px, py + 0.5),
+                            rays.ray(mx - 0.5 * cw, my),
+                            rays.ray(mx + 0.5 * cw, my),
+                            rays.ray(mx, my - 0.5 * ch),
+                            rays.ray(mx, my + 0.5 * ch),
                         ];
                         trace_with(scene, &ray, Some(&fp), 0, &mut rng)
                     } else {
