@@ -196,6 +196,11 @@ mod tests {
         assert_eq!((o.width, o.spp), (Some(64), Some(2)));
         assert_eq!(o.strategy, Some(Strategy::PaperPeaks));
         assert_eq!(o.clip, Some(Clip::ConstantIntensity));
+        assert_eq!(o.filter, crate::footprint::Filter::None);
+        let Command::Render(o) = parse(&args("fig6 --filter footprint")).unwrap() else {
+            panic!()
+        };
+        assert_eq!(o.filter, crate::footprint::Filter::Footprint);
         assert_eq!(parse(&args("--help")).unwrap(), Command::Help);
         assert_eq!(
             parse(&args("make-label")).unwrap(),
