@@ -27,6 +27,10 @@ OPTIONS:
     --strategy NAME    spectral evaluation: peaks (default), peaks-refined, paper, exact,
                        uniform:K (K <= 4096), gauss:K (K <= 512), auto or auto:ACCURACY
                        (ACCURACY in [1e-6, 1])
+    --filter NAME      diffraction colour of the paper's model: none (default, at each
+                       sample's u), footprint (the mean over the pixel footprint's u and the
+                       light's size, from a colour table per grating built at load) or point
+                       (the table at each sample's u)
     --clip SCHEME      gamut clipping: clamp, intensity (default), constant
     --integrator NAME  whitted (default) or path (spectral path tracing with MIS; needs a
                        scene with a [radiometry] table, e.g. cd_area_light)
@@ -73,6 +77,7 @@ pub struct Options {
     pub pfm: Option<PathBuf>,
     pub frames: Option<u32>,
     pub compare_clip: bool,
+    pub filter: crate::footprint::Filter,
     pub quiet: bool,
 }
 
@@ -134,6 +139,12 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
                 let v = value()?;
                 opts.clip = Some(v.parse().map_err(|e| format!("--clip: {e}, got \"{v}\""))?);
             }
+            "--filter" => {
+                let v = value()?;
+                opts.filter = v
+                    .parse()
+                    .map_err(|e| format!("--filter: {e}, got \"{v}\""))?;
+            }
             "--integrator" => {
                 let v = value()?;
                 opts.integrator = v
@@ -185,6 +196,11 @@ mod tests {
         assert_eq!((o.width, o.spp), (Some(64), Some(2)));
         assert_eq!(o.strategy, Some(Strategy::PaperPeaks));
         assert_eq!(o.clip, Some(Clip::ConstantIntensity));
+        assert_eq!(o.filter, crate::footprint::Filter::None);
+        let Command::Render(o) = parse(&args("fig6 --filter footprint")).unwrap() else {
+            panic!()
+        };
+        assert_eq!(o.filter, crate::footprint::Filter::Footprint);
         assert_eq!(parse(&args("--help")).unwrap(), Command::Help);
         assert_eq!(
             parse(&args("make-label")).unwrap(),
@@ -202,6 +218,7 @@ mod tests {
             "--width -3",
             "--strategy uniform:0",
             "--clip gamma",
+            "--filter box",
             "--bogus",
             "--width",
         ] {

@@ -16,6 +16,7 @@
 mod cli;
 mod diagnostics;
 mod font;
+mod footprint;
 mod geometry;
 mod limits;
 mod material;
@@ -27,6 +28,8 @@ mod scene;
 mod schema;
 mod texture;
 
+#[cfg(test)]
+mod footprint_tests;
 #[cfg(test)]
 mod path_tests;
 #[cfg(test)]
@@ -118,6 +121,17 @@ fn prepare(path: &Path, opts: &Options) -> Result<Scene, String> {
     }
     if let Some(strategy) = opts.strategy {
         scene.set_strategy(strategy);
+    }
+    if opts.filter != footprint::Filter::None {
+        let (n, took) = footprint::prepare(&mut scene, opts.filter)?;
+        note(
+            opts,
+            &format!(
+                "{}: {n} colour table(s) built in {:.2} s",
+                scene.name,
+                took.as_secs_f64()
+            ),
+        );
     }
     Ok(scene)
 }

@@ -9,6 +9,7 @@ use glam::DVec3;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
+use crate::footprint::{self, Filter, Footprint};
 use crate::geometry::{Hit, Ray};
 use crate::scene::{Camera, Light, Scene};
 use crate::texture::hash64;
@@ -207,8 +208,26 @@ pub fn render(scene: &Scene, camera: &Camera, progress: bool, label: &str) -> Im
                 while let Some((cx, cy)) = strata.next_cell() {
                     let jx = (cx as f64 + rng.next_f64()) / cols as f64;
                     let jy = (cy as f64 + rng.next_f64()) / rows as f64;
-                    let ray = rays.ray(x as f64 + jx, y as f64 + jy);
-                    sum += trace(scene, &ray, 0, &mut rng);
+                    let (px, py) = (x as f64 + jx, y as f64 + jy);
+                    let ray = rays.ray(px, py);
+                    sum += if scene.filter == Filter::Footprint {
+                        // The footprint is the sample's stratum cell (the pixel at 1 spp):
+                        // the rays through the midpoints of its edges, whatever the jitter.
+                        let (cw, ch) = (1.0 / cols as f64, 1.0 / rows as f64);
+                        let (mx, my) = (
+                            x as f64 + (cx as f64 + 0.5) * cw,
+                            y as f64 + (cy as f64 + 0.5) * ch,
+                        );
+                        let fp = [
+                            rays.ray(mx - 0.5 * cw, my),
+                            rays.ray(mx + 0.5 * cw, my),
+                            rays.ray(mx, my - 0.5 * ch),
+                            rays.ray(mx, my + 0.5 * ch),
+                        ];
+                        trace_with(scene, &ray, Some(&fp), 0, &mut rng)
+                    } else {
+                        trace(scene, &ray, 0, &mut rng)
+                    };
                 }
                 *out = sum / s.spp as f64;
             }
@@ -278,12 +297,24 @@ fn visibility(scene: &Scene, origin: DVec3, light: &Light, rng: &mut Rng) -> f64
 
 /// The linear sRGB radiance along `ray`.
 pub fn trace(scene: &Scene, ray: &Ray, depth: u32, rng: &mut Rng) -> DVec3 {
+    trace_with(scene, ray, None, depth, rng)
+}
+
+/// The linear sRGB radiance along `ray`, with the offset rays of its pixel footprint for
+/// [`Filter::Footprint`] (`None`: the colour at the ray's own u).
+pub fn trace_with(
+    scene: &Scene,
+    ray: &Ray,
+    fp: Option<&Footprint>,
+    depth: u32,
+    rng: &mut Rng,
+) -> DVec3 {
     if let Some(r) = &scene.radiometry {
         return crate::radiometric::whitted(scene, r, ray, depth, rng);
     }
     match nearest(scene, ray) {
         None => sky(scene, ray.dir),
-        Some(hit) => shade(scene, ray, &hit, depth, rng),
+        Some(hit) => shade(scene, ray, fp, &hit, depth, rng),
     }
 }
 
@@ -298,8 +329,21 @@ pub fn trace(scene: &Scene, ray: &Ray, depth: u32, rng: &mut Rng) -> DVec3 {
 /// (wi, wo)), scaled by k_diffraction and the material's exposure, converted to linear sRGB and
 /// coloured by the light. Materials without a grating
 /// never call the spectral code.
-fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec3 {
-    let material = &scene.materials[scene.objects[hit.object].material];
+///
+/// With a colour table for the material ([`crate::footprint`]) the diffraction XYZ is the
+/// table's: its mean over the footprint's interval of u for [`Filter::Footprint`], its lookup
+/// at u for [`Filter::Point`], scaled the same way.
+fn shade(
+    scene: &Scene,
+    ray: &Ray,
+    fp: Option<&Footprint>,
+    hit: &Hit,
+    depth: u32,
+    rng: &mut Rng,
+) -> DVec3 {
+    let index = scene.objects[hit.object].material;
+    let material = &scene.materials[index];
+    let table = scene.tables.get(index).and_then(Option::as_deref);
     let n = hit.normal;
     let wo = -ray.dir;
     let origin = hit.point + n * (1e-7 * (1.0 + hit.point.abs().max_element()));
@@ -339,9 +383,19 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
             if wi_l.z > 0.0 && wo_l.z > 0.0 {
                 // Steps 6-8: the spectral colour of the diffraction term (for Agu-Hill, of
                 // u = wi.x + wo.x).
-                let rgb = g
-                    .xyz(&scene.spectral, wi_l, wo_l, k_diffraction)
-                    .to_linear_srgb();
+                let xyz = match (table, scene.filter, fp) {
+                    (Some(table), Filter::Footprint, Some(fp)) => {
+                        let u = footprint::interval(scene, g, ray, hit, fp, light)
+                            .unwrap_or((wi_l.x + wo_l.x, wi_l.x + wo_l.x));
+                        footprint::filtered_xyz(table, g, u, k_diffraction)
+                    }
+                    (Some(table), Filter::Point, _) => {
+                        let u = wi_l.x + wo_l.x;
+                        footprint::filtered_xyz(table, g, (u, u), k_diffraction)
+                    }
+                    _ => g.xyz(&scene.spectral, wi_l, wo_l, k_diffraction),
+                };
+                let rgb = xyz.to_linear_srgb();
                 reflected += DVec3::new(rgb.r, rgb.g, rgb.b);
             }
         }
@@ -350,7 +404,9 @@ fn shade(scene: &Scene, ray: &Ray, hit: &Hit, depth: u32, rng: &mut Rng) -> DVec
 
     if material.mirror > 0.0 && depth < scene.settings.max_depth {
         let dir = ray.dir - n * (2.0 * ray.dir.dot(n));
-        let reflected = trace(scene, &Ray::new(origin, dir), depth + 1, rng);
+        let next = Ray::new(origin, dir);
+        let next_fp = fp.map(|fp| footprint::reflect(scene, fp, hit, &next));
+        let reflected = trace_with(scene, &next, next_fp.as_ref(), depth + 1, rng);
         color =
             color * (1.0 - material.mirror) + material.mirror_tint * reflected * material.mirror;
     }

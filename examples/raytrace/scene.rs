@@ -87,6 +87,11 @@ pub struct Scene {
     follows_default: Vec<bool>,
     /// The physical units of a radiometric scene (its `[radiometry]` table).
     pub radiometry: Option<crate::radiometric::Radiometry>,
+    /// How the diffraction colour is filtered (`--filter`, [`crate::footprint::prepare`]).
+    pub filter: crate::footprint::Filter,
+    /// The colour table of each material, where [`filter`](Self::filter) uses one (empty or
+    /// `None` otherwise).
+    pub tables: Vec<Option<std::sync::Arc<diffraction::ColorTable>>>,
 }
 
 impl Scene {
@@ -492,6 +497,8 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         spectral: loader.spectral,
         follows_default,
         radiometry,
+        filter: crate::footprint::Filter::None,
+        tables: Vec::new(),
     })
 }
 
