@@ -491,14 +491,18 @@ pub struct Peak {
     pub order: i32,
     /// The peak wavelength λ_m = d·|u|/|m|, nm.
     pub wavelength_nm: f64,
-    /// The intensity at the peak: the single-slit envelope S(β_m), β_m = π·m·w/d, since
-    /// F_N = 1 on the grating equation. A [`DiffractionBrdf`](crate::DiffractionBrdf) scales it
-    /// by its own coefficient.
+    /// The model's value at the peak. For [`Grating::peaks`] the single-slit envelope S(β_m),
+    /// β_m = π·m·w/d, since F_N = 1 on the grating equation; a
+    /// [`DiffractionBrdf`](crate::DiffractionBrdf) reports its own value there.
     pub intensity: f64,
     /// The peak's equivalent width in wavelength, nm: the width of a rectangle of height
-    /// `intensity` with the area of the whole order (main lobe and side lobes of one period).
-    /// For the N-slit factor this is λ_m/(|m|·N), which is also the distance from the peak to its
-    /// first zero; 0 for N = ∞.
+    /// `intensity` with the area of the whole order (main lobe and side lobes of one period), so
+    /// that `intensity · equivalent_width_nm` is the order's spectral area. For the N-slit factor
+    /// this is λ_m/(|m|·N), which is also the distance from the peak to its first zero, and 0 for
+    /// N = ∞ ([`Grating::peaks`]: the paper's unitless orders have no area in the limit). A model
+    /// with delta lobes of finite weight ([`GratingBsdf`](crate::GratingBsdf) for N = ∞) reports
+    /// `intensity` = the order's weight and the width |dλ/du| = d/|m|, so that the product is
+    /// again the area.
     pub equivalent_width_nm: f64,
 }
 

@@ -169,6 +169,7 @@ const STRATEGIES: &[Strategy] = &[
     Strategy::PeakSearch { refine: false },
     Strategy::PeakSearch { refine: true },
     Strategy::PaperPeaks,
+    Strategy::Asymptotic,
     Strategy::Exact,
     Strategy::Auto { accuracy: 1e-3 },
     Strategy::Auto { accuracy: 1e-12 },

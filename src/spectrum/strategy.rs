@@ -27,7 +27,7 @@ use crate::ParseError;
 /// | `GaussLegendre { intervals: K }` | 8K evaluations | the same, with higher order between |
 /// | `PeakSearch { .. }` | O(visible orders) | 8/N_eff, plus 2·10⁻³ of order 0's own light where its lobe reaches the band |
 /// | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
-/// | `Asymptotic` | O(visible orders), a few hundred evaluations | 5·10⁻⁴ for N ≥ 5, plus 10⁻³ of order 0's own light where its half period reaches the band |
+/// | `Asymptotic` | O(visible orders), a few hundred evaluations | 5·10⁻⁴ for N ≥ 5, plus 10⁻³ of order 0's own light where its half period reaches the band (for N < 5 and on the generic path it is `Exact`) |
 /// | `Exact` | see the module docs | 10⁻⁶ of the colour itself (of 10⁻³ of the brightest order for darker colours) |
 /// | `Auto { accuracy }` | the cheapest of the above whose bound meets `accuracy` | `accuracy` |
 ///
