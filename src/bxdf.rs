@@ -290,13 +290,15 @@ impl Envelope {
         })
     }
 
-    /// k(λ); 0 for λ ≤ 0 or non-finite λ, and finite for every λ the crate integrates over.
+    /// k(λ); 0 for λ ≤ 0 or non-finite λ; saturates at `f64::MAX` where λ^(−p) would overflow
+    /// (λ below about 10⁻⁷⁷ nm for p = 4), so it is finite for every finite λ.
     ///
     /// ```
     /// use diffraction::Envelope;
     /// let e = Envelope::new(0, 500.0)?;
     /// assert!(e.at(500.0) < 1e-30); // sinc²(π) = 0
     /// assert_eq!(e.at(-1.0), 0.0);
+    /// assert_eq!(Envelope::new(4, 0.0)?.at(5e-324), f64::MAX); // saturates, never ∞
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[inline]
@@ -312,7 +314,7 @@ impl Envelope {
         if self.sinc_length_nm != 0.0 {
             k *= crate::kernel::single_slit_cycles(self.sinc_length_nm / lambda_nm);
         }
-        k
+        k.min(f64::MAX)
     }
 
     /// Whether k(λ) = 1 everywhere.
