@@ -28,6 +28,15 @@ const LOBE_FRACTION: f64 = 20.0;
 const MIN_U_LO: f64 = 1.0 / 18_446_744_073_709_551_616.0;
 /// Wavelength of the ideal first-order peak that floors the error scale, nm.
 const FLOOR_PEAK_NM: f64 = 555.0;
+/// Below this many slits the nodes are all [`Strategy::Exact`] (which `Asymptotic` is there too).
+const ASYMPTOTIC_MIN_SLITS: f64 = 5.0;
+/// Where d·|u| is below this (nm), order 0's half period (x = d·|u|/λ < ½) reaches into the band
+/// (λ ≤ 830 nm) and the nodes are [`Strategy::Exact`]: `Asymptotic`'s bound there is relative to
+/// order 0's own light, not to the brightest order.
+const ORDER0_HALF_PERIOD_NM: f64 = 415.0;
+/// `Strategy::Asymptotic`'s bound relative to order 0's own light where order 0's half period
+/// reaches the band (measured 5.7·10⁻⁴, `tests/asymptotic.rs`).
+const ASYMPTOTIC_ORDER0_BOUND: f64 = 1e-3;
 /// Smallest accuracy accepted: ten times the error of [`Strategy::Exact`] (10⁻⁷).
 const MIN_ACCURACY: f64 = 1e-6;
 /// Largest accuracy accepted (relative).
@@ -182,15 +191,28 @@ struct Work {
 }
 
 impl ColorTable {
-    /// The strategy that computes the nodes: the crate's most accurate integrator that is fast
-    /// enough to tabulate (`Exact`, below 10⁻⁷ relative).
+    /// The smallest `accuracy` at which the nodes where only orders m ≠ 0 reach the band
+    /// (d·|u| ≥ 415 nm) are computed by [`Strategy::Asymptotic`] for N ≥ 5; below it, and
+    /// everywhere else, by [`Strategy::Exact`] (see the [Cost](Self#cost) section).
     ///
     /// ```
-    /// use diffraction::spectrum::Strategy;
     /// use diffraction::ColorTable;
-    /// assert_eq!(ColorTable::STRATEGY, Strategy::Exact);
+    /// assert!(ColorTable::ASYMPTOTIC_ACCURACY <= ColorTable::DEFAULT_ACCURACY);
     /// ```
-    pub const STRATEGY: Strategy = Strategy::Exact;
+    pub const ASYMPTOTIC_ACCURACY: f64 = 1e-4;
+
+    /// The accuracy to build with when nothing else is asked for: measured within 0.05 ΔE2000
+    /// of [`Strategy::Exact`] at every u, at the brightest order's exposure (docs/color_table.md).
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 21)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::D65), &g, ColorTable::DEFAULT_ACCURACY)?;
+    /// assert!(t.error_estimate() <= ColorTable::DEFAULT_ACCURACY);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub const DEFAULT_ACCURACY: f64 = 1e-4;
 
     /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
     /// first, and [`error_estimate`](Self::error_estimate) says what was reached.
@@ -248,13 +270,33 @@ impl ColorTable {
                 return Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite))
             }
         };
-        let eval = |u: f64| {
-            let c = spectral.xyz(grating, u, Self::STRATEGY);
-            [c.x, c.y, c.z]
-        };
         let d = grating.period_nm();
         let white = spectral.white();
         let white = [white.x, white.y, white.z];
+        let fast = n >= ASYMPTOTIC_MIN_SLITS && accuracy >= Self::ASYMPTOTIC_ACCURACY;
+        let order0_from = ORDER0_HALF_PERIOD_NM / d;
+        // Where order 0's light reaches the band, `Asymptotic` is within ORDER0_BOUND of that
+        // light: a relative error δ moves CIELAB's f(t) by δ·t^(1/3)/3, within the tolerance
+        // (accuracy/3) while t ≤ (accuracy/ORDER0_BOUND)³; brighter nodes are recomputed by `Exact`.
+        let dark_t = {
+            let r = accuracy / ASYMPTOTIC_ORDER0_BOUND;
+            r * r * r
+        };
+        let eval = |u: f64, scale: f64| {
+            if fast {
+                let c = spectral.xyz(grating, u, Strategy::Asymptotic);
+                let c = [c.x, c.y, c.z];
+                if u >= order0_from {
+                    return c;
+                }
+                let exposure = scale.max(c[1]);
+                if (0..3).all(|k| c[k] <= dark_t * white[k] * exposure) {
+                    return c;
+                }
+            }
+            let c = spectral.xyz(grating, u, Strategy::Exact);
+            [c.x, c.y, c.z]
+        };
         let ybar = cie::integrate_product_of_rows(|_| 1.0, |i| cie::cmf_row(i, 1));
         let mut scale = FLOOR_PEAK_NM / (n * ybar);
         let diffracted_from = LAMBDA_MIN_NM / d;
@@ -269,7 +311,7 @@ impl ColorTable {
             bounds.push(f64::from_bits(key << SHIFT));
         }
         // Every block starts with two intervals, so that it is checked at two points.
-        let values: Vec<[f64; 3]> = bounds.iter().map(|&u| eval(u)).collect();
+        let values: Vec<[f64; 3]> = bounds.iter().map(|&u| eval(u, scale)).collect();
         let mut work: Vec<Work> = bounds
             .windows(2)
             .zip(values.windows(2))
@@ -279,7 +321,7 @@ impl ColorTable {
                     u0: b[0],
                     h,
                     n: 2,
-                    vals: alloc::vec![v[0], eval(b[0] + h), v[1]],
+                    vals: alloc::vec![v[0], eval(b[0] + h, scale), v[1]],
                     mids: Vec::new(),
                     capped: false,
                     err: 0.0,
@@ -304,7 +346,7 @@ impl ColorTable {
             for (k, w) in work.iter_mut().enumerate() {
                 if w.mids.is_empty() {
                     w.mids = (0..w.n)
-                        .map(|j| eval(w.u0 + (j as f64 + 0.5) * w.h))
+                        .map(|j| eval(w.u0 + (j as f64 + 0.5) * w.h, scale))
                         .collect();
                     for (j, m) in w.mids.iter().enumerate() {
                         if w.u0 + (j as f64 + 0.5) * w.h >= diffracted_from {

@@ -443,6 +443,96 @@ fn full_sweep_lookups_match_exact() {
     assert!(worst_mem <= 512 * 1024);
 }
 
+/// A representative fifth of the sweep: two (period, illuminant) pairs for every N, and two of
+/// the worst gratings of the full sweep (dark order-0 tails at N = 300-3000).
+const SWEEP_SUBSET: [(f64, u32, Illuminant); 20] = [
+    (400.0, 1, Illuminant::E),
+    (100_000.0, 1, Illuminant::D65),
+    (740.0, 2, Illuminant::D65),
+    (10_000.0, 2, Illuminant::E),
+    (1600.0, 5, Illuminant::E),
+    (100_000.0, 5, Illuminant::D65),
+    (1600.0, 21, Illuminant::D65),
+    (400.0, 21, Illuminant::E),
+    (740.0, 30, Illuminant::E),
+    (10_000.0, 30, Illuminant::D65),
+    (400.0, 300, Illuminant::D65),
+    (100_000.0, 300, Illuminant::E),
+    (1600.0, 1000, Illuminant::D65),
+    (740.0, 1000, Illuminant::E),
+    (740.0, 3000, Illuminant::D65),
+    (10_000.0, 3000, Illuminant::E),
+    (400.0, 1_000_000, Illuminant::D65),
+    (1600.0, 1_000_000, Illuminant::E),
+    (740.0, 300, Illuminant::D65),
+    (100_000.0, 3000, Illuminant::D65),
+];
+
+/// Builds every table of `cases` at `accuracy` on two threads and compares 'count' random u of
+/// each with `Exact`; prints each grating's figures and returns the worst (relative, ΔE2000,
+/// bytes).
+fn sweep(cases: &[(f64, u32, Illuminant)], accuracy: f64, count: usize) -> (f64, f64, usize) {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let results = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..2 {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&(d, n, ill)) = cases.get(k) else {
+                    break;
+                };
+                let s = Spectral::new(ill);
+                let g = Grating::new(d, d / 2.0, n).unwrap();
+                let t0 = std::time::Instant::now();
+                let table = ColorTable::new(&s, &g, accuracy).unwrap();
+                let build = t0.elapsed().as_secs_f64();
+                let w = lookup_errors(&s, &g, n, &table, &sample_u(count, 1000 + k as u64));
+                println!(
+                    "d = {d:>6}, N = {n:>7}, {ill:?}: build {:.3} s, {} nodes, {} KiB, \
+                     estimate {:.1e}; worst {:.2e} of Y_b at u = {:.4e}, ΔE2000 {:.3} at u = {:.4e}",
+                    build,
+                    table.node_count(),
+                    table.size_bytes() / 1024,
+                    table.error_estimate(),
+                    w.rel,
+                    w.rel_u,
+                    w.de,
+                    w.de_u
+                );
+                results
+                    .lock()
+                    .unwrap()
+                    .push((w.rel, w.de, table.size_bytes()));
+            });
+        }
+    });
+    let results = results.into_inner().unwrap();
+    let worst_rel = results.iter().fold(0.0f64, |m, r| m.max(r.0));
+    let worst_de = results.iter().fold(0.0f64, |m, r| m.max(r.1));
+    let worst_mem = results.iter().map(|r| r.2).max().unwrap();
+    println!(
+        "worst: {worst_rel:.2e} of Y_b, ΔE2000 {worst_de:.3}, {} KiB",
+        worst_mem / 1024
+    );
+    (worst_rel, worst_de, worst_mem)
+}
+
+/// The representative subset of the sweep at the default accuracy, 2000 random u per grating
+/// (`COLOR_TABLE_ACCURACY` overrides the accuracy, to compare).
+#[test]
+#[ignore = "a few minutes on two threads: 40 000 Exact colours"]
+fn sweep_subset_lookups_match_exact() {
+    let accuracy = std::env::var("COLOR_TABLE_ACCURACY")
+        .ok()
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(ColorTable::DEFAULT_ACCURACY);
+    println!("accuracy {accuracy:e}");
+    let (rel, de, mem) = sweep(&SWEEP_SUBSET, accuracy, 2000);
+    assert!(rel <= LOOKUP_REL);
+    assert!(de <= LOOKUP_DE2000);
+    assert!(mem <= 512 * 1024);
+}
+
 #[test]
 fn the_most_slits_build_within_the_memory_cap() {
     // N = 2³² − 1: order 0's lobe is 2e-10 wide in u at d = 400 nm, 38 octaves of blocks.
