@@ -31,8 +31,8 @@ const FLOOR_PEAK_NM: f64 = 555.0;
 /// Below this many slits the nodes are all [`Strategy::Exact`] (which `Asymptotic` is there too).
 const ASYMPTOTIC_MIN_SLITS: f64 = 5.0;
 /// Where d·|u| is below this (nm), order 0's half period (x = d·|u|/λ < ½) reaches into the band
-/// (λ ≤ 830 nm) and the nodes are [`Strategy::Exact`]: `Asymptotic`'s bound there is relative to
-/// order 0's own light, not to the brightest order.
+/// (λ ≤ 830 nm): `Asymptotic`'s bound there is relative to order 0's own light, so a node there
+/// is [`Strategy::Exact`] unless the colour is dark enough (see `ColorTable::new`).
 const ORDER0_HALF_PERIOD_NM: f64 = 415.0;
 /// `Strategy::Asymptotic`'s bound relative to order 0's own light where order 0's half period
 /// reaches the band (measured 5.7·10⁻⁴, `tests/asymptotic.rs`).
@@ -116,13 +116,14 @@ struct Node {
 ///
 /// `accuracy · white_c · Y' · max(t_c, (6/29)³)^(2/3)`
 ///
-/// of `Exact`: the change that moves CIELAB's f(t) = t^(1/3) by accuracy/3. That is at most
+/// of the nodes: the change that moves CIELAB's f(t) = t^(1/3) by accuracy/3. That is at most
 /// `accuracy · white_c · Y'` (relative to the brightest order) for channels up to the white, and
 /// 23 times less where the colour is dark (t < 0.0089), where CIELAB is most sensitive. Measured
-/// over the 90 gratings of `tests/color_table.rs` at 10⁴ random u each: with accuracy 3·10⁻⁴,
-/// within 7.2·10⁻⁴ of Y_b and 0.097 ΔE2000 of `Exact` at the brightest order's exposure
-/// (median 0.047 over the gratings; docs/color_table.md); accuracy 10⁻⁴ brought the worst
-/// gratings to 0.02. [`error_estimate`](Self::error_estimate) reports the worst check.
+/// at [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) (10⁻⁴) over a representative 20 of the 90
+/// gratings of `tests/color_table.rs` (every N, 2000 random u each): within 1.9·10⁻⁴ of Y_b and
+/// 0.027 ΔE2000 of `Exact` at the brightest order's exposure (docs/color_table.md); at 3·10⁻⁴
+/// the full sweep reached 0.097. [`error_estimate`](Self::error_estimate) reports the worst
+/// check.
 ///
 /// Not resolved: where an order's peak crosses a band end (u = m·360/d, m·830/d) the colour steps
 /// by that order's light at 360 or 830 nm over a width 360 nm/(N·d) in u; the step is below
@@ -132,9 +133,14 @@ struct Node {
 ///
 /// # Cost
 ///
-/// The nodes are computed by [`STRATEGY`](Self::STRATEGY); a build costs about twice the node
-/// count in calls of [`Spectral::xyz`] with it (100-4000 nodes). Memory is 72 bytes per node plus
-/// 32 per block ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
+/// A build costs about twice the node count (100-5200 nodes) in calls of [`Spectral::xyz`]. For
+/// N ≥ 5 and `accuracy` ≥ [`ASYMPTOTIC_ACCURACY`](Self::ASYMPTOTIC_ACCURACY) a node is
+/// [`Strategy::Asymptotic`] (5-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
+/// where order 0's light reaches it but the colour is dark enough for `Asymptotic`'s bound
+/// (10⁻³ of that light) to move CIELAB's f(t) by less than accuracy/3 (t ≤ (accuracy/10⁻³)³);
+/// every other node (order 0's bright lobe and near tail, N < 5) is [`Strategy::Exact`], which
+/// then dominates the build time. Memory is 72 bytes per node plus 32 per block
+/// ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
 ///
 /// # Limits
 ///
@@ -191,9 +197,11 @@ struct Work {
 }
 
 impl ColorTable {
-    /// The smallest `accuracy` at which the nodes where only orders m ≠ 0 reach the band
-    /// (d·|u| ≥ 415 nm) are computed by [`Strategy::Asymptotic`] for N ≥ 5; below it, and
-    /// everywhere else, by [`Strategy::Exact`] (see the [Cost](Self#cost) section).
+    /// The smallest `accuracy` at which nodes are computed by [`Strategy::Asymptotic`] (for
+    /// N ≥ 5, where it meets the tolerance: see the [Cost](Self#cost) section); below it every
+    /// node is [`Strategy::Exact`]. `Asymptotic` is within 1.4·10⁻⁴ of the brightest order
+    /// (measured, `tests/asymptotic.rs`); the tables built with it at 10⁻⁴ were measured within
+    /// 0.027 ΔE2000 of `Exact` (docs/color_table.md).
     ///
     /// ```
     /// use diffraction::ColorTable;
@@ -232,9 +240,9 @@ impl ColorTable {
     /// (relative to [`scale`](Self::scale) per channel, tighter in the dark) or the node budget
     /// [`MAX_NODES`](Self::MAX_NODES) is reached.
     ///
-    /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md): 3·10⁻⁴ keeps lookups
-    /// within 0.1 ΔE2000 of [`Strategy::Exact`] at the brightest order's exposure over 90
-    /// gratings; 10⁻⁴ brought the worst of them to 0.02.
+    /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md):
+    /// [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) = 10⁻⁴ keeps lookups within 0.03 ΔE2000 of
+    /// [`Strategy::Exact`] at the brightest order's exposure over 20 representative gratings.
     ///
     /// # Errors
     ///
