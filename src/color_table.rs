@@ -213,11 +213,13 @@ impl ColorTable {
     /// of [`Strategy::Exact`] at every u, at the brightest order's exposure (docs/color_table.md).
     ///
     /// ```
-    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
     /// use diffraction::{ColorTable, Grating};
     /// let g = Grating::new(1600.0, 800.0, 21)?;
-    /// let t = ColorTable::new(&Spectral::new(Illuminant::D65), &g, ColorTable::DEFAULT_ACCURACY)?;
-    /// assert!(t.error_estimate() <= ColorTable::DEFAULT_ACCURACY);
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let t = ColorTable::new(&s, &g, ColorTable::DEFAULT_ACCURACY)?;
+    /// let exact = s.xyz(&g, 0.3, Strategy::Exact);
+    /// assert!((t.lookup(0.3).y - exact.y).abs() < 1e-3 * t.scale());
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     pub const DEFAULT_ACCURACY: f64 = 1e-4;
