@@ -1,11 +1,12 @@
 //! Cost of `ColorTable`: one lookup, one footprint mean, and one build, with `Spectral::xyz`
-//! (`Exact`, and the peak search) in the same run as the baselines a renderer would otherwise call
+//! (`Exact`, `Asymptotic` and the peak search) in the same run as the baselines a renderer would otherwise call
 //! at every hit.
 //!
 //! Lookups and means take a batch of 1024 phase projections u (half uniform on (−2, 2), half
 //! log-uniform in |u| down to 10⁻⁹), so the figure per element is ns per colour averaged over
 //! directions; `Spectral::xyz` takes the first 16 of them. Means are over intervals of width
-//! 10⁻³ centred there. Tables are built with accuracy 3·10⁻⁴ under D65, slit width d/2.
+//! 10⁻³ centred there. Tables are built with `ColorTable::DEFAULT_ACCURACY` under D65, slit width
+//! d/2.
 //!
 //! `cargo bench --bench color_table -- --warm-up-time 1 --measurement-time 2`
 
@@ -14,11 +15,12 @@ use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{ColorTable, Grating};
 use std::time::Duration;
 
-const ACCURACY: f64 = 3e-4;
+const ACCURACY: f64 = ColorTable::DEFAULT_ACCURACY;
 /// (period nm, N) of the lookup benchmarks.
 const LOOKUP_GRATINGS: [(f64, u32); 3] = [(1600.0, 1000), (740.0, 1_000_000), (10_000.0, 30)];
 /// (period nm, N) of the build benchmarks.
-const BUILD_GRATINGS: [(f64, u32); 3] = [(400.0, 30), (1600.0, 21), (1600.0, 1000)];
+const BUILD_GRATINGS: [(f64, u32); 4] =
+    [(400.0, 30), (1600.0, 21), (1600.0, 1000), (100_000.0, 300)];
 const BATCH: usize = 1024;
 const BASELINE_BATCH: usize = 16;
 
@@ -70,7 +72,11 @@ fn bench_lookup(c: &mut Criterion) {
             })
         });
         group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
-        for strategy in [Strategy::Exact, Strategy::PeakSearch { refine: false }] {
+        for strategy in [
+            Strategy::Exact,
+            Strategy::Asymptotic,
+            Strategy::PeakSearch { refine: false },
+        ] {
             group.bench_function(BenchmarkId::new("xyz", strategy), |b| {
                 b.iter(|| {
                     let mut acc = 0.0;

@@ -30,7 +30,7 @@ use std::time::{Duration, Instant};
 use diffraction::color::{WhitePoint, Xyz};
 use diffraction::kernel::{n_slit, naive};
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
-use diffraction::{AguHill, DiffractionBrdf, Grating};
+use diffraction::{AguHill, ColorTable, DiffractionBrdf, Grating};
 use glam::{DVec3, Vec3};
 
 /// Periods d of the sweep, nm (DVD, CD, a coarse and a very coarse grating); w = d/2.
@@ -49,6 +49,9 @@ enum Kind {
     Stratified(usize),
     /// `Spectral::xyz_hero` with this many wavelengths (one estimate, fixed random number).
     Hero(u32),
+    /// `ColorTable::lookup` of a table built for the grating at this accuracy (the build's time
+    /// and memory go into the row's `build_ms` and `table_bytes`).
+    Table(f64),
 }
 
 /// One row family of the CSV: a strategy name, its parameter and what to evaluate.
@@ -87,6 +90,7 @@ fn methods() -> Vec<Method> {
     );
     push("paper", "-".into(), Kind::Xyz(Strategy::PaperPeaks));
     push("exact", "-".into(), Kind::Xyz(Strategy::Exact));
+    push("asymptotic", "-".into(), Kind::Xyz(Strategy::Asymptotic));
     for e in 1..=6 {
         let accuracy = 10f64.powi(-e);
         push(
@@ -95,6 +99,11 @@ fn methods() -> Vec<Method> {
             Kind::Xyz(Strategy::Auto { accuracy }),
         );
     }
+    push(
+        "table",
+        format!("{:e}", ColorTable::DEFAULT_ACCURACY),
+        Kind::Table(ColorTable::DEFAULT_ACCURACY),
+    );
     push("stratified", "8".into(), Kind::Stratified(8));
     push("hero", "4".into(), Kind::Hero(4));
     v
@@ -289,6 +298,10 @@ struct Row {
     worst_u: f64,
     /// The largest ΔE2000 without the clipping of overexposed colours (see `errors`).
     de_raw_max: f64,
+    /// For `table`: the build's wall-clock time, ms (0 for the others).
+    build_ms: f64,
+    /// For `table`: `ColorTable::size_bytes` (0 for the others).
+    table_bytes: usize,
 }
 
 /// Per-grating data kept for the summary.
@@ -345,6 +358,15 @@ fn main() {
             let bright_unfloored = brightest_unfloored(period, &us, &refs);
             let mut paper_bright = 0.0;
             for m in &methods {
+                // The table of this grating, built once (its build timed once, single-threaded).
+                let table = match m.kind {
+                    Kind::Table(accuracy) => {
+                        let t0 = Instant::now();
+                        let t = ColorTable::new(&spectral, &g, accuracy).expect("valid accuracy");
+                        Some((t0.elapsed().as_secs_f64() * 1e3, t))
+                    }
+                    _ => None,
+                };
                 let got: Vec<Xyz> = us
                     .iter()
                     .enumerate()
@@ -352,6 +374,7 @@ fn main() {
                         Kind::Xyz(s) => spectral.xyz(&g, u, s),
                         Kind::Stratified(k) => spectral.xyz_stratified(&g, u, &strata[i][..k]),
                         Kind::Hero(k) => spectral.xyz_hero(&g, u, heroes[i], k),
+                        Kind::Table(_) => table.as_ref().expect("built above").1.lookup(u),
                     })
                     .collect();
                 let ns = match m.kind {
@@ -362,7 +385,14 @@ fn main() {
                     Kind::Hero(k) => time_ns(&us, cfg.budget, |u| {
                         spectral.xyz_hero(&g, u, heroes[0], k).y
                     }),
+                    Kind::Table(_) => {
+                        let t = &table.as_ref().expect("built above").1;
+                        time_ns(&us, cfg.budget, |u| t.lookup(u).y)
+                    }
                 };
+                let (build_ms, table_bytes) = table
+                    .as_ref()
+                    .map_or((0.0, 0), |(ms, t)| (*ms, t.size_bytes()));
                 let mut push = |name: &str, scale_got: f64| {
                     let mut des = Vec::with_capacity(us.len());
                     let (mut rel_max, mut de_raw_max, mut de_max, mut worst_u) =
@@ -389,6 +419,8 @@ fn main() {
                         rel_max,
                         worst_u,
                         de_raw_max,
+                        build_ms,
+                        table_bytes,
                     });
                 };
                 push(m.name, bright);
@@ -433,13 +465,23 @@ fn main() {
 
 fn write_csv(path: &str, rows: &[Row]) {
     let mut s = String::from(
-        "strategy,param,n,period_nm,ns_per_eval,de2000_max,de2000_median,rel_xyz_max\n",
+        "strategy,param,n,period_nm,ns_per_eval,de2000_max,de2000_median,rel_xyz_max,build_ms,\
+         table_bytes\n",
     );
     for r in rows {
         writeln!(
             s,
-            "{},{},{},{},{:.1},{:.4e},{:.4e},{:.4e}",
-            r.name, r.param, r.n, r.period, r.ns, r.de_max, r.de_median, r.rel_max
+            "{},{},{},{},{:.1},{:.4e},{:.4e},{:.4e},{:.1},{}",
+            r.name,
+            r.param,
+            r.n,
+            r.period,
+            r.ns,
+            r.de_max,
+            r.de_median,
+            r.rel_max,
+            r.build_ms,
+            r.table_bytes
         )
         .unwrap();
     }
@@ -612,7 +654,8 @@ fn print_targets(rows: &[Row], slits: &[u32], infos: &[GratingInfo]) {
         );
     }
     // 2. For every N and period, some strategy within 0.5 ΔE2000 at ≤ 2 µs.
-    let exclude = |r: &Row| matches!(r.name.as_str(), "paper" | "paper-own-exposure");
+    // Not the integral (the paper's colours), or not a per-call cost (the table needs its build).
+    let exclude = |r: &Row| matches!(r.name.as_str(), "paper" | "paper-own-exposure" | "table");
     let mut all_met = true;
     for &n in slits {
         for &period in &PERIODS {

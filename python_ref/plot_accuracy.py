@@ -13,7 +13,8 @@ Writes
 
 Errors of 0 (the reference itself, and `auto` where it picks it) are drawn at the plot's floor.
 With --markdown, also prints the tables of docs/accuracy.md (per period: ΔE2000 max and ns per
-XYZ of the main strategies against N, and the cheapest strategy within 0.5 ΔE2000).
+XYZ of the main strategies against N, and the cheapest strategy within 0.5 ΔE2000; the
+ColorTable's lookup error and cost beside its build time and memory).
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 FLOOR = 1e-6  # ΔE2000 below this is drawn at this value (log axes)
+TABLE_PARAM = "1e-4"  # the accuracy of the report's ColorTable rows (ColorTable::DEFAULT_ACCURACY)
 
 # Strategy families: (CSV name, label, colour, marker, how to order the parameter).
 FAMILIES = [
@@ -40,6 +42,8 @@ FAMILIES = [
     ("peaks", "peak search", "tab:red", "D", None),
     ("peaks-refined", "peak search, refined", "tab:purple", "v", None),
     ("exact", "exact (reference)", "black", "*", None),
+    ("asymptotic", "asymptotic", "tab:olive", "h", None),
+    ("table", "ColorTable lookup (build not counted)", "tab:cyan", "X", None),
     ("stratified", "stratified 8 (one estimate)", "tab:brown", "x", None),
     ("hero", "hero 4 (one estimate)", "tab:gray", "+", None),
     ("paper-own-exposure", "paper's peak colours (own exposure)", "tab:pink", "P", None),
@@ -54,6 +58,9 @@ def read(path: Path) -> list[dict]:
         r["period_nm"] = float(r["period_nm"])
         for k in ("ns_per_eval", "de2000_max", "de2000_median", "rel_xyz_max"):
             r[k] = float(r[k])
+        # Older CSVs have no table columns.
+        r["build_ms"] = float(r.get("build_ms") or 0.0)
+        r["table_bytes"] = int(r.get("table_bytes") or 0)
     return rows
 
 
@@ -121,6 +128,8 @@ def error_vs_n(rows: list[dict], out: Path) -> None:
         ("peaks-refined", "-", "peak search, refined", "tab:purple", "v"),
         ("auto", "1e-3", "auto 1e-3", "tab:green", "^"),
         ("exact", "-", "exact", "black", "*"),
+        ("asymptotic", "-", "asymptotic", "tab:olive", "h"),
+        ("table", TABLE_PARAM, "ColorTable lookup", "tab:cyan", "X"),
         ("hero", "4", "hero 4 (one estimate)", "tab:gray", "+"),
     ]
     periods = sorted({r["period_nm"] for r in rows})
@@ -143,6 +152,12 @@ def error_vs_n(rows: list[dict], out: Path) -> None:
                 ns, [r["ns_per_eval"] for r in pts], marker=marker, color=colour, label=label,
                 ms=5,
             )
+        tab = sorted(by[("table", TABLE_PARAM, d)], key=lambda r: r["n"])
+        if tab:
+            axes[1, col].plot(
+                [r["n"] for r in tab], [r["build_ms"] * 1e6 for r in tab], marker="X",
+                color="tab:cyan", ls="--", label="ColorTable build (once per grating)", ms=5,
+            )
         axes[0, col].set_title(f"d = {d:g} nm", fontsize=10)
         axes[0, col].axhline(0.5, color="0.5", lw=0.8, ls="--")
         axes[1, col].axhline(2000, color="0.5", lw=0.8, ls=":")
@@ -154,9 +169,9 @@ def error_vs_n(rows: list[dict], out: Path) -> None:
     axes[0, 0].set_ylabel("ΔE2000, max over u")
     axes[1, 0].set_ylabel("ns per XYZ (median)")
     handles, labels = axes[1, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=7, fontsize=8, frameon=False)
+    fig.legend(handles, labels, loc="lower center", ncol=5, fontsize=8, frameon=False)
     fig.suptitle("Error and cost against N (D65, w = d/2; dashed: ΔE 0.5, dotted: 2 µs)", fontsize=11)
-    fig.tight_layout(rect=(0, 0.05, 1, 0.96))
+    fig.tight_layout(rect=(0, 0.08, 1, 0.96))
     fig.savefig(out, dpi=72)
     plt.close(fig)
 
@@ -185,9 +200,12 @@ def markdown(rows: list[dict]) -> None:
         ("peaks-refined", "-", "refined"),
         ("auto", "1e-3", "auto 1e-3"),
         ("exact", "-", "exact"),
+        ("asymptotic", "-", "asymptotic"),
+        ("table", TABLE_PARAM, "table lookup"),
     ]
     index = {(r["strategy"], r["param"], r["n"], r["period_nm"]): r for r in rows}
-    integral = [r for r in rows if r["strategy"] not in ("paper", "paper-own-exposure")]
+    # The table's lookup cost leaves out its build: it is compared separately.
+    integral = [r for r in rows if r["strategy"] not in ("paper", "paper-own-exposure", "table")]
     for d in sorted({r["period_nm"] for r in rows}):
         print(f"\n**d = {d:g} nm** (ΔE2000 max over u / time per XYZ)\n")
         head = ["N"] + [c[2] for c in cols] + ["cheapest within 0.5 ΔE2000"]
@@ -202,6 +220,21 @@ def markdown(rows: list[dict]) -> None:
             else:
                 name = best["strategy"] + ("" if best["param"] == "-" else ":" + best["param"])
                 cells.append(f"{name}: {cell(best)}")
+            print("| " + " | ".join(cells) + " |")
+    tab = sorted((r for r in rows if r["strategy"] == "table"), key=lambda r: (r["period_nm"], r["n"]))
+    if tab:
+        print(f"\n**ColorTable at accuracy {TABLE_PARAM}** (ΔE2000 max over u / lookup; build; memory)\n")
+        periods = sorted({r["period_nm"] for r in tab})
+        print("| N | " + " | ".join(f"d = {d:g} nm" for d in periods) + " |")
+        print("|" + "---|" * (len(periods) + 1))
+        for n in sorted({r["n"] for r in tab}):
+            cells = [fmt_n(n)]
+            for d in periods:
+                r = index.get(("table", TABLE_PARAM, n, d))
+                cells.append(
+                    "–" if r is None
+                    else f"{cell(r)}; {ns_text(r['build_ms'] * 1e6)}; {r['table_bytes'] / 1024:.0f} KiB"
+                )
             print("| " + " | ".join(cells) + " |")
 
 
@@ -253,6 +286,16 @@ def facts(rows: list[dict]) -> None:
     both("auto:1e-3, N = 1000-3000", pick("auto", "1e-3", nmin=1000, nmax=3000))
     both("exact, N = 30-300", pick("exact", nmin=30, nmax=300))
     both("exact, N ≥ 300, d = 100 µm", pick("exact", nmin=300, d=coarse))
+    both("asymptotic, N ≥ 5", pick("asymptotic", nmin=5))
+    both("asymptotic, N = 30-300", pick("asymptotic", nmin=30, nmax=300))
+    both("asymptotic, N ≥ 1000", pick("asymptotic", nmin=1000))
+    both("table lookup", pick("table"))
+    tab = pick("table")
+    if tab:
+        for label, sel in (("d ≤ 1.6 µm", [r for r in tab if r["period_nm"] <= 2000]), ("all", tab)):
+            b = [r["build_ms"] for r in sel]
+            m = [r["table_bytes"] / 1024 for r in sel]
+            print(f"- table build, {label}: {min(b):.3g} – {max(b):.3g} ms; memory {min(m):.0f} – {max(m):.0f} KiB")
     both("stratified:8", pick("stratified"))
     both("hero:4", pick("hero"))
     for d in every:

@@ -28,6 +28,15 @@ const LOBE_FRACTION: f64 = 20.0;
 const MIN_U_LO: f64 = 1.0 / 18_446_744_073_709_551_616.0;
 /// Wavelength of the ideal first-order peak that floors the error scale, nm.
 const FLOOR_PEAK_NM: f64 = 555.0;
+/// Below this many slits the nodes are all [`Strategy::Exact`] (which `Asymptotic` is there too).
+const ASYMPTOTIC_MIN_SLITS: f64 = 5.0;
+/// Where d·|u| is below this (nm), order 0's half period (x = d·|u|/λ < ½) reaches into the band
+/// (λ ≤ 830 nm): `Asymptotic`'s bound there is relative to order 0's own light, so a node there
+/// is [`Strategy::Exact`] unless the colour is dark enough (see `ColorTable::new`).
+const ORDER0_HALF_PERIOD_NM: f64 = 415.0;
+/// `Strategy::Asymptotic`'s bound relative to order 0's own light where order 0's half period
+/// reaches the band (measured 5.7·10⁻⁴, `tests/asymptotic.rs`).
+const ASYMPTOTIC_ORDER0_BOUND: f64 = 1e-3;
 /// Smallest accuracy accepted: ten times the error of [`Strategy::Exact`] (10⁻⁷).
 const MIN_ACCURACY: f64 = 1e-6;
 /// Largest accuracy accepted (relative).
@@ -107,13 +116,14 @@ struct Node {
 ///
 /// `accuracy · white_c · Y' · max(t_c, (6/29)³)^(2/3)`
 ///
-/// of `Exact`: the change that moves CIELAB's f(t) = t^(1/3) by accuracy/3. That is at most
+/// of the nodes: the change that moves CIELAB's f(t) = t^(1/3) by accuracy/3. That is at most
 /// `accuracy · white_c · Y'` (relative to the brightest order) for channels up to the white, and
 /// 23 times less where the colour is dark (t < 0.0089), where CIELAB is most sensitive. Measured
-/// over the 90 gratings of `tests/color_table.rs` at 10⁴ random u each: with accuracy 3·10⁻⁴,
-/// within 7.2·10⁻⁴ of Y_b and 0.097 ΔE2000 of `Exact` at the brightest order's exposure
-/// (median 0.047 over the gratings; docs/color_table.md); accuracy 10⁻⁴ brought the worst
-/// gratings to 0.02. [`error_estimate`](Self::error_estimate) reports the worst check.
+/// at [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) (10⁻⁴) over a representative 20 of the 90
+/// gratings of `tests/color_table.rs` (every N, 2000 random u each): within 1.9·10⁻⁴ of Y_b and
+/// 0.027 ΔE2000 of `Exact` at the brightest order's exposure (docs/color_table.md); at 3·10⁻⁴
+/// the full sweep reached 0.097. [`error_estimate`](Self::error_estimate) reports the worst
+/// check.
 ///
 /// Not resolved: where an order's peak crosses a band end (u = m·360/d, m·830/d) the colour steps
 /// by that order's light at 360 or 830 nm over a width 360 nm/(N·d) in u; the step is below
@@ -123,9 +133,14 @@ struct Node {
 ///
 /// # Cost
 ///
-/// The nodes are computed by [`STRATEGY`](Self::STRATEGY); a build costs about twice the node
-/// count in calls of [`Spectral::xyz`] with it (100-4000 nodes). Memory is 72 bytes per node plus
-/// 32 per block ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
+/// A build costs about twice the node count (100-5200 nodes) in calls of [`Spectral::xyz`]. For
+/// N ≥ 5 and `accuracy` ≥ [`ASYMPTOTIC_ACCURACY`](Self::ASYMPTOTIC_ACCURACY) a node is
+/// [`Strategy::Asymptotic`] (5-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
+/// where order 0's light reaches it but the colour is dark enough for `Asymptotic`'s bound
+/// (10⁻³ of that light) to move CIELAB's f(t) by less than accuracy/3 (t ≤ (accuracy/10⁻³)³);
+/// every other node (order 0's bright lobe and near tail, N < 5) is [`Strategy::Exact`], which
+/// then dominates the build time. Memory is 72 bytes per node plus 32 per block
+/// ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
 ///
 /// # Limits
 ///
@@ -182,15 +197,32 @@ struct Work {
 }
 
 impl ColorTable {
-    /// The strategy that computes the nodes: the crate's most accurate integrator that is fast
-    /// enough to tabulate (`Exact`, below 10⁻⁷ relative).
+    /// The smallest `accuracy` at which nodes are computed by [`Strategy::Asymptotic`] (for
+    /// N ≥ 5, where it meets the tolerance: see the [Cost](Self#cost) section); below it every
+    /// node is [`Strategy::Exact`]. `Asymptotic` is within 1.4·10⁻⁴ of the brightest order
+    /// (measured, `tests/asymptotic.rs`); the tables built with it at 10⁻⁴ were measured within
+    /// 0.027 ΔE2000 of `Exact` (docs/color_table.md).
     ///
     /// ```
-    /// use diffraction::spectrum::Strategy;
     /// use diffraction::ColorTable;
-    /// assert_eq!(ColorTable::STRATEGY, Strategy::Exact);
+    /// assert!(ColorTable::ASYMPTOTIC_ACCURACY <= ColorTable::DEFAULT_ACCURACY);
     /// ```
-    pub const STRATEGY: Strategy = Strategy::Exact;
+    pub const ASYMPTOTIC_ACCURACY: f64 = 1e-4;
+
+    /// The accuracy to build with when nothing else is asked for: measured within 0.05 ΔE2000
+    /// of [`Strategy::Exact`] at every u, at the brightest order's exposure (docs/color_table.md).
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 21)?;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let t = ColorTable::new(&s, &g, ColorTable::DEFAULT_ACCURACY)?;
+    /// let exact = s.xyz(&g, 0.3, Strategy::Exact);
+    /// assert!((t.lookup(0.3).y - exact.y).abs() < 1e-3 * t.scale());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub const DEFAULT_ACCURACY: f64 = 1e-4;
 
     /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
     /// first, and [`error_estimate`](Self::error_estimate) says what was reached.
@@ -210,9 +242,9 @@ impl ColorTable {
     /// (relative to [`scale`](Self::scale) per channel, tighter in the dark) or the node budget
     /// [`MAX_NODES`](Self::MAX_NODES) is reached.
     ///
-    /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md): 3·10⁻⁴ keeps lookups
-    /// within 0.1 ΔE2000 of [`Strategy::Exact`] at the brightest order's exposure over 90
-    /// gratings; 10⁻⁴ brought the worst of them to 0.02.
+    /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md):
+    /// [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) = 10⁻⁴ keeps lookups within 0.03 ΔE2000 of
+    /// [`Strategy::Exact`] at the brightest order's exposure over 20 representative gratings.
     ///
     /// # Errors
     ///
@@ -248,13 +280,33 @@ impl ColorTable {
                 return Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite))
             }
         };
-        let eval = |u: f64| {
-            let c = spectral.xyz(grating, u, Self::STRATEGY);
-            [c.x, c.y, c.z]
-        };
         let d = grating.period_nm();
         let white = spectral.white();
         let white = [white.x, white.y, white.z];
+        let fast = n >= ASYMPTOTIC_MIN_SLITS && accuracy >= Self::ASYMPTOTIC_ACCURACY;
+        let order0_from = ORDER0_HALF_PERIOD_NM / d;
+        // Where order 0's light reaches the band, `Asymptotic` is within ORDER0_BOUND of that
+        // light: a relative error δ moves CIELAB's f(t) by δ·t^(1/3)/3, within the tolerance
+        // (accuracy/3) while t ≤ (accuracy/ORDER0_BOUND)³; brighter nodes are recomputed by `Exact`.
+        let dark_t = {
+            let r = accuracy / ASYMPTOTIC_ORDER0_BOUND;
+            r * r * r
+        };
+        let eval = |u: f64, scale: f64| {
+            if fast {
+                let c = spectral.xyz(grating, u, Strategy::Asymptotic);
+                let c = [c.x, c.y, c.z];
+                if u >= order0_from {
+                    return c;
+                }
+                let exposure = scale.max(c[1]);
+                if (0..3).all(|k| c[k] <= dark_t * white[k] * exposure) {
+                    return c;
+                }
+            }
+            let c = spectral.xyz(grating, u, Strategy::Exact);
+            [c.x, c.y, c.z]
+        };
         let ybar = cie::integrate_product_of_rows(|_| 1.0, |i| cie::cmf_row(i, 1));
         let mut scale = FLOOR_PEAK_NM / (n * ybar);
         let diffracted_from = LAMBDA_MIN_NM / d;
@@ -269,7 +321,7 @@ impl ColorTable {
             bounds.push(f64::from_bits(key << SHIFT));
         }
         // Every block starts with two intervals, so that it is checked at two points.
-        let values: Vec<[f64; 3]> = bounds.iter().map(|&u| eval(u)).collect();
+        let values: Vec<[f64; 3]> = bounds.iter().map(|&u| eval(u, scale)).collect();
         let mut work: Vec<Work> = bounds
             .windows(2)
             .zip(values.windows(2))
@@ -279,7 +331,7 @@ impl ColorTable {
                     u0: b[0],
                     h,
                     n: 2,
-                    vals: alloc::vec![v[0], eval(b[0] + h), v[1]],
+                    vals: alloc::vec![v[0], eval(b[0] + h, scale), v[1]],
                     mids: Vec::new(),
                     capped: false,
                     err: 0.0,
@@ -304,7 +356,7 @@ impl ColorTable {
             for (k, w) in work.iter_mut().enumerate() {
                 if w.mids.is_empty() {
                     w.mids = (0..w.n)
-                        .map(|j| eval(w.u0 + (j as f64 + 0.5) * w.h))
+                        .map(|j| eval(w.u0 + (j as f64 + 0.5) * w.h, scale))
                         .collect();
                     for (j, m) in w.mids.iter().enumerate() {
                         if w.u0 + (j as f64 + 0.5) * w.h >= diffracted_from {
