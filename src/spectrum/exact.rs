@@ -1,15 +1,31 @@
-//! `Exact`: lobe-exact quadrature of the reference colour, the crate's reference.
+//! `Exact`: quadrature of the reference colour, the crate's reference.
+//!
+//! The integrand in the phase x = d·|u|/λ is sin²(πNx)·R(x), R = E·S·cmf·norm·|dλ/dx| /
+//! (N·sin πx)², with kinks where λ crosses a 1 nm row of the tables. `filon_walk` integrates it
+//! piece by piece between the rows: within WINDOW_LOBES lobes of every integer x (where R has
+//! its double pole) lobe by lobe, each piece of a lobe by the Gauss-Legendre rule its width
+//! allows (8 points down to 3); elsewhere on pieces graded by the distance ε to the nearest
+//! integer (w ≤ ε), at most SLIT_SPAN periods of S, by Filon-Legendre quadrature (`filon`): R
+//! interpolated at 8 (or, on pieces below ε/20, 4) Gauss-Legendre nodes and the product with
+//! cos(2πNx) integrated exactly, so a piece costs the same however many lobes it holds. Against
+//! the walk of every lobe it agrees to 4.5·10⁻⁹ relative (`tests`), against the python oracle
+//! to 8.9·10⁻⁹ (`tests/spectral_reference.rs`); the former hybrid mode's mean-½ envelope (an
+//! error up to 6.75·10⁻⁸ there) is gone.
 
 use glam::DVec3;
 
 use super::lobes::Lobes;
+use super::rules::{GL_W, GL_X};
 use super::{Spectral, BAND};
 use crate::math::{ceil, floor};
 use crate::{Grating, Slits};
 
-/// Lobes integrated exactly around every integer x and band end by `Exact` in its hybrid mode.
+/// Lobes integrated exactly around every integer x and band end by the former hybrid mode
+/// (`hybrid`, the dense comb's reference in its tests).
+#[cfg(test)]
 pub(super) const NEAR_LOBES: f64 = 64.0;
-/// Above this many lobes in the band, `Exact` switches to its hybrid mode.
+/// Above this many lobes in the band, the former `Exact` switched to its hybrid mode.
+#[cfg(test)]
 pub(super) const MAX_LOBES: f64 = 4096.0;
 
 impl Spectral {
@@ -30,18 +46,163 @@ impl Spectral {
         if Self::is_dense(q) {
             // Too many orders to walk (see `dense`): closed form for the whole periods.
             let n_int = n as u32;
-            return self.dense_exact(grating, &lobes, q, n_int, &|l, a, b| hybrid(l, n, a, b));
+            return self.dense_exact(grating, &lobes, q, n_int, &|l, a, b| filon_walk(l, a, b));
         }
-        if n * (x_hi - x_lo) <= MAX_LOBES {
-            return lobes.lobes(x_lo, x_hi);
-        }
-        hybrid(&lobes, n, x_lo, x_hi)
+        filon_walk(&lobes, x_lo, x_hi)
     }
 }
 
-/// Hybrid: lobe-exact within NEAR_LOBES lobes of every integer x and of the ends of [x_lo, x_hi]
+/// Lobes on each side of every integer x integrated lobe by lobe by `filon_walk`.
+const WINDOW_LOBES: f64 = 8.0;
+/// A Filon piece outside the windows spans at most this fraction of its distance to the
+/// integer it leaves (or of its end's distance to the integer it approaches).
+const GROWTH: f64 = 1.0;
+/// Pieces of fewer lobes than this are integrated lobe by lobe (the moments' upward recurrence
+/// needs ω = π·lobes above the highest degree, 7).
+const FILON_MIN_LOBES: f64 = 3.0;
+/// A Filon piece narrower than this fraction of its distance to the nearest integer, and than
+/// FILON4_SLIT_SPAN periods of S, interpolates R at 4 nodes instead of 8: the error of the cubic
+/// interpolant of the double pole 1/sin²(πx), about 4·(w/4ε)⁴, is then below 10⁻⁸ of the
+/// piece's light before the oscillation divides it by ω ≥ 3π, and that of S's oscillation,
+/// κ⁴/(2³·4!) with κ = π·duty·w, below 10⁻⁹.
+const FILON4_OF_DISTANCE: f64 = 0.05;
+/// See FILON4_OF_DISTANCE.
+const FILON4_SLIT_SPAN: f64 = 0.0067;
+/// 4-point Gauss-Legendre nodes and weights on [−1, 1] (numpy.polynomial.legendre.leggauss(4)).
+const GL4_X: [f64; 4] = [
+    -0.8611363115940526,
+    -0.33998104358485626,
+    0.33998104358485626,
+    0.8611363115940526,
+];
+const GL4_W: [f64; 4] = [
+    0.34785484513745385,
+    0.6521451548625461,
+    0.6521451548625461,
+    0.34785484513745385,
+];
+
+/// Relative tolerance on the window edges.
+const EDGE: f64 = 1e-9;
+/// A Filon piece spans at most this many periods of the single-slit factor, 1/duty in x.
+const SLIT_SPAN: f64 = 0.2;
+
+/// ∫ over [x_lo, x_hi] of the full integrand: lobe by lobe (split at the 1 nm rows, each piece by
+/// the rule its width allows) within WINDOW_LOBES lobes of every integer x; elsewhere on pieces
+/// between the rows, graded by the distance to the nearest integer and at most SLIT_SPAN periods
+/// of S, by `filon8`.
+pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
+    let mut acc = DVec3::ZERO;
+    if x_lo.is_nan() || x_hi.is_nan() || x_hi <= x_lo {
+        return acc;
+    }
+    let n = l.n;
+    let t = WINDOW_LOBES / n;
+    let slit_span = SLIT_SPAN / l.duty.max(1e-300);
+    let mut cursor = x_lo;
+    while cursor < x_hi {
+        let m = floor(cursor);
+        let (r_lo, r_hi) = (cursor - m, m + 1.0 - cursor);
+        // The window edges m ± t are computed, so compare with a relative tolerance: a cursor
+        // left on an edge by rounding must not re-enter the window it has just finished.
+        let window_end = if r_lo < t * (1.0 - EDGE) {
+            Some(m + t)
+        } else if r_hi <= t * (1.0 + EDGE) {
+            Some(m + 1.0 + t)
+        } else {
+            None
+        };
+        let until = match window_end {
+            Some(end) => end,
+            None => {
+                let graded = if r_lo < 0.5 {
+                    (cursor + GROWTH * r_lo).min(m + 0.5)
+                } else {
+                    (m + 1.0 - r_hi / (1.0 + GROWTH)).min(m + 1.0 - t)
+                };
+                // The next 1 nm row: λ = q/x falls to the next integer below q/cursor.
+                let row = l.q / (ceil(l.q / cursor) - 1.0);
+                graded.min(row).min(cursor + slit_span)
+            }
+        };
+        let until = until.min(x_hi);
+        // Progress is guaranteed: a piece that would not advance (rounding) is one lobe.
+        let (until, lobewise) = if until > cursor {
+            (until, window_end.is_some())
+        } else {
+            ((cursor + 1.0 / n).min(x_hi), true)
+        };
+        if lobewise || n * (until - cursor) < FILON_MIN_LOBES {
+            acc += l.graded_lobes(cursor, until);
+        } else {
+            // The piece's distance to the nearest integer.
+            let eps = if r_lo < 0.5 { r_lo } else { m + 1.0 - until };
+            let w = until - cursor;
+            if w <= FILON4_OF_DISTANCE * eps && w * l.duty <= FILON4_SLIT_SPAN {
+                filon(l, cursor, until, &GL4_X, &GL4_W, &mut acc);
+            } else {
+                filon(l, cursor, until, &GL_X, &GL_W, &mut acc);
+            }
+        }
+        cursor = until;
+    }
+    acc
+}
+
+/// Filon-Legendre quadrature of ∫ sin²(πNx)·R(x) dx over [a, b] (b − a ≥ 3 lobes, inside one row
+/// and away from the integers, where R = E·S·cmf·norm·|dλ/dx| / (N·sin πx)² is smooth):
+/// sin² = ½ − ½·cos(2πNx); R is interpolated at the K Gauss-Legendre nodes `xs` (K = 4 or 8),
+/// its Legendre series p = Σ_{k<K} c_k·P_k integrated exactly, ∫ P_k(t)·e^{iωt} dt =
+/// 2·i^k·j_k(ω) over [−1, 1] (j_k the spherical Bessel functions, by upward recurrence, stable
+/// for k < ω), so the cost does not depend on the number of lobes.
+fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3) {
+    use crate::kernel::sinpi;
+    use crate::math::{cos, rint, sin};
+    use core::f64::consts::PI;
+    let terms = xs.len().min(8);
+    let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
+    let n = l.n;
+    let omega = 2.0 * PI * n * h;
+    let nc = n * c;
+    let phi = 2.0 * PI * (nc - rint(nc));
+    let (sw, cw) = (sin(omega), cos(omega));
+    let (sp, cp) = (sin(phi), cos(phi));
+    // osc[k] = (2k + 1)·j_k(ω)·cos(φ + kπ/2).
+    let cycle = [cp, -sp, -cp, sp];
+    let mut osc = [0.0; 8];
+    let (mut j_prev, mut j) = (sw / omega, sw / (omega * omega) - cw / omega);
+    osc[0] = j_prev * cp;
+    osc[1] = 3.0 * j * cycle[1];
+    for k in 1..terms - 1 {
+        let j_next = (2 * k + 1) as f64 / omega * j - j_prev;
+        j_prev = j;
+        j = j_next;
+        osc[k + 1] = (2 * k + 3) as f64 * j * cycle[(k + 1) % 4];
+    }
+    let mut sum = DVec3::ZERO;
+    for (&ti, &wi) in xs.iter().zip(ws.iter()) {
+        let x = c + h * ti;
+        let den = n * sinpi(x - rint(x));
+        let r = l.envelope_at(x) / (den * den);
+        // Σ_k osc_k·P_k(t_i), Legendre polynomials by their recurrence.
+        let (mut p_prev, mut p) = (1.0, ti);
+        let mut o = osc[0] + osc[1] * ti;
+        for (k, ok) in osc.iter().enumerate().take(terms).skip(2) {
+            let kf = k as f64;
+            let p_next = ((2.0 * kf - 1.0) * ti * p - (kf - 1.0) * p_prev) / kf;
+            p_prev = p;
+            p = p_next;
+            o += ok * p;
+        }
+        sum += r * (wi * (1.0 - o));
+    }
+    *acc += sum * (0.5 * h);
+}
+
+/// The former hybrid mode (a reference for the dense comb's tests): lobe-exact within NEAR_LOBES lobes of every integer x and of the ends of [x_lo, x_hi]
 /// (aligned to lobe boundaries), the envelope with sin² → ½ elsewhere. At most a few pieces per
 /// integer x in the range (fewer than `dense::DENSE_ORDERS` + 2 of them).
+#[cfg(test)]
 pub(super) fn hybrid(lobes: &Lobes<'_>, n: f64, x_lo: f64, x_hi: f64) -> DVec3 {
     let k = NEAR_LOBES / n;
     let start_end = (ceil((x_lo + k) * n) / n).min(x_hi);
@@ -74,4 +235,49 @@ pub(super) fn hybrid(lobes: &Lobes<'_>, n: f64, x_lo: f64, x_hi: f64) -> DVec3 {
         cursor = until;
     }
     acc
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::Illuminant;
+
+    /// `filon_walk` against the walk of every lobe (8-point rule on each piece between the
+    /// zeros of sin(πNx) and the rows, `Lobes::lobes`), relative to each component. Measured
+    /// 4.53e-9 (d=10000 w=5000 N=300 u=0.7 D65, Z); margin 9×.
+    const FILON_WALK: f64 = 4e-8;
+
+    #[test]
+    fn filon_walk_matches_the_lobe_walk() {
+        let mut worst = 0.0f64;
+        for ill in [Illuminant::E, Illuminant::D65] {
+            let s = Spectral::new(ill);
+            for (d, w, n, u) in [
+                (400.0, 40.0, 1_000_000u32, 3e-7),
+                (400.0, 200.0, 5, 1.9),
+                (740.0, 370.0, 1000, 0.9),
+                (740.0, 74.0, 30_000, 0.63),
+                (1600.0, 800.0, 1000, 1.0),
+                (1600.0, 160.0, 30, 1.3),
+                (1600.0, 160.0, 1, 0.4),
+                (10000.0, 5000.0, 300, 0.7),
+                (100000.0, 50000.0, 30, 1.7),
+                (100000.0, 10000.0, 3, 0.05),
+            ] {
+                let g = Grating::new(d, w, n).unwrap();
+                let q = d * u;
+                let l = Lobes::new(&s, &g, q, n as f64);
+                let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
+                let want = l.lobes(x_lo, x_hi);
+                let got = filon_walk(&l, x_lo, x_hi);
+                let rel = ((got - want).abs() / want.abs()).max_element();
+                assert!(
+                    rel <= FILON_WALK,
+                    "{d} {w} {n} {u} {ill:?}: {got} vs {want}"
+                );
+                worst = worst.max(rel);
+            }
+        }
+        std::println!("filon walk against the lobe walk: worst {worst:.3e}");
+    }
 }
