@@ -22,7 +22,7 @@
 //! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
 //! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
 //! | `Asymptotic` | O(visible orders): 4 lobes × 8 points per bright order, one point per faint order, the envelope in 32 nm pieces | 5e-4 of the brightest order (worst measured 1.4e-4, N ≥ 5); 1e-3 of order 0's light |
-//! | `Exact` | lobe by lobe when N·Δx ≤ 4096 lobes, else O(orders·128 lobes + log N per period) | below 1e-7 relative |
+//! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
 //! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
 //!
 //! Δx = d·|u|·(1/360 − 1/830) is the range of the phase in cycles over the band.
@@ -105,12 +105,13 @@
 //! times brighter per order than the peak-search estimate, so the relative brightness of orders
 //! differs (higher orders are relatively brighter in the paper's mode).
 //!
-//! **Exact.** Between consecutive zeros of sin(Nα) (x = k/N) and the 1 nm rows of the tables the
-//! integrand is smooth; each such piece gets an 8-point Gauss-Legendre rule. When there are more
-//! than 4096 lobes in the band, only the 64 lobes on each side of every integer x and of each band
-//! end are integrated that way; in between, sin²(Nα) is replaced by its mean ½ (an error below
-//! 3·10⁻³/64³ ≈ 10⁻⁸ relative per period, by two integrations by parts) and the smooth envelope
-//! is integrated on a geometrically graded grid.
+//! **Exact.** In the phase x the integrand is sin²(πNx)·R(x) with R smooth between the 1 nm rows
+//! of the tables. Within 8 lobes of every integer x (R's double pole) it is integrated lobe by
+//! lobe, each piece of a lobe by the Gauss-Legendre rule its width allows (8 points down to 3);
+//! elsewhere, between the rows, by Filon-Legendre quadrature: R interpolated at 8 (or 4)
+//! Gauss-Legendre nodes and its product with cos(2πNx) integrated exactly, so a piece costs the
+//! same however many lobes it holds. Measured within 8.9·10⁻⁹ of the python oracle, relative to
+//! the colour (see `exact.rs`).
 //!
 //! **Monte-Carlo.** [`Spectral::xyz_stratified`] and [`Spectral::xyz_hero`] take the caller's
 //! random numbers, for spectral renderers that average over many samples per pixel.
