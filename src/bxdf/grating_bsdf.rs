@@ -94,7 +94,7 @@ use glam::{DVec2, DVec3};
 use crate::bxdf::bsdf::{Bsdf, BsdfFlags, BsdfSample, SampledWavelengths};
 use crate::error::Error;
 use crate::groove::GrooveSpread;
-use crate::kernel::single_slit_cycles;
+use crate::kernel::{intensity_cycles, single_slit_cycles};
 use crate::math;
 use crate::special::{atan, tan};
 use crate::{Band, Grating, Peak, Slits};
@@ -166,19 +166,34 @@ struct Cache {
     w0: f64,
     /// prefix\[k\] = Σ_{j=1}^{k} w_j (w is even in m).
     prefix: [f64; TABLE_ORDERS + 1],
+    /// weight\[k\] = w_k = w_{−k}, exactly as [`order_weight`] computes it.
+    weight: [f64; TABLE_ORDERS + 1],
+    /// ρ².
+    rho2: f64,
+    /// N·d (0 for N = ∞).
+    nd: f64,
 }
 
 impl Cache {
     fn new(grating: &Grating) -> Cache {
         let rho = grating.slit_width_nm() / grating.period_nm();
         let mut prefix = [0.0; TABLE_ORDERS + 1];
+        let mut weight = [0.0; TABLE_ORDERS + 1];
+        weight[0] = order_weight(grating.slits(), rho, 0);
         for k in 1..=TABLE_ORDERS {
-            prefix[k] = prefix[k - 1] + order_weight(grating.slits(), rho, k as i64);
+            weight[k] = order_weight(grating.slits(), rho, k as i64);
+            prefix[k] = prefix[k - 1] + weight[k];
         }
         Cache {
             atan_n: atan(grating.slits().as_f64()),
-            w0: order_weight(grating.slits(), rho, 0),
+            w0: weight[0],
             prefix,
+            weight,
+            rho2: rho * rho,
+            nd: match grating.slits() {
+                Slits::Finite(n) => n as f64 * grating.period_nm(),
+                Slits::Infinite => 0.0,
+            },
         }
     }
 
@@ -383,7 +398,12 @@ impl GratingBsdf {
     /// The weight w_m of order m in the order choice.
     #[inline]
     fn order_weight(&self, m: i64) -> f64 {
-        order_weight(self.grating.slits(), self.duty(), m)
+        let k = m.unsigned_abs();
+        if k <= TABLE_ORDERS as u64 {
+            self.cache.weight[k as usize]
+        } else {
+            order_weight(self.grating.slits(), self.duty(), m)
+        }
     }
 
     /// Whether [lo, hi] lies inside the table.
@@ -392,10 +412,12 @@ impl GratingBsdf {
         lo >= -(TABLE_ORDERS as i64) && hi <= TABLE_ORDERS as i64
     }
 
-    /// The candidate orders for wo at step λ/d (u per order), or `None` when there are none.
-    fn candidates(&self, wo: DVec3, step: f64) -> Option<Candidates> {
-        let x_lo = (wo.x - 1.0) / step;
-        let x_hi = (wo.x + 1.0) / step;
+    /// The candidate orders for wo at step λ/d (u per order; `inv_step` = d/λ), or `None`
+    /// when there are none.
+    #[inline]
+    fn candidates(&self, wo: DVec3, inv_step: f64) -> Option<Candidates> {
+        let x_lo = (wo.x - 1.0) * inv_step;
+        let x_hi = (wo.x + 1.0) * inv_step;
         if !(x_lo.abs() < MAX_PHASE && x_hi.abs() < MAX_PHASE) {
             return None;
         }
@@ -433,18 +455,6 @@ impl GratingBsdf {
             total,
             uniform: false,
         })
-    }
-
-    /// P(m) for the candidates `c`.
-    #[inline]
-    fn order_probability(&self, c: &Candidates, m: i64) -> f64 {
-        if m < c.lo || m > c.hi {
-            0.0
-        } else if c.uniform {
-            1.0 / c.total
-        } else {
-            self.order_weight(m) / c.total
-        }
     }
 
     /// Chooses an order from `uc` in [0, 1); returns it with its probability.
@@ -489,10 +499,26 @@ impl GratingBsdf {
     /// f at (u, v) for finite N and a non-ideal groove, after the hemisphere checks.
     #[inline]
     fn value_uv(&self, n: u32, u: f64, v: f64, lambda_nm: f64) -> f64 {
-        let rho = self.duty();
-        let i = self.grating.intensity_f64(u, lambda_nm);
-        let g = self.groove.value(v, lambda_nm);
-        let f = rho * rho * (n as f64 * self.grating.period_nm() / lambda_nm) * i * g;
+        let g = self.groove.value_unchecked(v, lambda_nm);
+        self.value_q(n, u / lambda_nm, g, lambda_nm)
+    }
+
+    /// f from q = u/λ and g = g(v; λ) (finite N, a valid λ): the grating's intensity at the
+    /// phases x = d·q, y = w·q (as `Grating::intensity_f64`, without its checks) times
+    /// ρ²·(N·d/λ)·g.
+    #[inline(always)]
+    fn value_q(&self, n: u32, q: f64, g: f64, lambda_nm: f64) -> f64 {
+        let x = self.grating.period_nm() * q;
+        if !x.is_finite() {
+            return 0.0;
+        }
+        let y = self.grating.slit_width_nm() * q;
+        let i = match n {
+            0 => 0.0,
+            1 => single_slit_cycles(y),
+            _ => intensity_cycles(x, y, n),
+        };
+        let f = self.cache.rho2 * (self.cache.nd / lambda_nm) * i * g;
         if f.is_finite() {
             f
         } else {
@@ -518,8 +544,7 @@ impl GratingBsdf {
         if !(wo.z > 0.0 && wo.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return 0.0;
         }
-        let step = lambda_nm / self.grating.period_nm();
-        let Some(c) = self.candidates(wo, step) else {
+        let Some(c) = self.candidates(wo, self.grating.period_nm() / lambda_nm) else {
             return 0.0;
         };
         let rho = self.duty();
@@ -567,7 +592,7 @@ impl GratingBsdf {
             return Some(0.0);
         }
         let step = lambda_nm / self.grating.period_nm();
-        let Some(c) = self.candidates(wo, step) else {
+        let Some(c) = self.candidates(wo, self.grating.period_nm() / lambda_nm) else {
             return Some(0.0);
         };
         if c.hi - c.lo + 1 > MAX_ALBEDO_ORDERS {
@@ -1153,9 +1178,19 @@ impl Bsdf for GratingBsdf {
             return out;
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {
-            if l > 0.0 && l.is_finite() {
-                *o = self.value_uv(n, u, v, l);
+        let l = lambdas.lambda();
+        let ok = l.map(|l| l > 0.0 && l.is_finite());
+        // A lane with an invalid λ computes at λ = 1 and is zeroed below.
+        let l = [0, 1, 2, 3].map(|k| if ok[k] { l[k] } else { 1.0 });
+        let q = l.map(|l| u / l);
+        let g = match self.groove {
+            // g(v) does not depend on λ: once for the four.
+            GrooveSpread::Gaussian { .. } => [self.groove.value_unchecked(v, l[0]); 4],
+            _ => l.map(|l| self.groove.value_unchecked(v, l)),
+        };
+        for k in 0..4 {
+            if ok[k] {
+                out[k] = self.value_q(n, q[k], g[k], l[k]);
             }
         }
         out
@@ -1171,7 +1206,7 @@ impl Bsdf for GratingBsdf {
         let unit = |x: f64| x.clamp(0.0, 1.0 - f64::EPSILON);
         let (uc, ux, uy) = (unit(uc), unit(u2.x), unit(u2.y));
         let step = lambda_nm / self.grating.period_nm();
-        let c = self.candidates(wo, step)?;
+        let c = self.candidates(wo, self.grating.period_nm() / lambda_nm)?;
         let (m, pm) = self.choose_order(&c, uc);
         let (u, pu) = match self.grating.slits() {
             Slits::Finite(n) => {
@@ -1196,19 +1231,15 @@ impl Bsdf for GratingBsdf {
         let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
             (Slits::Finite(n), false) => {
                 // f and pdf from the returned direction itself (u and v re-derived from wi, the
-                // same operations as `f` and `pdf`), so the sample agrees with them exactly.
+                // same operations as `f` and `pdf`, sharing q = u/λ and the candidates), so the
+                // sample agrees with them exactly.
                 let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-                let xr = u / step;
-                let mr = math::rint(xr);
-                let pm = if mr as i64 == m {
-                    pm
-                } else {
-                    self.order_probability(&c, mr as i64)
-                };
-                let q = lorentz_q(n as f64, self.cache.atan_n, xr - mr);
+                let q = u / lambda_nm;
+                let g = self.groove.value_unchecked(v, lambda_nm);
+                let x = self.grating.period_nm() * q;
                 (
-                    self.value_uv(n, u, v, lambda_nm),
-                    pm * q / step * self.groove.pdf(v, lambda_nm) * wi.z,
+                    self.value_q(n, q, g, lambda_nm),
+                    self.pdf_x(&c, n as f64, x, v, wi.z, lambda_nm),
                     BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
                 )
             }
@@ -1258,8 +1289,7 @@ impl Bsdf for GratingBsdf {
         let Slits::Finite(n) = self.grating.slits() else {
             return 0.0;
         };
-        let step = lambda_nm / self.grating.period_nm();
-        self.pdf_finite(n as f64, wo, wi, step, lambda_nm)
+        self.pdf_finite(n as f64, wo, wi, lambda_nm)
     }
 
     /// Shares the checks, u and v; the candidate orders depend on λ and are found per λ.
@@ -1274,10 +1304,9 @@ impl Bsdf for GratingBsdf {
         let Slits::Finite(n) = self.grating.slits() else {
             return out;
         };
-        let d = self.grating.period_nm();
         for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {
             if l > 0.0 && l.is_finite() {
-                *o = self.pdf_finite(n as f64, wo, wi, l / d, l);
+                *o = self.pdf_finite(n as f64, wo, wi, l);
             }
         }
         out
@@ -1337,17 +1366,38 @@ impl Bsdf for GratingBsdf {
 impl GratingBsdf {
     /// The density for finite N and a non-ideal groove, after the checks.
     #[inline]
-    fn pdf_finite(&self, n: f64, wo: DVec3, wi: DVec3, step: f64, lambda_nm: f64) -> f64 {
-        let Some(c) = self.candidates(wo, step) else {
+    fn pdf_finite(&self, n: f64, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        let Some(c) = self.candidates(wo, self.grating.period_nm() / lambda_nm) else {
             return 0.0;
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        let x = u / step;
+        let x = self.grating.period_nm() * (u / lambda_nm);
+        self.pdf_x(&c, n, x, v, wi.z, lambda_nm)
+    }
+
+    /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi at the phase x = d·u/λ (m = round(x), r = x − m) for the
+    /// candidates `c`, with two divisions: the order and u factors, and the v and cosine
+    /// factors (q_v = (1/s)/(π·(1 + (v/s)²)), [`GrooveSpread::pdf`] to rounding).
+    #[inline(always)]
+    fn pdf_x(&self, c: &Candidates, n: f64, x: f64, v: f64, cos_i: f64, lambda_nm: f64) -> f64 {
         let m = math::rint(x);
         let r = x - m;
-        let pm = self.order_probability(&c, m as i64);
-        let p =
-            pm * lorentz_q(n, self.cache.atan_n, r) / step * self.groove.pdf(v, lambda_nm) * wi.z;
+        let mi = m as i64;
+        if !(r.abs() <= 0.5) || mi < c.lo || mi > c.hi {
+            return 0.0;
+        }
+        let w = if c.uniform {
+            1.0
+        } else {
+            self.order_weight(mi)
+        };
+        let t = 2.0 * n * r;
+        let inv_s = self.groove.proxy_inverse_scale(lambda_nm);
+        let tv = v * inv_s;
+        let a = (w * n * self.grating.period_nm())
+            / (c.total * (1.0 + t * t) * self.cache.atan_n * lambda_nm);
+        let b = (inv_s * cos_i) / (PI * (1.0 + tv * tv));
+        let p = a * b;
         if p.is_finite() {
             p
         } else {
