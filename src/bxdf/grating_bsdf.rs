@@ -422,10 +422,10 @@ impl GratingBsdf {
         }
         let (lo, hi) = match self.grating.slits() {
             Slits::Finite(_) => (
-                math::floor(x_lo - 0.5) as i64 + 1,
-                math::ceil(x_hi + 0.5) as i64 - 1,
+                floor_exact(x_lo - 0.5) as i64 + 1,
+                ceil_exact(x_hi + 0.5) as i64 - 1,
             ),
-            Slits::Infinite => (math::floor(x_lo) as i64 + 1, math::ceil(x_hi) as i64 - 1),
+            Slits::Infinite => (floor_exact(x_lo) as i64 + 1, ceil_exact(x_hi) as i64 - 1),
         };
         if hi < lo {
             return None;
@@ -891,6 +891,28 @@ fn envelope_bound(rho: f64, m: i64) -> f64 {
     3.0 / (3.0 + a * a)
 }
 
+/// ⌊a⌋ for finite a through `rint` (no library call where `floor` is not an instruction).
+#[inline(always)]
+fn floor_exact(a: f64) -> f64 {
+    let r = math::rint(a);
+    if r > a {
+        r - 1.0
+    } else {
+        r
+    }
+}
+
+/// ⌈a⌉ for finite a through `rint`.
+#[inline(always)]
+fn ceil_exact(a: f64) -> f64 {
+    let r = math::rint(a);
+    if r < a {
+        r + 1.0
+    } else {
+        r
+    }
+}
+
 /// The Lorentzian proxy's inverse CDF: r = tan((2t − 1)·atan N)/(2N), |r| ≤ ½ (a = atan N).
 #[inline]
 fn lorentz_r(n: f64, a: f64, t: f64) -> f64 {
@@ -1242,16 +1264,12 @@ impl Bsdf for GratingBsdf {
         let step = lambda_nm / self.grating.period_nm();
         let c = self.candidates(wo, step)?;
         let (m, pm) = self.choose_order(&c, uc);
-        let (u, pu) = match self.grating.slits() {
+        let (u, r) = match self.grating.slits() {
             Slits::Finite(n) => {
-                let nf = n as f64;
-                let r = lorentz_r(nf, self.cache.atan_n, ux);
-                (
-                    (m as f64 + r) * step,
-                    lorentz_q(nf, self.cache.atan_n, r) / step,
-                )
+                let r = lorentz_r(n as f64, self.cache.atan_n, ux);
+                ((m as f64 + r) * step, r)
             }
-            Slits::Infinite => (m as f64 * step, 1.0),
+            Slits::Infinite => (m as f64 * step, 0.0),
         };
         let v = self.groove.sample(uy, lambda_nm);
         let (x, y) = (u - wo.x, v - wo.y);
@@ -1281,7 +1299,7 @@ impl Bsdf for GratingBsdf {
                 let f = rho * rho * (n as f64 / step) * i;
                 (
                     f,
-                    pm * pu * wi.z,
+                    pm * (lorentz_q(n as f64, self.cache.atan_n, r) / step) * wi.z,
                     BsdfFlags::REFLECTION | BsdfFlags::SPECULAR,
                 )
             }
@@ -1517,6 +1535,19 @@ mod tests {
             0.0
         } else {
             (a - b).abs() / a.abs().max(b.abs())
+        }
+    }
+
+    #[test]
+    fn floor_and_ceil_through_rint() {
+        for a in [-2.5, -2.0, -1.5, -0.5, -0.0, 0.0, 0.3, 0.5, 1.5, 2.5, 1e15 + 0.5, -4e15] {
+            assert_eq!(floor_exact(a), a.floor(), "{a}");
+            assert_eq!(ceil_exact(a), a.ceil(), "{a}");
+        }
+        let mut rng = Rng(3);
+        for _ in 0..10000 {
+            let a = (rng.next() - 0.5) * 1e3;
+            assert_eq!((floor_exact(a), ceil_exact(a)), (a.floor(), a.ceil()));
         }
     }
 
