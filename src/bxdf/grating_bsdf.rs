@@ -94,7 +94,7 @@ use glam::{DVec2, DVec3};
 use crate::bxdf::bsdf::{Bsdf, BsdfFlags, BsdfSample, SampledWavelengths};
 use crate::error::Error;
 use crate::groove::GrooveSpread;
-use crate::kernel::{intensity_cycles, intensity_ratio_flat, single_slit_cycles, sinpi_flat};
+use crate::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi_flat};
 use crate::math;
 use crate::special::{atan, tan};
 use crate::{Band, Grating, Peak, Slits};
@@ -498,31 +498,50 @@ impl GratingBsdf {
     /// f at (u, v) for finite N and a non-ideal groove, after the hemisphere checks.
     #[inline]
     fn value_uv(&self, n: u32, u: f64, v: f64, lambda_nm: f64) -> f64 {
-        let g = self.groove.value_unchecked(v, lambda_nm);
-        self.value_q(n, u / lambda_nm, g, lambda_nm)
-    }
-
-    /// f from q = u/λ and g = g(v; λ) (finite N, a valid λ): the grating's intensity at the
-    /// phases x = d·q, y = w·q (as `Grating::intensity_f64`, without its checks) times
-    /// ρ²·(N·d/λ)·g.
-    #[inline(always)]
-    fn value_q(&self, n: u32, q: f64, g: f64, lambda_nm: f64) -> f64 {
-        let x = self.grating.period_nm() * q;
-        if !x.is_finite() {
-            return 0.0;
-        }
-        let y = self.grating.slit_width_nm() * q;
-        let i = match n {
-            0 => 0.0,
-            1 => single_slit_cycles(y),
-            _ => intensity_cycles(x, y, n),
+        let q = u / lambda_nm;
+        let (big, coherent) = match self.groove {
+            GrooveSpread::CoherenceLength { length_nm } => (length_nm / lambda_nm, true),
+            _ => (self.groove.value_unchecked(v, lambda_nm), false),
         };
-        let f = self.cache.rho2 * (self.cache.nd / lambda_nm) * i * g;
-        if f.is_finite() {
+        let (num, den) = self.lane(n, q, big, coherent, v, lambda_nm);
+        let f = num / den;
+        if (self.grating.period_nm() * q).is_finite() && f.is_finite() {
             f
         } else {
             0.0
         }
+    }
+
+    /// f = ρ²·(N·d/λ)·G·(a/b)² as a numerator and a denominator (one division), without
+    /// branches, from q = u/λ: (a/b)² = S(π·w·q)·F_N(π·d·q) ([`intensity_ratio_flat`]); for a
+    /// coherence length (`coherent`) G = k = L/λ (`big`) and a/b also carries sin(π·t)/(π·t),
+    /// t = k·v, so that G·(a/b)² holds g = k·sinc²(π·t); otherwise G = g(v) (`big`). `f`,
+    /// `f4` and `sample` all go through here, so they agree to the last bit.
+    #[inline(always)]
+    fn lane(&self, n: u32, q: f64, big: f64, coherent: bool, v: f64, lambda_nm: f64) -> (f64, f64) {
+        // N = 1 needs no case of its own: the ratio's F_N part is then exactly 1.
+        let (d, w) = (self.grating.period_nm(), self.grating.slit_width_nm());
+        let (mut a, mut b) = intensity_ratio_flat(d * q, w * q, n);
+        let mut big = big;
+        if coherent {
+            let t = big * v;
+            let bt = PI * t;
+            let small = bt.abs() < 1e-8;
+            a *= if small {
+                1.0
+            } else {
+                sinpi_flat(t - math::rint(t))
+            };
+            b *= if small { 1.0 } else { bt };
+            // g = 0 where t overflows, as `GrooveSpread::value`.
+            if !t.is_finite() {
+                big = 0.0;
+            }
+        }
+        (
+            self.cache.rho2 * self.cache.nd * big * (a * a),
+            (b * b) * lambda_nm,
+        )
     }
 
     /// The bound of f·cos θi/pdf for samples from `wo` at λ (see the [module docs](self)):
@@ -1205,47 +1224,34 @@ impl Bsdf for GratingBsdf {
         // A lane with an invalid λ computes at λ = 1 and is zeroed below.
         let l = [0, 1, 2, 3].map(|k| if ok[k] { l[k] } else { 1.0 });
         let q = l.map(|l| u / l);
-        // The four lanes side by side, without branches: f = ρ²·(N·d/λ)·G·(a/b)² with
-        // (a/b)² = S·F_N, G·(a/b)² folding g in: for the Gaussian G = g(v) (the same for every
-        // λ, computed once), for a coherence length L, G = k = L/λ and a/b also carries
-        // sin(π·t)/(π·t), t = k·v (g = k·sinc²(π·t)).
-        let (d, w) = (self.grating.period_nm(), self.grating.slit_width_nm());
+        // The four lanes side by side (see `lane`); the Gaussian's g(v) is the same for every λ
+        // and computed once.
+        let d = self.grating.period_nm();
         let (gauss, coherence) = match self.groove {
             GrooveSpread::Gaussian { .. } => (self.groove.value_unchecked(v, 1.0), 0.0),
             GrooveSpread::CoherenceLength { length_nm } => (0.0, length_nm),
             GrooveSpread::Ideal => return out,
         };
-        let scale = self.cache.rho2 * self.cache.nd;
-        let mut f = [0.0; 4];
+        // Stage by stage over the four lanes (divisions side by side), each lane the same
+        // operations as `f`.
+        let big = if coherence > 0.0 {
+            l.map(|l| coherence / l)
+        } else {
+            [gauss; 4]
+        };
+        let mut num = [0.0; 4];
+        let mut den = [0.0; 4];
         for k in 0..4 {
-            // N = 1 needs no case of its own: the ratio's F_N part is then exactly 1.
-            let (x, y) = (d * q[k], w * q[k]);
-            let (mut a, mut b) = intensity_ratio_flat(x, y, n);
-            let big = if coherence > 0.0 {
-                // k = L/λ divided as in `GrooveSpread::value`: g near its zeros follows t = k·v
-                // to its last bit.
-                let kk = coherence / l[k];
-                let t = kk * v;
-                let bt = PI * t;
-                let small = bt.abs() < 1e-8;
-                a *= if small {
-                    1.0
-                } else {
-                    sinpi_flat(t - math::rint(t))
-                };
-                b *= if small { 1.0 } else { bt };
-                // g = 0 where t overflows, as `GrooveSpread::value`.
-                if t.is_finite() {
-                    kk
-                } else {
-                    0.0
-                }
-            } else {
-                gauss
-            };
-            // ρ²·N·d·G·a²/(b²·λ): one division.
-            f[k] = (scale * big * (a * a)) / ((b * b) * l[k]);
-            if !(x.is_finite() && f[k].is_finite() && ok[k]) {
+            (num[k], den[k]) = self.lane(n, q[k], big[k], coherence > 0.0, v, l[k]);
+        }
+        let mut f = [
+            num[0] / den[0],
+            num[1] / den[1],
+            num[2] / den[2],
+            num[3] / den[3],
+        ];
+        for k in 0..4 {
+            if !((d * q[k]).is_finite() && f[k].is_finite() && ok[k]) {
                 f[k] = 0.0;
             }
         }
@@ -1286,9 +1292,8 @@ impl Bsdf for GratingBsdf {
                 // same operations as `f` and `pdf`, sharing q = u/λ and the candidates), so the
                 // sample agrees with them exactly.
                 let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-                let g = self.groove.value_unchecked(v, lambda_nm);
                 (
-                    self.value_q(n, u / lambda_nm, g, lambda_nm),
+                    self.value_uv(n, u, v, lambda_nm),
                     self.pdf_x(&c, n as f64, u / step, v, wi.z, lambda_nm),
                     BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
                 )
@@ -1462,8 +1467,9 @@ mod tests {
     use crate::kernel::n_slit_cycles;
 
     /// f against the separate factors of the formula (kernel functions tested against mpmath)
-    /// and f4 against four f calls: the fused paths round differently from the product of the
-    /// factors by a few ulp of each factor (measured: at most 4.0·ε relative; f4 equals f exactly); 32·ε leaves 8×.
+    /// and f4 against four f calls: the fused, branch-free path rounds differently from the
+    /// product of the factors by a few ulp of each factor (measured: at most 8.3·ε relative;
+    /// f4 equals f exactly); 32·ε leaves 4×.
     const FUSED_REL: f64 = 32.0 * f64::EPSILON;
     /// pdf against the module docs' formula P(m)·q(r)·(d/λ)·q_v(v)·cos θi with each factor
     /// computed separately: a few roundings each (measured: at most 5.4·ε); 48·ε leaves 9×.
@@ -1540,7 +1546,20 @@ mod tests {
 
     #[test]
     fn floor_and_ceil_through_rint() {
-        for a in [-2.5, -2.0, -1.5, -0.5, -0.0, 0.0, 0.3, 0.5, 1.5, 2.5, 1e15 + 0.5, -4e15] {
+        for a in [
+            -2.5,
+            -2.0,
+            -1.5,
+            -0.5,
+            -0.0,
+            0.0,
+            0.3,
+            0.5,
+            1.5,
+            2.5,
+            1e15 + 0.5,
+            -4e15,
+        ] {
             assert_eq!(floor_exact(a), a.floor(), "{a}");
             assert_eq!(ceil_exact(a), a.ceil(), "{a}");
         }
