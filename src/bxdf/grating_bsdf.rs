@@ -519,9 +519,22 @@ impl GratingBsdf {
     /// `f4` and `sample` all go through here, so they agree to the last bit.
     #[inline(always)]
     fn lane(&self, n: u32, q: f64, big: f64, coherent: bool, v: f64, lambda_nm: f64) -> (f64, f64) {
-        // N = 1 needs no case of its own: the ratio's F_N part is then exactly 1.
         let (d, w) = (self.grating.period_nm(), self.grating.slit_width_nm());
-        let (mut a, mut b) = intensity_ratio_flat(d * q, w * q, n);
+        let (mut a, mut b) = if n == 1 {
+            // F_1 = 1: the single slit alone, as in `intensity_ratio_flat`.
+            let y = w * q;
+            let small = y.abs() < 1e-8;
+            (
+                if small {
+                    1.0
+                } else {
+                    sinpi_flat(y - math::rint(y))
+                },
+                if small { 1.0 } else { PI * y },
+            )
+        } else {
+            intensity_ratio_flat(d * q, w * q, n)
+        };
         let mut big = big;
         if coherent {
             let t = big * v;
