@@ -1451,7 +1451,7 @@ impl GratingBsdf {
         let m = math::rint(x);
         let r = x - m;
         let mi = m as i64;
-        if !(r.abs() <= 0.5) || mi < c.lo || mi > c.hi {
+        if mi < c.lo || mi > c.hi {
             return 0.0;
         }
         let w = if c.uniform {
