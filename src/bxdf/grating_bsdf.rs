@@ -1222,7 +1222,9 @@ impl Bsdf for GratingBsdf {
         self.value_uv(n, wi.x + wo.x, wi.y + wo.y, lambda_nm)
     }
 
-    /// Shares the hemisphere checks, u and v between the four wavelengths.
+    /// Shares the hemisphere checks, u, v and (Gaussian groove) g(v) between the four
+    /// wavelengths, and evaluates them as four branch-free lanes, each the same operations as
+    /// [`f`](Bsdf::f) (so `f4` equals four `f` calls to the bit).
     fn f4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
         let out = [0.0; 4];
         if !(wi.z >= MIN_COS_THETA && wo.z >= MIN_COS_THETA) || self.groove.is_delta() {
