@@ -152,6 +152,13 @@ impl GrooveSpread {
         if !(v.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite() && self.is_valid()) {
             return 0.0;
         }
+        self.value_unchecked(v, lambda_nm)
+    }
+
+    /// [`value`](Self::value) without its checks, for a valid spread, a finite v and a
+    /// positive finite λ (the caller's checks): the same arithmetic, so the same result.
+    #[inline]
+    pub(crate) fn value_unchecked(self, v: f64, lambda_nm: f64) -> f64 {
         let g = match self {
             GrooveSpread::CoherenceLength { length_nm } => {
                 let k = length_nm / lambda_nm;
@@ -171,6 +178,20 @@ impl GrooveSpread {
             g
         } else {
             0.0
+        }
+    }
+
+    /// 1/s for the proxy scale s of [`proxy_scale`](Self::proxy_scale) (a valid spread, a
+    /// positive finite λ): the proxy density is (1/s)/(π·(1 + (v/s)²)), as [`pdf`](Self::pdf)
+    /// up to rounding. 0 for the ideal groove.
+    #[inline]
+    pub(crate) fn proxy_inverse_scale(self, lambda_nm: f64) -> f64 {
+        match self {
+            GrooveSpread::CoherenceLength { length_nm } => {
+                (PI / SINC2_PROXY_SCALE) * length_nm / lambda_nm
+            }
+            GrooveSpread::Gaussian { sigma } => 1.0 / sigma,
+            GrooveSpread::Ideal => 0.0,
         }
     }
 
