@@ -39,21 +39,29 @@
 use crate::float::Float;
 use crate::math::rint;
 
+/// The Taylor coefficients (−1)^k π^(2k+1)/(2k+1)! of sin(π·z), k = 0..11, rounded to f64
+/// (mpmath, 40 digits): `sinpi` uses the first 9, `sinpi_flat` all 12.
+const SIN_PI_TAYLOR: [f64; 12] = [
+    core::f64::consts::PI,
+    -5.16771278004997,
+    2.5501640398773455,
+    -0.5992645293207921,
+    0.08214588661112823,
+    -0.0073704309457143504,
+    0.00046630280576761255,
+    -2.1915353447830217e-05,
+    7.952054001475513e-07,
+    -2.2948428997269873e-08,
+    5.392664662608129e-10,
+    -1.0518471716932065e-11,
+];
+
 /// sin(π·z) for |z| ≤ ½ (accurate to a few ulp; larger |z| is not expected).
 #[inline]
 pub(crate) fn sinpi(z: f64) -> f64 {
-    // (−1)^k π^(2k+1)/(2k+1)! and (−1)^k π^(2k)/(2k)!, rounded to f64 (mpmath, 40 digits).
-    const S: [f64; 9] = [
-        core::f64::consts::PI,
-        -5.16771278004997,
-        2.5501640398773455,
-        -0.5992645293207921,
-        0.08214588661112823,
-        -0.0073704309457143504,
-        0.00046630280576761255,
-        -2.1915353447830217e-05,
-        7.952054001475513e-07,
-    ];
+    // The first 9 sine coefficients, and (−1)^k π^(2k)/(2k)! for the cosine, rounded to f64
+    // (mpmath, 40 digits).
+    const S: &[f64; 12] = &SIN_PI_TAYLOR; // S[0..=8] are used
     const C: [f64; 10] = [
         1.0,
         -4.934802200544679,
@@ -176,21 +184,7 @@ pub(crate) fn intensity_cycles(x: f64, y: f64, n: u32) -> f64 {
 /// several phases at once and lose more to mispredicted branches than to the longer polynomial.
 #[inline(always)]
 pub(crate) fn sinpi_flat(z: f64) -> f64 {
-    // (−1)^k π^(2k+1)/(2k+1)!, k = 0..11, rounded to f64 (mpmath, 40 digits).
-    const S: [f64; 12] = [
-        core::f64::consts::PI,
-        -5.16771278004997,
-        2.5501640398773455,
-        -0.5992645293207921,
-        0.08214588661112823,
-        -0.0073704309457143504,
-        0.00046630280576761255,
-        -2.1915353447830217e-05,
-        7.952054001475513e-07,
-        -2.2948428997269873e-08,
-        5.392664662608129e-10,
-        -1.0518471716932065e-11,
-    ];
+    const S: &[f64; 12] = &SIN_PI_TAYLOR;
     let z2 = z * z;
     let mut p = S[11];
     let mut i = 11;

@@ -11,6 +11,9 @@
 //! subset of it (20 gratings × 2000 u, about a minute) are `#[ignore]`d:
 //! `cargo test --release --test color_table -- --ignored --nocapture sweep_subset`.
 
+#[path = "support/fine_quadrature.rs"]
+mod fine_quadrature;
+
 use diffraction::color::Xyz;
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{ColorTable, Grating};
@@ -127,26 +130,7 @@ fn lookup_errors(s: &Spectral, g: &Grating, n: u32, table: &ColorTable, us: &[f6
 /// The mean of `Exact` over [a, b] (0 ≤ a < b) by 8-point Gauss-Legendre on pieces no wider than
 /// (b − a)/16 nor than max(u/8, lobe/32), lobe = 360 nm/(N·d) the width of order 0's lobe.
 fn reference_integral(s: &Spectral, g: &Grating, n: u32, a: f64, b: f64) -> [f64; 3] {
-    const X: [f64; 8] = [
-        -0.9602898564975362,
-        -0.7966664774136267,
-        -0.525532409916329,
-        -0.18343464249564978,
-        0.18343464249564978,
-        0.525532409916329,
-        0.7966664774136267,
-        0.9602898564975362,
-    ];
-    const W: [f64; 8] = [
-        0.10122853629037706,
-        0.22238103445337443,
-        0.3137066458778869,
-        0.36268378337836166,
-        0.36268378337836166,
-        0.3137066458778869,
-        0.22238103445337443,
-        0.10122853629037706,
-    ];
+    use fine_quadrature::{W, X};
     let lobe = 360.0 / (n as f64 * g.period_nm());
     let mut acc = [0.0; 3];
     let mut x = a;

@@ -14,7 +14,7 @@ use glam::DVec3;
 pub const PIECES_PER_NM: u32 = 100;
 
 /// numpy.polynomial.legendre.leggauss(8), nodes on [−1, 1] and weights.
-const X: [f64; 8] = [
+pub const X: [f64; 8] = [
     -0.9602898564975362,
     -0.7966664774136267,
     -0.525532409916329,
@@ -24,7 +24,7 @@ const X: [f64; 8] = [
     0.7966664774136267,
     0.9602898564975362,
 ];
-const W: [f64; 8] = [
+pub const W: [f64; 8] = [
     0.10122853629037706,
     0.22238103445337443,
     0.3137066458778869,
