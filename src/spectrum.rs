@@ -255,6 +255,12 @@ impl Spectral {
         Spectral { envelope, ..self }
     }
 
+    /// [`flat`](Self::flat) as the integrators' accumulator type.
+    pub(super) fn flat_dvec3(&self) -> DVec3 {
+        let w = self.flat();
+        DVec3::new(w.x, w.y, w.z)
+    }
+
     /// The colour of I ≡ 1 (the mirror direction): the white, times the envelope where there is
     /// one (8-point Gauss-Legendre on every nanometre: the envelope is smooth).
     pub(super) fn flat(&self) -> Xyz {

@@ -18,35 +18,10 @@ fn shipped(name: &str) -> Scene {
     scene::load(&crate::scenes_dir().join(format!("{name}.toml"))).unwrap()
 }
 
-/// A 1000 lines/mm grating (N = 1000) lying at the origin, lit by a point light straight above.
+/// A 1000 lines/mm grating (N = 1000) lying at the origin, lit by a point light straight above
+/// (the scene of the ray tracer's other tests).
 fn grating_scene() -> Scene {
-    scene::parse(
-        r#"
-[camera]
-position = [0.0, 10.0, 1.0]
-look_at = [0.0, 0.0, 0.0]
-[environment]
-background = [0.0, 0.0, 0.0]
-ambient = [0.0, 0.0, 0.0]
-[[lights]]
-position = [0.0, 100.0, 0.0]
-[[objects]]
-shape = "quad"
-scale = 2.0
-[objects.material]
-type = "grating"
-period_nm = 1000.0
-slits = 1000
-color = [0.0, 0.0, 0.0]
-[objects.material.field]
-type = "constant"
-angle_deg = 0.0
-"#,
-        "test.toml",
-        "test",
-        Path::new("."),
-    )
-    .unwrap()
+    crate::tests::grating_scene()
 }
 
 #[test]

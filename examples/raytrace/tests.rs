@@ -53,7 +53,7 @@ fn a_fixed_seed_renders_the_same_bytes() {
 
 /// A 1000 lines/mm grating lying at the origin (normal +y, grating vector +x), lit from
 /// straight above, nothing else lit.
-fn grating_scene() -> Scene {
+pub(crate) fn grating_scene() -> Scene {
     parse(
         r#"
 [camera]

@@ -36,10 +36,7 @@ impl Spectral {
         };
         let q = grating.period_nm() * u;
         if Self::order0_everywhere(grating, q) {
-            return {
-                let w = self.flat();
-                DVec3::new(w.x, w.y, w.z)
-            };
+            return self.flat_dvec3();
         }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
         let lobes = Lobes::new(self, grating, q, n);

@@ -154,10 +154,7 @@ impl Spectral {
                         mean += brdf.eval(wi, wo, BAND.min_nm() + (j as f64 + 0.5) * step);
                     }
                     let k = mean / ORDER0_INTERVALS as f64 * cos;
-                    acc += {
-                        let w = self.flat();
-                        DVec3::new(w.x, w.y, w.z)
-                    } * k;
+                    acc += self.flat_dvec3() * k;
                 }
             }
             Strategy::Exact | Strategy::Asymptotic | Strategy::Auto { .. } => {

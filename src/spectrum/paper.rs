@@ -15,10 +15,7 @@ impl Spectral {
         let peaks = grating.peaks(u, BAND);
         let mut acc = DVec3::ZERO;
         if peaks.specular() {
-            acc = {
-                let w = self.flat();
-                DVec3::new(w.x, w.y, w.z)
-            };
+            acc = self.flat_dvec3();
         }
         let scale = 1.0 / self.mean_power;
         for p in peaks {

@@ -26,10 +26,7 @@ impl Spectral {
         };
         let q = grating.period_nm() * u;
         if Self::order0_everywhere(grating, q) {
-            return {
-                let w = self.flat();
-                DVec3::new(w.x, w.y, w.z)
-            };
+            return self.flat_dvec3();
         }
         if Self::is_dense(q) {
             // Too many orders to walk one by one: the same sum in closed form (see `dense`).
