@@ -4,14 +4,14 @@
 //! Each test binary that includes this file uses part of it.
 #![allow(dead_code)]
 
-use diffraction::{AguHill, Band, DiffractionBrdf, Peak, PeakSummary};
+use diffraction::{Band, DiffractionBrdf, Peak, PeakSummary};
 use glam::DVec3;
 
 /// A model that hides that it is a grating's intensity (no `grating_response`), so that the
 /// colour integrator takes its generic path through `eval` and `peaks`.
-pub struct Opaque(pub AguHill);
+pub struct Opaque<B>(pub B);
 
-impl DiffractionBrdf for Opaque {
+impl<B: DiffractionBrdf> DiffractionBrdf for Opaque<B> {
     fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
         self.0.eval(wi, wo, lambda_nm)
     }
