@@ -31,9 +31,7 @@ fn bench(c: &mut Criterion) {
         let bsdf = GratingBsdf::new(grating);
         let inputs = rng::near_peak_samples(PERIOD, n, BATCH);
         let mut r = rng::Rng(0x5eed ^ u64::from(n));
-        let randoms: Vec<(f64, DVec2)> = (0..BATCH)
-            .map(|_| (r.next(), DVec2::new(r.next(), r.next())))
-            .collect();
+        let randoms: Vec<(f64, DVec2)> = (0..BATCH).map(|_| (r.next_f64(), r.u2())).collect();
         let lambdas: Vec<SampledWavelengths> = inputs
             .iter()
             .map(|&(_, _, l)| {
@@ -53,7 +51,7 @@ fn bench(c: &mut Criterion) {
             b.iter(|| {
                 let mut acc = 0.0;
                 for &(wi, wo, l) in s {
-                    acc += bsdf.f(black_box(wo), black_box(wi), l);
+                    acc += bsdf.eval(black_box(wo), black_box(wi), l);
                 }
                 acc
             })
@@ -62,7 +60,7 @@ fn bench(c: &mut Criterion) {
             b.iter(|| {
                 let mut acc = 0.0;
                 for (&(wi, wo, _), l4) in s.iter().zip(&lambdas) {
-                    acc += bsdf.f4(black_box(wo), black_box(wi), l4)[3];
+                    acc += bsdf.eval4(black_box(wo), black_box(wi), l4)[3];
                 }
                 acc
             })

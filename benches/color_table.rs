@@ -72,11 +72,7 @@ fn bench_lookup(c: &mut Criterion) {
             })
         });
         group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
-        for strategy in [
-            Strategy::Exact,
-            Strategy::Asymptotic,
-            Strategy::PeakSearch { refine: false },
-        ] {
+        for strategy in [Strategy::EXACT, Strategy::ASYMPTOTIC, Strategy::PEAK_SEARCH] {
             group.bench_function(BenchmarkId::new("xyz", strategy), |b| {
                 b.iter(|| {
                     let mut acc = 0.0;

@@ -5,16 +5,16 @@
 //!   1024 (wi, wo, λ), half of them near a peak of order 1-3 (for Stam also near the plane of
 //!   the diffracted cone, where its lobes are not cut off early), so the figure per element is
 //!   ns per evaluation.
-//! * `xyz`: one colour through `DiffractionBrdf::xyz` with the peak search and with `Exact`
-//!   (Agu-Hill overrides `xyz` with its lobe-exact paths; Thorman and Stam take the generic
-//!   `Spectral::xyz_brdf`), over a batch of 64 near-peak direction pairs.
+//! * `xyz`: one colour through the generic path `Spectral::xyz_brdf` with its peak search and
+//!   its `WINDOWS` rule, for every model alike (Agu-Hill's lobe-exact grating paths are in
+//!   `benches/spectral.rs`), over a batch of 64 near-peak direction pairs.
 //!
 //! The models are set up to have the same peak widths: N = 10 slits, Thorman's
 //! `matching` lobe at 550 nm, Stam's σ_c = N·d/(2√π).
 
 use criterion::{black_box, BenchmarkId, Criterion, Throughput};
-use diffraction::spectrum::{Illuminant, Spectral, Strategy};
-use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
+use diffraction::spectrum::{GenericStrategy, Illuminant, Spectral};
+use diffraction::{AguHill, DiffractionBrdf, Grating, SpectralResponse, Thorman};
 use glam::DVec3;
 use std::time::Duration;
 
@@ -27,17 +27,21 @@ const SLITS: u32 = 10;
 mod rng;
 use rng::Rng;
 
+/// A model with its value and its colour (`dyn` needs one trait for both).
+trait Model: DiffractionBrdf + SpectralResponse {}
+impl<M: DiffractionBrdf + SpectralResponse> Model for M {}
+
 /// (wi, wo, λ): every other one near order 1-3 of λ and near v = 0.
 fn sample(rng: &mut Rng, i: usize) -> (DVec3, DVec3, f64) {
-    let lambda = 380.0 + 400.0 * rng.next();
+    let lambda = 380.0 + 400.0 * rng.next_f64();
     loop {
         let wi = rng.direction(0.2);
         if i % 2 == 1 {
             return (wi, rng.direction(0.2), lambda);
         }
-        let m = 1.0 + (3.0 * rng.next()).floor();
-        let x = m * lambda / PERIOD - wi.x + 0.01 * (rng.next() - 0.5);
-        let y = -wi.y + 0.01 * (rng.next() - 0.5);
+        let m = 1.0 + (3.0 * rng.next_f64()).floor();
+        let x = m * lambda / PERIOD - wi.x + 0.01 * (rng.next_f64() - 0.5);
+        let y = -wi.y + 0.01 * (rng.next_f64() - 0.5);
         let z2 = 1.0 - x * x - y * y;
         if z2 > 0.04 {
             return (wi, DVec3::new(x, y, z2.sqrt()), lambda);
@@ -45,7 +49,7 @@ fn sample(rng: &mut Rng, i: usize) -> (DVec3, DVec3, f64) {
     }
 }
 
-type Models = Vec<(&'static str, Box<dyn DiffractionBrdf>)>;
+type Models = Vec<(&'static str, Box<dyn Model>)>;
 
 /// The models under comparison, by name.
 fn models() -> Models {
@@ -94,7 +98,7 @@ fn bench_eval(c: &mut Criterion) {
             b.iter(|| {
                 batch
                     .iter()
-                    .map(|&(wi, wo, l)| model.eval(black_box(wi), black_box(wo), l))
+                    .map(|&(wi, wo, l)| model.eval(black_box(wo), black_box(wi), l))
                     .sum::<f64>()
             })
         });
@@ -110,8 +114,8 @@ fn bench_xyz(c: &mut Criterion) {
     g.throughput(Throughput::Elements(COLOURS as u64));
     g.measurement_time(Duration::from_secs(4));
     for (strategy, label) in [
-        (Strategy::PeakSearch { refine: false }, "peaks"),
-        (Strategy::Exact, "exact"),
+        (GenericStrategy::PEAK_SEARCH, "peaks"),
+        (GenericStrategy::WINDOWS, "windows"),
     ] {
         for (name, model) in models() {
             g.bench_function(BenchmarkId::new(label, name), |b| {
@@ -119,7 +123,7 @@ fn bench_xyz(c: &mut Criterion) {
                     batch
                         .iter()
                         .map(|&(wi, wo, _)| {
-                            spectral.xyz_brdf(&*model, black_box(wi), wo, strategy).y
+                            spectral.xyz_brdf(&*model, black_box(wo), wi, strategy).y
                         })
                         .sum::<f64>()
                 })

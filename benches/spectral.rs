@@ -36,20 +36,19 @@ const HERO_XI: f64 = 0.37;
 
 fn strategies() -> Vec<Strategy> {
     vec![
-        Strategy::Uniform { samples: 471 },
-        Strategy::Uniform { samples: 32 },
-        Strategy::Uniform { samples: 128 },
-        Strategy::GaussLegendre { intervals: 4 },
-        Strategy::GaussLegendre { intervals: 16 },
-        Strategy::GaussLegendre { intervals: 59 },
-        Strategy::PeakSearch { refine: false },
-        Strategy::PeakSearch { refine: true },
-        Strategy::PaperPeaks,
-        Strategy::Exact,
-        Strategy::Asymptotic,
-        Strategy::Auto { accuracy: 1e-2 },
-        Strategy::Auto { accuracy: 1e-3 },
-        Strategy::Auto { accuracy: 1e-4 },
+        Strategy::uniform(471).unwrap(),
+        Strategy::uniform(32).unwrap(),
+        Strategy::uniform(128).unwrap(),
+        Strategy::gauss_legendre(4).unwrap(),
+        Strategy::gauss_legendre(16).unwrap(),
+        Strategy::gauss_legendre(59).unwrap(),
+        Strategy::PEAK_SEARCH,
+        Strategy::PEAK_SEARCH_REFINED,
+        Strategy::EXACT,
+        Strategy::ASYMPTOTIC,
+        Strategy::auto(1e-2).unwrap(),
+        Strategy::auto(1e-3).unwrap(),
+        Strategy::auto(1e-4).unwrap(),
     ]
 }
 
@@ -92,6 +91,13 @@ fn bench_xyz(c: &mut Criterion) {
                 g.bench_function(BenchmarkId::from_parameter(strategy), |b| b.iter(batch));
             }
             configure(&mut g, false);
+            g.bench_function("paper", |b| {
+                b.iter(|| {
+                    us.iter()
+                        .map(|&u| s.paper_peaks(&grating, black_box(u)).y)
+                        .sum::<f64>()
+                })
+            });
             g.bench_function("stratified:8", |b| {
                 b.iter(|| {
                     us.iter()
@@ -133,7 +139,7 @@ fn bench_peaks_by_region(c: &mut Criterion) {
                     b.iter(|| {
                         us.iter()
                             .map(|&u| {
-                                let st = Strategy::PeakSearch { refine: false };
+                                let st = Strategy::PEAK_SEARCH;
                                 s.xyz(&grating, black_box(u), st).y
                             })
                             .sum::<f64>()

@@ -3,7 +3,7 @@
 //!
 //! For every strategy and parameter, every number of slits N and period d (slit width d/2) and a
 //! grid of 64 phase projections u in (−2, 2) under D65, it computes the colour error against
-//! `Strategy::Exact` and the median time per evaluation, writes one row per (strategy, parameter,
+//! `Strategy::EXACT` and the median time per evaluation, writes one row per (strategy, parameter,
 //! N, period) to `docs/accuracy.csv` and prints a summary and the report's targets. It also
 //! measures one-wavelength BRDF evaluation (f64, f32 and the naive formula) and the naive
 //! formula's worst errors in the stiff cases.
@@ -45,6 +45,8 @@ const BAND_MIN_NM: f64 = 360.0;
 enum Kind {
     /// `Spectral::xyz` with a strategy.
     Xyz(Strategy),
+    /// `Spectral::paper_peaks`, the paper's own colours (not an integral).
+    Paper,
     /// `Spectral::xyz_stratified` with this many strata (one estimate, fixed random numbers).
     Stratified(usize),
     /// `Spectral::xyz_hero` with this many wavelengths (one estimate, fixed random number).
@@ -68,35 +70,31 @@ fn methods() -> Vec<Method> {
         push(
             "uniform",
             k.to_string(),
-            Kind::Xyz(Strategy::Uniform { samples: k }),
+            Kind::Xyz(Strategy::uniform(k).unwrap()),
         );
     }
     for k in [1, 2, 4, 8, 16, 59, 470] {
         push(
             "gauss",
             k.to_string(),
-            Kind::Xyz(Strategy::GaussLegendre { intervals: k }),
+            Kind::Xyz(Strategy::gauss_legendre(k).unwrap()),
         );
     }
-    push(
-        "peaks",
-        "-".into(),
-        Kind::Xyz(Strategy::PeakSearch { refine: false }),
-    );
+    push("peaks", "-".into(), Kind::Xyz(Strategy::PEAK_SEARCH));
     push(
         "peaks-refined",
         "-".into(),
-        Kind::Xyz(Strategy::PeakSearch { refine: true }),
+        Kind::Xyz(Strategy::PEAK_SEARCH_REFINED),
     );
-    push("paper", "-".into(), Kind::Xyz(Strategy::PaperPeaks));
-    push("exact", "-".into(), Kind::Xyz(Strategy::Exact));
-    push("asymptotic", "-".into(), Kind::Xyz(Strategy::Asymptotic));
+    push("paper", "-".into(), Kind::Paper);
+    push("exact", "-".into(), Kind::Xyz(Strategy::EXACT));
+    push("asymptotic", "-".into(), Kind::Xyz(Strategy::ASYMPTOTIC));
     for e in 1..=6 {
         let accuracy = 10f64.powi(-e);
         push(
             "auto",
             format!("1e-{e}"),
-            Kind::Xyz(Strategy::Auto { accuracy }),
+            Kind::Xyz(Strategy::auto(accuracy).unwrap()),
         );
     }
     push(
@@ -237,7 +235,7 @@ const ORDER0_HALF_PERIOD: f64 = 0.5;
 /// Peak search cost over the u of the grid with d·|u|/830 nm ≥ ½ (only orders m ≠ 0 in the
 /// band: O(orders)) and over the others (order 0's tail integrated by quadrature).
 fn peaks_by_region(s: &Spectral, g: &Grating, us: &[f64], budget: Duration) -> [(f64, usize); 2] {
-    let strategy = Strategy::PeakSearch { refine: false };
+    let strategy = Strategy::PEAK_SEARCH;
     let split = |orders: bool| -> Vec<f64> {
         us.iter()
             .copied()
@@ -339,9 +337,9 @@ fn main() {
     let mut rng = Rng(0x5EED);
     let strata: Vec<Vec<f64>> = us
         .iter()
-        .map(|_| (0..8).map(|_| rng.next()).collect())
+        .map(|_| (0..8).map(|_| rng.next_f64()).collect())
         .collect();
-    let heroes: Vec<f64> = us.iter().map(|_| rng.next()).collect();
+    let heroes: Vec<f64> = us.iter().map(|_| rng.next_f64()).collect();
     let started = Instant::now();
 
     let mut rows = Vec::new();
@@ -352,7 +350,7 @@ fn main() {
             let g = Grating::new(period, period / 2.0, n).expect("valid grating");
             let refs: Vec<Xyz> = us
                 .iter()
-                .map(|&u| spectral.xyz(&g, u, Strategy::Exact))
+                .map(|&u| spectral.xyz(&g, u, Strategy::EXACT))
                 .collect();
             let bright = brightest(period, n, &us, &refs);
             let bright_unfloored = brightest_unfloored(period, &us, &refs);
@@ -372,6 +370,7 @@ fn main() {
                     .enumerate()
                     .map(|(i, &u)| match m.kind {
                         Kind::Xyz(s) => spectral.xyz(&g, u, s),
+                        Kind::Paper => spectral.paper_peaks(&g, u),
                         Kind::Stratified(k) => spectral.xyz_stratified(&g, u, &strata[i][..k]),
                         Kind::Hero(k) => spectral.xyz_hero(&g, u, heroes[i], k),
                         Kind::Table(_) => table.as_ref().expect("built above").1.lookup(u),
@@ -379,6 +378,7 @@ fn main() {
                     .collect();
                 let ns = match m.kind {
                     Kind::Xyz(s) => time_ns(&us, cfg.budget, |u| spectral.xyz(&g, u, s).y),
+                    Kind::Paper => time_ns(&us, cfg.budget, |u| spectral.paper_peaks(&g, u).y),
                     Kind::Stratified(k) => time_ns(&us, cfg.budget, |u| {
                         spectral.xyz_stratified(&g, u, &strata[0][..k]).y
                     }),
@@ -491,7 +491,7 @@ fn write_csv(path: &str, rows: &[Row]) {
     fs::write(path, s).expect("write the CSV");
 }
 
-/// `Strategy::Exact` against the independent reference of `python_ref/` on the rows of
+/// `Strategy::EXACT` against the independent reference of `python_ref/` on the rows of
 /// `tests/data/spectral_xyz.csv` that this sweep covers (D65, w = d/2, its periods and N).
 fn exact_check(spectral: &Spectral, infos: &[GratingInfo]) {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/spectral_xyz.csv");
@@ -513,7 +513,7 @@ fn exact_check(spectral: &Spectral, infos: &[GratingInfo]) {
         };
         let want = Xyz::new(p(5), p(6), p(7));
         let g = Grating::new(d, w, n).expect("valid grating");
-        let got = spectral.xyz(&g, u, Strategy::Exact);
+        let got = spectral.xyz(&g, u, Strategy::EXACT);
         for (a, b) in [(got.x, want.x), (got.y, want.y), (got.z, want.z)] {
             if b.abs() > 1e-9 {
                 worst_rel = worst_rel.max((a - b).abs() / b.abs());

@@ -1,99 +1,107 @@
 //! The interface every diffraction model of the crate implements, and the models: the paper's
-//! Agu-Hill grating ([`AguHill`]), and the related work it argues against ([`Thorman`], and
-//! `Stam` with the feature `stam`). One file per model; add a model by adding a file here that
-//! implements [`DiffractionBrdf`] (and [`Bsdf`] if it is radiometric and samplable).
+//! Agu-Hill grating ([`AguHill`]), the energy-normalised grating for path tracers
+//! ([`GratingBsdf`]) and the related work the paper argues against ([`Thorman`], and `Stam` with
+//! the feature `stam`).
+//!
+//! Three traits, each a capability of its own:
+//!
+//! * [`DiffractionBrdf`]: the model's value at one wavelength, `eval(wo, wi, λ)`. Every model
+//!   has it, with pbrt's argument order (`wo` toward the viewer first).
+//! * [`Bsdf`]: what a Monte-Carlo integrator needs besides the value (sampling with an exact
+//!   density, flags, regularisation); radiometric models only.
+//! * [`SpectralResponse`]: what the colour integrator ([`spectrum`](crate::spectrum)) needs (the
+//!   light reflected per unit light, the peaks in wavelength, and whether the model is a
+//!   multiple of a grating's intensity); a model opts into it.
+//!
+//! One file per model; add a model by adding a file here that implements [`DiffractionBrdf`]
+//! (and [`Bsdf`] if it is radiometric and samplable, [`SpectralResponse`] if it should have a
+//! colour).
 
 use glam::{DVec3, Vec3};
 
-use crate::error::{Error, Requirement};
-use crate::{Band, Grating, Peak};
+use crate::wavelengths::SampledWavelengths;
 
 mod agu_hill;
-pub mod baselines;
 pub mod bsdf;
 pub mod grating_bsdf;
 #[cfg(feature = "stam")]
 pub(crate) mod profile;
+mod response;
 #[cfg(feature = "stam")]
 pub mod stam;
 mod thorman;
 
 pub use agu_hill::AguHill;
-pub use bsdf::{Bsdf, BsdfFlags, BsdfSample, SampledWavelengths};
+pub use bsdf::{Bsdf, BsdfFlags, BsdfSample};
 pub use grating_bsdf::{GratingBsdf, WavelengthSample};
 #[cfg(feature = "stam")]
 pub use profile::Profile;
+pub use response::{Envelope, GratingResponse, PeakSummary, SpectralResponse};
 #[cfg(feature = "stam")]
 pub use stam::Stam;
 pub use thorman::Thorman;
 
-/// What [`DiffractionBrdf::peaks`] found besides the peaks it visited.
+/// Directions with cos θ below this count as below the horizon for every model of the crate:
+/// their value, density and colour are 0 and no sampler returns them. It keeps f/pdf finite
+/// (densities in solid angle carry a factor cos θ) at the cost of a solid angle of 2π·10⁻¹⁰⁰.
 ///
 /// ```
-/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+/// use diffraction::{AguHill, DiffractionBrdf, Grating, MIN_COS_THETA};
 /// use glam::DVec3;
-/// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
-/// // The mirror direction (u = 0): inside the order-0 lobe, and no order m ≠ 0.
-/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8));
-/// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |_| {});
-/// assert_eq!((summary.orders, summary.specular), (0, true));
+/// let m = AguHill::new(Grating::new(1600.0, 800.0, 100)?);
+/// let grazing = DVec3::new((1.0f64 - 1e-202).sqrt(), 0.0, 1e-101); // below MIN_COS_THETA
+/// assert_eq!(m.eval(DVec3::Z, grazing, 550.0), 0.0);
+/// assert!(MIN_COS_THETA > 0.0);
 /// # Ok::<(), diffraction::Error>(())
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-#[non_exhaustive]
-pub struct PeakSummary {
-    /// How many orders m ≠ 0 were visited.
-    pub orders: u32,
-    /// Whether (wi, wo) lies inside the central order-0 (mirror) lobe for some wavelength of the
-    /// band. There the model's light is the white specular, spread over every wavelength, and is
-    /// not a peak at one wavelength.
-    pub specular: bool,
-}
+pub const MIN_COS_THETA: f64 = 1e-100;
 
-/// A spectral diffraction BRDF in the local shading frame.
+/// A spectral diffraction model in the local shading frame: its value at one wavelength.
 ///
-/// Shaped like the BxDF interfaces of pbrt-v4 and Mitsuba: directions are unit vectors in the
-/// local frame where `z` is the normal and `x` the grating vector t (`y` runs along the grooves);
-/// `wi` points toward the light and `wo` toward the viewer. Both must be in the upper hemisphere
-/// (z > 0); below it every method returns 0 / nothing.
+/// Shaped like the BxDF interfaces of pbrt-v4 and Mitsuba 3: directions are unit vectors in the
+/// local frame where `z` is the normal and `x` the grating vector t (`y` runs along the
+/// grooves); **`wo` points toward the viewer and comes first, `wi` toward the light**, pbrt's
+/// `f(wo, wi)`. Both must be above the surface (cos θ ≥ [`MIN_COS_THETA`]) and finite; otherwise
+/// the value is 0. Every model of the crate depends on wo and wi through wi + wo, so it is
+/// reciprocal: `eval(wo, wi, λ) == eval(wi, wo, λ)`.
 ///
-/// The light reflected toward `wo` from a point light of spectral intensity E(λ) in direction
-/// `wi` is `E(λ) · eval(wi, wo, λ)`, multiplied by cos θi = `wi.z` **only if**
-/// [`cosine_included`](Self::cosine_included) is `false`. The paper's model does not apply a
-/// cosine to its diffraction term, so [`AguHill`] reports `true`.
+/// What the value *is* belongs to the model, one meaning each:
 ///
-/// This is the interface every model shares with the colour integrator. Radiometric models
-/// (1/sr, energy-normalised, with importance sampling for path tracers) implement
-/// [`Bsdf`], which extends it; the paper's unitless [`AguHill`] does not.
+/// * radiometric models ([`GratingBsdf`], [`Thorman`], `Stam`): the BRDF in 1/sr, **cosine
+///   excluded** (pbrt's convention): reflected radiance is ∫ eval·L·cos θi dωi;
+/// * the paper's [`AguHill`]: its unitless intensity S(β)·F_N(α) (peak 1), which the paper
+///   multiplies by the light with no cosine (its eq. 12).
+///
+/// The light a model reflects per unit light, the quantity a colour is made of, is
+/// [`SpectralResponse::response`]: `eval·cos θi` for the radiometric models, `eval` for
+/// `AguHill`.
 ///
 /// ```
-/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+/// use diffraction::{AguHill, DiffractionBrdf, Grating};
 /// use glam::DVec3;
 /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
-/// let wi = DVec3::Z;
-/// let wo = DVec3::new(0.3, 0.0, (1.0f64 - 0.09).sqrt());
-/// // u = 0.3: first order at 480 nm.
-/// let mut seen = vec![];
-/// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |p| seen.push(p.wavelength_nm));
-/// assert_eq!(summary.orders, 1);
-/// assert!((seen[0] - 480.0).abs() < 1e-9);
-/// assert!(brdf.eval(wi, wo, 480.0) > 100.0 * brdf.eval(wi, wo, 500.0));
+/// let wo = DVec3::new(0.3, 0.0, (1.0f64 - 0.09).sqrt()); // toward the viewer
+/// let wi = DVec3::Z; // toward the light
+/// // u = wi.x + wo.x = 0.3: the first order at 480 nm, far brighter than 500 nm.
+/// assert!(brdf.eval(wo, wi, 480.0) > 100.0 * brdf.eval(wo, wi, 500.0));
+/// assert_eq!(brdf.eval(wo, wi, 480.0), brdf.eval(wi, wo, 480.0)); // reciprocal
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 pub trait DiffractionBrdf {
-    /// The spectral value at wavelength `lambda_nm` (nm) for local directions `wi`, `wo`.
-    /// Finite and ≥ 0 for finite input.
+    /// The value at wavelength `lambda_nm` (nm) for the local directions `wo` (toward the
+    /// viewer) and `wi` (toward the light). Finite and ≥ 0 for every input; 0 below the surface
+    /// and for non-finite input.
     ///
     /// ```
     /// use diffraction::{AguHill, DiffractionBrdf, Grating};
     /// use glam::DVec3;
     /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
-    /// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8));
-    /// assert_eq!(brdf.eval(wi, wo, 550.0), 1.0); // the mirror direction: S(0)·F_N(0) = 1
-    /// assert_eq!(brdf.eval(-wi, wo, 550.0), 0.0); // light below the surface
+    /// let (wo, wi) = (DVec3::new(0.6, 0.0, 0.8), DVec3::new(-0.6, 0.0, 0.8));
+    /// assert_eq!(brdf.eval(wo, wi, 550.0), 1.0); // the mirror direction: S(0)·F_N(0) = 1
+    /// assert_eq!(brdf.eval(wo, -wi, 550.0), 0.0); // light below the surface
     /// # Ok::<(), diffraction::Error>(())
     /// ```
-    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64;
+    fn eval(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64;
 
     /// [`eval`](Self::eval) for `f32` callers. Implementations may override it with a faster
     /// path; the default widens to `f64` and rounds back, saturating at `f32::MAX`.
@@ -102,237 +110,41 @@ pub trait DiffractionBrdf {
     /// use diffraction::{AguHill, DiffractionBrdf, Grating};
     /// use glam::Vec3;
     /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
-    /// let (wi, wo) = (Vec3::Z, Vec3::new(0.3, 0.0, 0.91f32.sqrt())); // near order 1 at 480 nm
-    /// let wide = brdf.eval(wi.as_dvec3(), wo.as_dvec3(), 480.0);
-    /// assert_eq!(brdf.eval_f32(wi, wo, 480.0), wide as f32); // the f64 value, rounded once
+    /// let (wo, wi) = (Vec3::new(0.3, 0.0, 0.91f32.sqrt()), Vec3::Z); // order 1 at 480 nm
+    /// let wide = brdf.eval(wo.as_dvec3(), wi.as_dvec3(), 480.0);
+    /// assert_eq!(brdf.eval_f32(wo, wi, 480.0), wide as f32); // the f64 value, rounded once
     /// # Ok::<(), diffraction::Error>(())
     /// ```
-    fn eval_f32(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
+    fn eval_f32(&self, wo: Vec3, wi: Vec3, lambda_nm: f32) -> f32 {
         // A finite f64 value beyond f32's range saturates instead of rounding to ∞.
-        (self.eval(wi.as_dvec3(), wo.as_dvec3(), lambda_nm as f64) as f32).min(f32::MAX)
+        (self.eval(wo.as_dvec3(), wi.as_dvec3(), lambda_nm as f64) as f32).min(f32::MAX)
     }
 
-    /// Visits every narrow peak (order m ≠ 0 on the grating equation inside `band`) that
-    /// (wi, wo) sees, in order of increasing |m|, with its value of `eval` at the peak and its
-    /// equivalent width; returns the count and whether the order-0 lobe is seen. The crate's
-    /// models visit at most [`MAX_ORDERS`](crate::MAX_ORDERS) orders, those of lowest |m|, so
-    /// the call does bounded work.
-    ///
-    /// This is the contract the colour integrator's generic path
-    /// ([`Spectral::xyz_brdf`](crate::spectrum::Spectral::xyz_brdf) for a model without a
-    /// [`grating_response`](Self::grating_response)) relies on for its stated bounds: every
-    /// feature of `eval` in wavelength narrower than 2 nm is a visited peak, and `specular` is
-    /// `true` wherever order 0's light reaches the band. A model whose intensity has unreported
-    /// narrow side lobes (a grating's F_N) should say what it is through `grating_response`.
+    /// [`eval`](Self::eval) at the four wavelengths of `lambdas` (a path's hero wavelength and
+    /// its three companions). Models override it to share the work that does not depend on λ;
+    /// the default calls `eval` four times.
     ///
     /// ```
-    /// use diffraction::{AguHill, Band, DiffractionBrdf, Grating};
+    /// use diffraction::{Band, DiffractionBrdf, Grating, GratingBsdf, SampledWavelengths};
     /// use glam::DVec3;
-    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
-    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.9, 0.0, 0.19f64.sqrt())); // u = 0.9, d·u = 1440 nm
-    /// let mut orders = vec![];
-    /// let summary = brdf.peaks(wi, wo, Band::VISIBLE, &mut |p| orders.push(p.order));
-    /// assert_eq!(orders, [2, 3, 4]); // 720, 480 and 360 nm
-    /// assert_eq!((summary.orders, summary.specular), (3, false));
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// let l = SampledWavelengths::sample_uniform(0.3, Band::VISIBLE);
+    /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
+    /// let four = b.eval4(wo, wi, &l);
+    /// for i in 0..4 {
+    ///     assert_eq!(four[i], b.eval(wo, wi, l.lambda()[i]));
+    /// }
     /// # Ok::<(), diffraction::Error>(())
     /// ```
-    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary;
-
-    /// Whether `eval` already contains the cosine cos θi (see the trait docs).
-    ///
-    /// ```
-    /// use diffraction::{AguHill, DiffractionBrdf, Grating};
-    /// let brdf = AguHill::new(Grating::new(1600.0, 800.0, 1000)?);
-    /// assert!(brdf.cosine_included()); // the paper applies no cos θi to its diffraction term
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    fn cosine_included(&self) -> bool;
-
-    /// What this model is in terms of the Agu-Hill intensity, where it is a multiple of it:
-    /// `Some(r)` when, at these directions, `eval(wi, wo, λ)` (times cos θi when
-    /// [`cosine_included`](Self::cosine_included) is `false`) equals
-    /// `r.scale · r.grating.intensity(r.u, λ)` for every λ. The colour integrator
-    /// ([`Spectral::xyz_brdf`](crate::spectrum::Spectral::xyz_brdf)) then takes the lobe-exact
-    /// paths it has for gratings, with the same error bounds. Optics only: it says what the
-    /// model is, not how to integrate it. The default is `None` (a model of another shape).
-    ///
-    /// ```
-    /// use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
-    /// use glam::DVec3;
-    /// let g = Grating::new(1600.0, 800.0, 1000)?;
-    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.34, 0.0, (1.0f64 - 0.34 * 0.34).sqrt()));
-    /// let r = AguHill::new(g).grating_response(wi, wo).unwrap();
-    /// assert_eq!((r.grating, r.u, r.scale), (g, 0.34, 1.0));
-    /// assert!(AguHill::new(g).grating_response(-wi, wo).is_none()); // below the surface
-    /// assert!(Thorman::new(1600.0, 0.003)?.grating_response(wi, wo).is_none());
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    fn grating_response(&self, wi: DVec3, wo: DVec3) -> Option<GratingResponse> {
-        let _ = (wi, wo);
-        None
+    fn eval4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
+        lambdas.lambda().map(|l| self.eval(wo, wi, l))
     }
 }
 
-/// A model's value as a multiple of the Agu-Hill intensity of a grating (see
-/// [`DiffractionBrdf::grating_response`]): `scale · envelope(λ) · grating.intensity(u, λ)`.
-///
-/// ```
-/// use diffraction::{Envelope, Grating, GratingResponse};
-/// let r = GratingResponse::new(Grating::new(1600.0, 800.0, 100)?, 0.3, 2.0);
-/// assert_eq!((r.u, r.scale, r.envelope), (0.3, 2.0, Envelope::ONE));
-/// # Ok::<(), diffraction::Error>(())
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
-pub struct GratingResponse {
-    /// The grating whose intensity I(u, λ) the model is a multiple of.
-    pub grating: Grating,
-    /// The phase projection u = (wi + wo)·t of the directions.
-    pub u: f64,
-    /// The factor k ≥ 0, the same at every wavelength.
-    pub scale: f64,
-    /// The smooth factor of wavelength (1 for the paper's model).
-    pub envelope: Envelope,
-}
-
-impl GratingResponse {
-    /// `scale · grating.intensity(u, λ)`, with no factor of wavelength.
-    ///
-    /// ```
-    /// use diffraction::{Grating, GratingResponse};
-    /// let r = GratingResponse::new(Grating::new(1600.0, 800.0, 100)?, -0.3, 0.5);
-    /// assert_eq!(r.u, -0.3);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn new(grating: Grating, u: f64, scale: f64) -> GratingResponse {
-        GratingResponse {
-            grating,
-            u,
-            scale,
-            envelope: Envelope::ONE,
-        }
-    }
-
-    /// The same response times `envelope(λ)`.
-    ///
-    /// ```
-    /// use diffraction::{Envelope, Grating, GratingResponse};
-    /// let g = Grating::new(1600.0, 800.0, 100)?;
-    /// let r = GratingResponse::new(g, 0.3, 1.0).with_envelope(Envelope::new(1, 0.0)?);
-    /// assert_eq!(r.envelope.at(500.0), 1.0 / 500.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn with_envelope(self, envelope: Envelope) -> GratingResponse {
-        GratingResponse { envelope, ..self }
-    }
-}
-
-/// A smooth factor of wavelength in a model's response to a grating:
-/// k(λ) = λ^(−p) · sinc²(π·c/λ), with sinc t = sin t / t, an integer power p ∈ [0, 4] and a length
-/// c ≥ 0 (nm; c = 0 gives no sinc factor).
-///
-/// The energy-normalised grating ([`GratingBsdf`]) is the Agu-Hill intensity times
-/// (N·d/λ)·g(v, λ): p = 1 for a groove spread g that does not depend on λ, and p = 2 with
-/// c = L·v for a coherence length L, whose g is (L/λ)·sinc²(π·L·v/λ). The colour integrator
-/// ([`Spectral`](crate::spectrum::Spectral::with_envelope)) multiplies its spectral weight by
-/// k(λ), which changes over many table rows, so every strategy keeps its bound.
-///
-/// ```
-/// use diffraction::Envelope;
-/// assert_eq!(Envelope::ONE.at(550.0), 1.0);
-/// let e = Envelope::new(2, 275.0)?; // λ⁻² · sinc²(π·275/λ)
-/// assert!((e.at(550.0) - (2.0 / std::f64::consts::PI).powi(2) / 550.0f64.powi(2)).abs() < 1e-20);
-/// assert_eq!(Envelope::new(5, 0.0).unwrap_err().parameter(), "inverse_power");
-/// # Ok::<(), diffraction::Error>(())
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Envelope {
-    inverse_power: u8,
-    sinc_length_nm: f64,
-}
-
-impl Envelope {
-    /// k(λ) = 1.
-    pub const ONE: Envelope = Envelope {
-        inverse_power: 0,
-        sinc_length_nm: 0.0,
-    };
-
-    /// The factor λ^(−inverse_power) · sinc²(π·sinc_length_nm/λ); `inverse_power` at most 4,
-    /// `sinc_length_nm` finite and ≥ 0.
-    ///
-    /// ```
-    /// use diffraction::Envelope;
-    /// assert_eq!(Envelope::new(1, 0.0)?.at(400.0), 1.0 / 400.0);
-    /// assert_eq!(Envelope::new(0, -1.0).unwrap_err().parameter(), "sinc_length_nm");
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    pub fn new(inverse_power: u8, sinc_length_nm: f64) -> Result<Envelope, Error> {
-        if inverse_power > 4 {
-            return Err(Error::invalid(
-                "inverse_power",
-                inverse_power as f64,
-                Requirement::Within { min: 0.0, max: 4.0 },
-            ));
-        }
-        if !(sinc_length_nm.is_finite() && sinc_length_nm >= 0.0) {
-            return Err(Error::invalid(
-                "sinc_length_nm",
-                sinc_length_nm,
-                Requirement::NonNegative,
-            ));
-        }
-        Ok(Envelope {
-            inverse_power,
-            sinc_length_nm,
-        })
-    }
-
-    /// k(λ); 0 for λ ≤ 0 or non-finite λ; saturates at `f64::MAX` where λ^(−p) would overflow
-    /// (λ below about 10⁻⁷⁷ nm for p = 4), so it is finite for every finite λ.
-    ///
-    /// ```
-    /// use diffraction::Envelope;
-    /// let e = Envelope::new(0, 500.0)?;
-    /// assert!(e.at(500.0) < 1e-30); // sinc²(π) = 0
-    /// assert_eq!(e.at(-1.0), 0.0);
-    /// assert_eq!(Envelope::new(4, 0.0)?.at(5e-324), f64::MAX); // saturates, never ∞
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[inline]
-    #[must_use]
-    pub fn at(&self, lambda_nm: f64) -> f64 {
-        if !(lambda_nm > 0.0 && lambda_nm.is_finite()) {
-            return 0.0;
-        }
-        let mut k = 1.0;
-        for _ in 0..self.inverse_power {
-            k /= lambda_nm;
-        }
-        if self.sinc_length_nm != 0.0 {
-            k *= crate::kernel::single_slit_cycles(self.sinc_length_nm / lambda_nm);
-        }
-        k.min(f64::MAX)
-    }
-
-    /// Whether k(λ) = 1 everywhere.
-    ///
-    /// ```
-    /// use diffraction::Envelope;
-    /// assert!(Envelope::ONE.is_one() && !Envelope::new(1, 0.0)?.is_one());
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn is_one(&self) -> bool {
-        self.inverse_power == 0 && self.sinc_length_nm == 0.0
-    }
-}
-
-/// Whether both directions are strictly above the surface (false for NaN): the one test every
-/// model of the crate applies before it reflects light.
+/// Whether both directions are finite and above the surface (cos θ ≥ [`MIN_COS_THETA`]): the
+/// one hemisphere test every model of the crate applies before it reflects light (false for
+/// NaN).
 #[inline]
-pub(crate) fn both_above(zi: f64, zo: f64) -> bool {
-    zi > 0.0 && zo > 0.0
+pub(crate) fn both_above(wo: DVec3, wi: DVec3) -> bool {
+    wo.z >= MIN_COS_THETA && wi.z >= MIN_COS_THETA && wo.is_finite() && wi.is_finite()
 }

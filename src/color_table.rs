@@ -28,16 +28,16 @@ const LOBE_FRACTION: f64 = 20.0;
 const MIN_U_LO: f64 = 1.0 / 18_446_744_073_709_551_616.0;
 /// Wavelength of the ideal first-order peak that floors the error scale, nm.
 const FLOOR_PEAK_NM: f64 = 555.0;
-/// Below this many slits the nodes are all [`Strategy::Exact`] (which `Asymptotic` is there too).
+/// Below this many slits the nodes are all [`Strategy::EXACT`] (which `Asymptotic` is there too).
 const ASYMPTOTIC_MIN_SLITS: f64 = 5.0;
 /// Where d·|u| is below this (nm), order 0's half period (x = d·|u|/λ < ½) reaches into the band
 /// (λ ≤ 830 nm): `Asymptotic`'s bound there is relative to order 0's own light, so a node there
-/// is [`Strategy::Exact`] unless the colour is dark enough (see `ColorTable::new`).
+/// is [`Strategy::EXACT`] unless the colour is dark enough (see `ColorTable::new`).
 const ORDER0_HALF_PERIOD_NM: f64 = 415.0;
-/// `Strategy::Asymptotic`'s bound relative to order 0's own light where order 0's half period
+/// `Strategy::ASYMPTOTIC`'s bound relative to order 0's own light where order 0's half period
 /// reaches the band (measured 5.7·10⁻⁴, `tests/asymptotic.rs`).
 const ASYMPTOTIC_ORDER0_BOUND: f64 = 1e-3;
-/// Smallest accuracy accepted: ten times the error of [`Strategy::Exact`] (10⁻⁷).
+/// Smallest accuracy accepted: ten times the error of [`Strategy::EXACT`] (10⁻⁷).
 const MIN_ACCURACY: f64 = 1e-6;
 /// Largest accuracy accepted (relative).
 const MAX_ACCURACY: f64 = 1.0;
@@ -135,10 +135,10 @@ struct Node {
 ///
 /// A build costs about twice the node count (100-5200 nodes) in calls of [`Spectral::xyz`]. For
 /// N ≥ 5 and `accuracy` ≥ [`ASYMPTOTIC_ACCURACY`](Self::ASYMPTOTIC_ACCURACY) a node is
-/// [`Strategy::Asymptotic`] (5-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
+/// [`Strategy::ASYMPTOTIC`] (5-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
 /// where order 0's light reaches it but the colour is dark enough for `Asymptotic`'s bound
 /// (10⁻³ of that light) to move CIELAB's f(t) by less than accuracy/3 (t ≤ (accuracy/10⁻³)³);
-/// every other node (order 0's bright lobe and near tail, N < 5) is [`Strategy::Exact`], which
+/// every other node (order 0's bright lobe and near tail, N < 5) is [`Strategy::EXACT`], which
 /// then dominates the build time. Memory is 72 bytes per node plus 32 per block
 /// ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
 ///
@@ -161,7 +161,7 @@ struct Node {
 /// let table = ColorTable::new(&s, &g, 1e-3)?;
 /// assert_eq!(table.lookup(0.0), s.white()); // the mirror direction is white
 /// assert_eq!(table.lookup(-0.4), table.lookup(0.4)); // even in u
-/// let exact = s.xyz(&g, 0.4, Strategy::Exact);
+/// let exact = s.xyz(&g, 0.4, Strategy::EXACT);
 /// assert!((table.lookup(0.4).z - exact.z).abs() < 1e-2 * table.scale());
 /// # Ok::<(), diffraction::Error>(())
 /// ```
@@ -197,9 +197,9 @@ struct Work {
 }
 
 impl ColorTable {
-    /// The smallest `accuracy` at which nodes are computed by [`Strategy::Asymptotic`] (for
+    /// The smallest `accuracy` at which nodes are computed by [`Strategy::ASYMPTOTIC`] (for
     /// N ≥ 5, where it meets the tolerance: see the [Cost](Self#cost) section); below it every
-    /// node is [`Strategy::Exact`]. `Asymptotic` is within 1.4·10⁻⁴ of the brightest order
+    /// node is [`Strategy::EXACT`]. `Asymptotic` is within 1.4·10⁻⁴ of the brightest order
     /// (measured, `tests/asymptotic.rs`); the tables built with it at 10⁻⁴ were measured within
     /// 0.027 ΔE2000 of `Exact` (docs/color_table.md).
     ///
@@ -210,7 +210,7 @@ impl ColorTable {
     pub const ASYMPTOTIC_ACCURACY: f64 = 1e-4;
 
     /// The accuracy to build with when nothing else is asked for: measured within 0.05 ΔE2000
-    /// of [`Strategy::Exact`] at every u, at the brightest order's exposure (docs/color_table.md).
+    /// of [`Strategy::EXACT`] at every u, at the brightest order's exposure (docs/color_table.md).
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -218,7 +218,7 @@ impl ColorTable {
     /// let g = Grating::new(1600.0, 800.0, 21)?;
     /// let s = Spectral::new(Illuminant::D65);
     /// let t = ColorTable::new(&s, &g, ColorTable::DEFAULT_ACCURACY)?;
-    /// let exact = s.xyz(&g, 0.3, Strategy::Exact);
+    /// let exact = s.xyz(&g, 0.3, Strategy::EXACT);
     /// assert!((t.lookup(0.3).y - exact.y).abs() < 1e-3 * t.scale());
     /// # Ok::<(), diffraction::Error>(())
     /// ```
@@ -244,7 +244,7 @@ impl ColorTable {
     ///
     /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md):
     /// [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) = 10⁻⁴ keeps lookups within 0.03 ΔE2000 of
-    /// [`Strategy::Exact`] at the brightest order's exposure over 20 representative gratings.
+    /// [`Strategy::EXACT`] at the brightest order's exposure over 20 representative gratings.
     ///
     /// # Errors
     ///
@@ -294,7 +294,7 @@ impl ColorTable {
         };
         let eval = |u: f64, scale: f64| {
             if fast {
-                let c = spectral.xyz(grating, u, Strategy::Asymptotic);
+                let c = spectral.xyz(grating, u, Strategy::ASYMPTOTIC);
                 let c = [c.x, c.y, c.z];
                 if u >= order0_from {
                     return c;
@@ -304,7 +304,7 @@ impl ColorTable {
                     return c;
                 }
             }
-            let c = spectral.xyz(grating, u, Strategy::Exact);
+            let c = spectral.xyz(grating, u, Strategy::EXACT);
             [c.x, c.y, c.z]
         };
         let ybar = cie::integrate_product_of_rows(|_| 1.0, |i| cie::cmf_row(i, 1));
@@ -454,7 +454,7 @@ impl ColorTable {
     /// let g = Grating::new(1600.0, 800.0, 1000)?;
     /// let s = Spectral::new(Illuminant::D65);
     /// let t = ColorTable::new(&s, &g, 1e-4)?;
-    /// let exact = s.xyz(&g, 0.34, Strategy::Exact);
+    /// let exact = s.xyz(&g, 0.34, Strategy::EXACT);
     /// let got = t.lookup(0.34);
     /// assert!((got.y - exact.y).abs() < 1e-3 * t.scale());
     /// assert_eq!(t.lookup(5.0), t.lookup(2.0)); // clamped

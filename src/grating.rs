@@ -230,6 +230,18 @@ impl Grating {
         self.slit_width_nm
     }
 
+    /// The open fraction ρ = w/d: the share of each period that is a slit, in (0, 1].
+    ///
+    /// ```
+    /// # use diffraction::Grating;
+    /// assert_eq!(Grating::new(1600.0, 400.0, 10)?.open_fraction(), 0.25);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn open_fraction(&self) -> f64 {
+        self.slit_width_nm / self.period_nm
+    }
+
     /// The number of slits N.
     ///
     /// ```

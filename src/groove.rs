@@ -17,13 +17,14 @@
 //!
 //! ```
 //! use diffraction::GrooveSpread;
-//! let g = GrooveSpread::CoherenceLength { length_nm: 50_000.0 };
+//! let g = GrooveSpread::coherence_length(50_000.0)?;
 //! // Unit integral: the mass over |v| < 1 is 1 less the sinc² tails beyond t = L·v/λ = 100,
 //! // 1/(π²·100) to 5·10⁻⁹ (mpmath).
 //! let tail = 1.0 / (std::f64::consts::PI.powi(2) * 100.0);
 //! assert!((g.mass(-1.0, 1.0, 500.0) - (1.0 - tail)).abs() < 1e-8);
 //! // The peak is L/λ.
 //! assert_eq!(g.value(0.0, 500.0), 100.0);
+//! # Ok::<(), diffraction::Error>(())
 //! ```
 
 use core::f64::consts::PI;
@@ -31,6 +32,7 @@ use core::f64::consts::PI;
 use crate::error::{positive, Error, Requirement};
 use crate::kernel::single_slit_cycles;
 use crate::math;
+use crate::random::unit_random;
 use crate::special::{erf, erfc, sinc2_integral};
 
 /// Scale of the Cauchy proxy of sinc²(a), in a = π·L·v/λ: with c = 1.2,
@@ -44,29 +46,57 @@ pub const COHERENCE_PROXY_BOUND: f64 = 1.4504;
 pub const GAUSSIAN_PROXY_BOUND: f64 = 1.5204;
 /// The largest accepted Gaussian σ (v spans [−2, 2]).
 pub const MAX_GROOVE_SIGMA: f64 = 1.0;
+/// The smallest accepted Gaussian σ: a lobe 10⁻¹² wide in v is far below what unit directions
+/// in `f64` resolve (10⁻¹⁶ near the mirror direction, much less after a renderer's transforms)
+/// and keeps the value 1/(σ·√(2π)) and the sampler's density 1/(π·σ) finite.
+pub const MIN_GROOVE_SIGMA: f64 = 1e-12;
+/// The shortest accepted coherence length, nm: the lobe's width λ/L in v is then at most 830,
+/// far wider than the range [−2, 2] of v, so shorter lengths change nothing.
+pub const MIN_COHERENCE_NM: f64 = 1.0;
+/// The longest accepted coherence length, nm (10⁶ km): the lobe's width λ/L in v is then at
+/// least 3.6·10⁻¹³, still a thousand times what unit directions in `f64` resolve, and L/λ,
+/// the lobe's peak, stays finite for every λ above 10⁻²⁹³ nm. Longer defaults (N·d of a huge
+/// grating) are taken as this.
+pub const MAX_COHERENCE_NM: f64 = 1e15;
 /// 1/√(2π).
 const INV_SQRT_TAU: f64 = 0.3989422804014327;
 
-/// The lobe g(v) of a grating along its grooves (see the [module docs](self)).
+/// The lobe g(v) of a grating along its grooves (see the [module docs](self)): validated where
+/// it is built, so every method can rely on its parameter.
 ///
 /// ```
-/// use diffraction::GrooveSpread;
-/// let rough = GrooveSpread::Gaussian { sigma: 0.01 };
+/// use diffraction::{GrooveKind, GrooveSpread};
+/// let rough = GrooveSpread::gaussian(0.01)?;
 /// assert!((rough.value(0.0, 550.0) - 1.0 / (0.01 * (2.0 * std::f64::consts::PI).sqrt())).abs() < 1e-9);
-/// assert_eq!(GrooveSpread::Ideal.value(0.0, 550.0), 0.0); // a delta has no finite value
-/// assert!(GrooveSpread::Ideal.is_delta());
+/// assert_eq!(rough.kind(), GrooveKind::Gaussian { sigma: 0.01 });
+/// assert_eq!(GrooveSpread::IDEAL.value(0.0, 550.0), 0.0); // a delta has no finite value
+/// assert!(GrooveSpread::IDEAL.is_delta());
+/// assert_eq!(GrooveSpread::gaussian(-1.5).unwrap_err().parameter(), "sigma");
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GrooveSpread(GrooveKind);
+
+/// What a [`GrooveSpread`] is, for reading ([`GrooveSpread::kind`]); build one with the
+/// constructors of [`GrooveSpread`], which validate it.
+///
+/// ```
+/// use diffraction::{GrooveKind, GrooveSpread};
+/// assert_eq!(GrooveSpread::IDEAL.kind(), GrooveKind::Ideal);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum GrooveSpread {
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+#[non_exhaustive]
+pub enum GrooveKind {
     /// A coherence length L along the grooves: g(v) = (L/λ)·sinc²(π·L·v/λ).
     CoherenceLength {
-        /// L, nm (finite, > 0).
+        /// L, nm, in [[`MIN_COHERENCE_NM`], [`MAX_COHERENCE_NM`]].
         length_nm: f64,
     },
     /// Groove roughness: a Gaussian of standard deviation σ in v, the same at every λ.
     Gaussian {
-        /// σ, in units of v (finite, 0 < σ ≤ [`MAX_GROOVE_SIGMA`]).
+        /// σ, in units of v, in [[`MIN_GROOVE_SIGMA`], [`MAX_GROOVE_SIGMA`]].
         sigma: f64,
     },
     /// The ideal grating: g = δ(v).
@@ -74,69 +104,128 @@ pub enum GrooveSpread {
 }
 
 impl GrooveSpread {
-    /// Checks the parameter: `length_nm` finite and > 0; `sigma` finite, > 0 and at most
-    /// [`MAX_GROOVE_SIGMA`]. The error names `length_nm` or `sigma`.
+    /// The ideal grating: g = δ(v), every order on its cone.
+    pub const IDEAL: GrooveSpread = GrooveSpread(GrooveKind::Ideal);
+
+    /// A coherence length L = `length_nm` along the grooves, in [[`MIN_COHERENCE_NM`],
+    /// [`MAX_COHERENCE_NM`]]; the error names `length_nm`.
     ///
     /// ```
     /// use diffraction::GrooveSpread;
-    /// assert!(GrooveSpread::Gaussian { sigma: 0.05 }.validate().is_ok());
-    /// let e = GrooveSpread::CoherenceLength { length_nm: -1.0 }.validate().unwrap_err();
-    /// assert_eq!(e.parameter(), "length_nm");
-    /// assert_eq!(GrooveSpread::Gaussian { sigma: 2.0 }.validate().unwrap_err().parameter(), "sigma");
+    /// let g = GrooveSpread::coherence_length(1000.0)?;
+    /// assert!(g.value(0.5, 500.0) < 1e-30); // L·v/λ = 1: the first zero
+    /// assert_eq!(GrooveSpread::coherence_length(5e-324).unwrap_err().parameter(), "length_nm");
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
-    pub fn validate(self) -> Result<GrooveSpread, Error> {
-        match self {
-            GrooveSpread::CoherenceLength { length_nm } => {
-                positive("length_nm", length_nm)?;
-            }
-            GrooveSpread::Gaussian { sigma } => {
-                positive("sigma", sigma)?;
-                if sigma > MAX_GROOVE_SIGMA {
-                    return Err(Error::invalid(
-                        "sigma",
-                        sigma,
-                        Requirement::AtMost {
-                            bound_name: "MAX_GROOVE_SIGMA",
-                            bound: MAX_GROOVE_SIGMA,
-                        },
-                    ));
-                }
-            }
-            GrooveSpread::Ideal => {}
+    pub fn coherence_length(length_nm: f64) -> Result<GrooveSpread, Error> {
+        let l = positive("length_nm", length_nm)?;
+        if !(MIN_COHERENCE_NM..=MAX_COHERENCE_NM).contains(&l) {
+            return Err(Error::invalid(
+                "length_nm",
+                l,
+                Requirement::Within {
+                    min: MIN_COHERENCE_NM,
+                    max: MAX_COHERENCE_NM,
+                },
+            ));
         }
-        Ok(self)
+        Ok(GrooveSpread(GrooveKind::CoherenceLength { length_nm: l }))
     }
 
-    /// Whether the parameter passes [`validate`](Self::validate). The fields are public, so an
-    /// unvalidated value can reach the methods: they then return 0 (no lobe) rather than a
-    /// negative or non-finite value.
+    /// The coherence length nearest to `length_nm` inside the accepted range (for defaults
+    /// computed from a grating, such as N·d, which may fall outside it); `None` for a value
+    /// that is not a positive number.
+    pub(crate) fn coherence_length_clamped(length_nm: f64) -> Option<GrooveSpread> {
+        (length_nm > 0.0).then(|| {
+            GrooveSpread(GrooveKind::CoherenceLength {
+                length_nm: length_nm.clamp(MIN_COHERENCE_NM, MAX_COHERENCE_NM),
+            })
+        })
+    }
+
+    /// Groove roughness: a Gaussian of standard deviation `sigma` in v, in
+    /// [[`MIN_GROOVE_SIGMA`], [`MAX_GROOVE_SIGMA`]]; the error names `sigma`.
     ///
     /// ```
-    /// # use diffraction::GrooveSpread;
-    /// let bad = GrooveSpread::Gaussian { sigma: -1.0 };
-    /// assert!(!bad.is_valid());
-    /// assert_eq!(bad.value(0.0, 500.0), 0.0);
+    /// use diffraction::GrooveSpread;
+    /// assert!(GrooveSpread::gaussian(0.05).is_ok());
+    /// assert_eq!(GrooveSpread::gaussian(2.0).unwrap_err().parameter(), "sigma");
+    /// assert_eq!(GrooveSpread::gaussian(5e-324).unwrap_err().parameter(), "sigma");
+    /// ```
+    pub fn gaussian(sigma: f64) -> Result<GrooveSpread, Error> {
+        let s = positive("sigma", sigma)?;
+        if !(MIN_GROOVE_SIGMA..=MAX_GROOVE_SIGMA).contains(&s) {
+            return Err(Error::invalid(
+                "sigma",
+                s,
+                Requirement::Within {
+                    min: MIN_GROOVE_SIGMA,
+                    max: MAX_GROOVE_SIGMA,
+                },
+            ));
+        }
+        Ok(GrooveSpread(GrooveKind::Gaussian { sigma: s }))
+    }
+
+    /// The spread described by `kind`, validated as by its constructor.
+    ///
+    /// ```
+    /// use diffraction::{GrooveKind, GrooveSpread};
+    /// let g = GrooveSpread::new(GrooveKind::Gaussian { sigma: 0.02 })?;
+    /// assert_eq!(g, GrooveSpread::gaussian(0.02)?);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn new(kind: GrooveKind) -> Result<GrooveSpread, Error> {
+        match kind {
+            GrooveKind::CoherenceLength { length_nm } => GrooveSpread::coherence_length(length_nm),
+            GrooveKind::Gaussian { sigma } => GrooveSpread::gaussian(sigma),
+            GrooveKind::Ideal => Ok(GrooveSpread::IDEAL),
+        }
+    }
+
+    /// What the spread is.
+    ///
+    /// ```
+    /// use diffraction::{GrooveKind, GrooveSpread};
+    /// let g = GrooveSpread::coherence_length(2000.0)?;
+    /// assert_eq!(g.kind(), GrooveKind::CoherenceLength { length_nm: 2000.0 });
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
-    pub fn is_valid(self) -> bool {
-        match self {
-            GrooveSpread::CoherenceLength { length_nm } => length_nm.is_finite() && length_nm > 0.0,
-            GrooveSpread::Gaussian { sigma } => {
-                sigma.is_finite() && sigma > 0.0 && sigma <= MAX_GROOVE_SIGMA
-            }
-            GrooveSpread::Ideal => true,
-        }
+    pub fn kind(self) -> GrooveKind {
+        self.0
     }
 
     /// Whether g is the delta δ(v) (then `value` and `pdf` are 0 and the lobes are specular in v).
     ///
     /// ```
     /// # use diffraction::GrooveSpread;
-    /// assert!(!GrooveSpread::Gaussian { sigma: 0.1 }.is_delta());
+    /// assert!(!GrooveSpread::gaussian(0.1)?.is_delta());
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn is_delta(self) -> bool {
-        matches!(self, GrooveSpread::Ideal)
+        matches!(self.0, GrooveKind::Ideal)
+    }
+
+    /// The lobe's width in v at λ (λ/L for the coherence length, σ for the Gaussian, 0 for the
+    /// ideal lobe).
+    ///
+    /// ```
+    /// # use diffraction::GrooveSpread;
+    /// assert_eq!(GrooveSpread::coherence_length(1000.0)?.width(500.0), 0.5);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn width(self, lambda_nm: f64) -> f64 {
+        if !(lambda_nm > 0.0 && lambda_nm.is_finite()) {
+            return 0.0;
+        }
+        match self.0 {
+            GrooveKind::CoherenceLength { length_nm } => lambda_nm / length_nm,
+            GrooveKind::Gaussian { sigma } => sigma,
+            GrooveKind::Ideal => 0.0,
+        }
     }
 
     /// g(v) at wavelength λ, 1/(unit of v); 0 for the ideal lobe, for λ ≤ 0 and non-finite
@@ -144,23 +233,25 @@ impl GrooveSpread {
     ///
     /// ```
     /// use diffraction::GrooveSpread;
-    /// let g = GrooveSpread::CoherenceLength { length_nm: 1000.0 };
-    /// assert!(g.value(0.5, 500.0) < 1e-30); // L·v/λ = 1: the first zero
+    /// let g = GrooveSpread::coherence_length(1000.0)?;
+    /// assert_eq!(g.value(0.0, 500.0), 2.0); // the peak L/λ
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
+    #[inline]
     #[must_use]
     pub fn value(self, v: f64, lambda_nm: f64) -> f64 {
-        if !(v.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite() && self.is_valid()) {
+        if !(v.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return 0.0;
         }
         self.value_unchecked(v, lambda_nm)
     }
 
-    /// [`value`](Self::value) without its checks, for a valid spread, a finite v and a
-    /// positive finite λ (the caller's checks): the same arithmetic, so the same result.
+    /// [`value`](Self::value) without its checks, for a finite v and a positive finite λ (the
+    /// caller's checks): the same arithmetic, so the same result.
     #[inline]
     pub(crate) fn value_unchecked(self, v: f64, lambda_nm: f64) -> f64 {
-        let g = match self {
-            GrooveSpread::CoherenceLength { length_nm } => {
+        let g = match self.0 {
+            GrooveKind::CoherenceLength { length_nm } => {
                 let k = length_nm / lambda_nm;
                 let t = k * v;
                 if !t.is_finite() {
@@ -168,11 +259,11 @@ impl GrooveSpread {
                 }
                 k * single_slit_cycles(t)
             }
-            GrooveSpread::Gaussian { sigma } => {
+            GrooveKind::Gaussian { sigma } => {
                 let t = v / sigma;
                 INV_SQRT_TAU / sigma * math::exp(-0.5 * t * t)
             }
-            GrooveSpread::Ideal => 0.0,
+            GrooveKind::Ideal => 0.0,
         };
         if g.is_finite() {
             g
@@ -181,49 +272,56 @@ impl GrooveSpread {
         }
     }
 
-    /// 1/s for the proxy scale s of [`proxy_scale`](Self::proxy_scale) (a valid spread, a
-    /// positive finite λ): the proxy density is (1/s)/(π·(1 + (v/s)²)), as [`pdf`](Self::pdf)
-    /// up to rounding. 0 for the ideal groove.
+    /// 1/s for the proxy scale s of [`proxy_scale`](Self::proxy_scale) (a positive finite λ):
+    /// the proxy density is (1/s)/(π·(1 + (v/s)²)), as [`pdf`](Self::pdf) up to rounding. 0 for
+    /// the ideal groove.
     #[inline]
     pub(crate) fn proxy_inverse_scale(self, lambda_nm: f64) -> f64 {
-        match self {
-            GrooveSpread::CoherenceLength { length_nm } => {
+        match self.0 {
+            GrooveKind::CoherenceLength { length_nm } => {
                 (PI / SINC2_PROXY_SCALE) * length_nm / lambda_nm
             }
-            GrooveSpread::Gaussian { sigma } => 1.0 / sigma,
-            GrooveSpread::Ideal => 0.0,
+            GrooveKind::Gaussian { sigma } => 1.0 / sigma,
+            GrooveKind::Ideal => 0.0,
         }
     }
 
     /// The scale s of the Cauchy proxy q(v) = s/(π·(s² + v²)): 1.2·λ/(π·L) for the coherence
-    /// length, σ for the Gaussian, 0 for the ideal lobe.
+    /// length, σ for the Gaussian, 0 for the ideal lobe and for λ that is not a positive finite
+    /// number. Finite for every input.
     ///
     /// ```
     /// # use diffraction::GrooveSpread;
-    /// assert_eq!(GrooveSpread::Gaussian { sigma: 0.02 }.proxy_scale(500.0), 0.02);
+    /// assert_eq!(GrooveSpread::gaussian(0.02)?.proxy_scale(500.0), 0.02);
+    /// assert_eq!(GrooveSpread::coherence_length(1.0)?.proxy_scale(-1.0), 0.0);
+    /// assert!(GrooveSpread::coherence_length(1.0)?.proxy_scale(f64::MAX).is_finite());
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn proxy_scale(self, lambda_nm: f64) -> f64 {
-        if !self.is_valid() {
+        if !(lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return 0.0;
         }
-        match self {
-            GrooveSpread::CoherenceLength { length_nm } => {
-                SINC2_PROXY_SCALE * lambda_nm / (PI * length_nm)
+        let s = match self.0 {
+            GrooveKind::CoherenceLength { length_nm } => {
+                SINC2_PROXY_SCALE * (lambda_nm / (PI * length_nm))
             }
-            GrooveSpread::Gaussian { sigma } => sigma,
-            GrooveSpread::Ideal => 0.0,
-        }
+            GrooveKind::Gaussian { sigma } => sigma,
+            GrooveKind::Ideal => 0.0,
+        };
+        s.min(f64::MAX)
     }
 
-    /// Samples v from the proxy: v = s·tan(π·(ξ − ½)), ξ in [0, 1) (clamped; NaN as ½).
-    /// The ideal lobe gives v = 0. Its density is [`pdf`](Self::pdf).
+    /// Samples v from the proxy: v = s·tan(π·(ξ − ½)), ξ by the crate's rule for random
+    /// numbers ([`unit_random`](crate::unit_random)). The ideal lobe gives v = 0. Its density is
+    /// [`pdf`](Self::pdf).
     ///
     /// ```
     /// use diffraction::GrooveSpread;
-    /// let g = GrooveSpread::Gaussian { sigma: 0.1 };
+    /// let g = GrooveSpread::gaussian(0.1)?;
     /// assert_eq!(g.sample(0.5, 550.0), 0.0);
     /// assert!((g.sample(0.75, 550.0) - 0.1).abs() < 1e-15); // the proxy's quartile is s
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn sample(self, xi: f64, lambda_nm: f64) -> f64 {
@@ -231,7 +329,7 @@ impl GrooveSpread {
         if !(s > 0.0 && s.is_finite()) {
             return 0.0;
         }
-        let xi = if xi.is_nan() { 0.5 } else { xi.clamp(0.0, 1.0) };
+        let xi = unit_random(xi);
         let v = s * crate::special::tan(PI * (xi - 0.5));
         if v.is_finite() {
             v
@@ -244,8 +342,9 @@ impl GrooveSpread {
     ///
     /// ```
     /// use diffraction::GrooveSpread;
-    /// let g = GrooveSpread::Gaussian { sigma: 0.1 };
+    /// let g = GrooveSpread::gaussian(0.1)?;
     /// assert!((g.pdf(0.0, 550.0) - 1.0 / (std::f64::consts::PI * 0.1)).abs() < 1e-12);
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn pdf(self, v: f64, lambda_nm: f64) -> f64 {
@@ -268,38 +367,39 @@ impl GrooveSpread {
     ///
     /// ```
     /// # use diffraction::GrooveSpread;
-    /// assert!(GrooveSpread::Gaussian { sigma: 0.1 }.proxy_bound() < 1.53);
+    /// assert!(GrooveSpread::gaussian(0.1)?.proxy_bound() < 1.53);
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn proxy_bound(self) -> f64 {
-        match self {
-            GrooveSpread::CoherenceLength { .. } => COHERENCE_PROXY_BOUND,
-            GrooveSpread::Gaussian { .. } => GAUSSIAN_PROXY_BOUND,
-            GrooveSpread::Ideal => 1.0,
+        match self.0 {
+            GrooveKind::CoherenceLength { .. } => COHERENCE_PROXY_BOUND,
+            GrooveKind::Gaussian { .. } => GAUSSIAN_PROXY_BOUND,
+            GrooveKind::Ideal => 1.0,
         }
     }
 
-    /// ∫ g over [v0, v1] (the order of the ends does not matter; the result is ≥ 0), in closed
-    /// form: (Φ(L·v1/λ) − Φ(L·v0/λ)) with Φ(t) = (Si(2πt) − sin²(πt)/(πt))/π for the
+    /// ∫ g over [v0, v1] (the order of the ends does not matter; the result is in [0, 1]), in
+    /// closed form: (Φ(L·v1/λ) − Φ(L·v0/λ)) with Φ(t) = (Si(2πt) − sin²(πt)/(πt))/π for the
     /// coherence length, ½(erf(v1/(σ√2)) − erf(v0/(σ√2))) for the Gaussian (erfc in the tails),
     /// and 1 or 0 for the ideal lobe (1 when v0 ≤ 0 < v1). 0 for λ ≤ 0 or NaN.
     ///
     /// ```
     /// use diffraction::GrooveSpread;
-    /// let g = GrooveSpread::Gaussian { sigma: 0.1 };
+    /// let g = GrooveSpread::gaussian(0.1)?;
     /// assert!((g.mass(-0.1, 0.1, 500.0) - 0.682689492137086).abs() < 1e-14); // one σ
-    /// assert_eq!(GrooveSpread::Ideal.mass(-0.1, 0.1, 500.0), 1.0);
-    /// assert_eq!(GrooveSpread::Ideal.mass(0.1, 0.2, 500.0), 0.0);
+    /// assert_eq!(GrooveSpread::IDEAL.mass(-0.1, 0.1, 500.0), 1.0);
+    /// assert_eq!(GrooveSpread::IDEAL.mass(0.1, 0.2, 500.0), 0.0);
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn mass(self, v0: f64, v1: f64, lambda_nm: f64) -> f64 {
-        if v0.is_nan() || v1.is_nan() || lambda_nm.is_nan() || lambda_nm <= 0.0 || !self.is_valid()
-        {
+        if v0.is_nan() || v1.is_nan() || !(lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return 0.0;
         }
         let (a, b) = if v0 <= v1 { (v0, v1) } else { (v1, v0) };
-        let m = match self {
-            GrooveSpread::CoherenceLength { length_nm } => {
+        let m = match self.0 {
+            GrooveKind::CoherenceLength { length_nm } => {
                 let k = length_nm / lambda_nm;
                 let phi = |v: f64| {
                     let t = k * v;
@@ -313,7 +413,7 @@ impl GrooveSpread {
                 };
                 phi(b) - phi(a)
             }
-            GrooveSpread::Gaussian { sigma } => {
+            GrooveKind::Gaussian { sigma } => {
                 let s = sigma * core::f64::consts::SQRT_2;
                 let (ta, tb) = (a / s, b / s);
                 if ta > 0.0 {
@@ -324,7 +424,7 @@ impl GrooveSpread {
                     0.5 * (erf(tb) - erf(ta))
                 }
             }
-            GrooveSpread::Ideal => {
+            GrooveKind::Ideal => {
                 if a <= 0.0 && 0.0 < b {
                     1.0
                 } else {
@@ -340,26 +440,22 @@ impl GrooveSpread {
     }
 
     /// The mean of g over [v0, v1], mass/(v1 − v0): what a footprint of that extent sees. For an
-    /// empty or degenerate interval (|v1 − v0| below 10⁻⁹ of the lobe's scale) the value at the
+    /// empty or degenerate interval (|v1 − v0| below 10⁻⁹ of the lobe's width) the value at the
     /// midpoint; for the ideal lobe a degenerate interval gives 0.
     ///
     /// ```
     /// use diffraction::GrooveSpread;
-    /// let g = GrooveSpread::CoherenceLength { length_nm: 10_000.0 };
+    /// let g = GrooveSpread::coherence_length(10_000.0)?;
     /// // Over one lobe width either side of the centre: most of the unit mass, spread over 2λ/L.
     /// let mean = g.mean(-0.05, 0.05, 500.0);
     /// assert!((mean * 0.1 - 0.9028).abs() < 1e-4);
     /// assert_eq!(g.mean(0.0, 0.0, 500.0), g.value(0.0, 500.0));
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn mean(self, v0: f64, v1: f64, lambda_nm: f64) -> f64 {
         let width = (v1 - v0).abs();
-        let scale = match self {
-            GrooveSpread::CoherenceLength { length_nm } => lambda_nm / length_nm,
-            GrooveSpread::Gaussian { sigma } => sigma,
-            GrooveSpread::Ideal => 0.0,
-        };
-        if width.is_nan() || width <= 1e-9 * scale || !width.is_finite() {
+        if width.is_nan() || width <= 1e-9 * self.width(lambda_nm) || !width.is_finite() {
             return self.value(0.5 * (v0 + v1), lambda_nm);
         }
         let m = self.mass(v0, v1, lambda_nm) / width;
@@ -368,5 +464,21 @@ impl GrooveSpread {
         } else {
             0.0
         }
+    }
+}
+
+/// A spread (de)serialises as its [`GrooveKind`], validated on the way in:
+/// `{"Gaussian":{"sigma":-1.5}}` is an error naming `sigma`.
+#[cfg(feature = "serde")]
+impl serde::Serialize for GrooveSpread {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.0.serialize(s)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for GrooveSpread {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        GrooveSpread::new(GrooveKind::deserialize(d)?).map_err(serde::de::Error::custom)
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::bxdf::{both_above, DiffractionBrdf};
+use crate::bxdf::{both_above, SpectralResponse};
 use crate::error::{Error, Requirement};
 
 /// The coefficients of the paper's eq. 12, I = ambient + diffuse + diffraction, with Phong's
@@ -11,17 +11,17 @@ use crate::error::{Error, Requirement};
 ///
 /// * ambient: `ambient · ambient_light`;
 /// * diffuse (Lambert, as Phong): `diffuse · cos θi · light`;
-/// * diffraction: `diffraction · eval(wi, wo, λ) · light` for any [`DiffractionBrdf`]
-///   (times cos θi when the model's [`cosine_included`](DiffractionBrdf::cosine_included) is
-///   `false`).
+/// * diffraction: `diffraction · response(wo, wi, λ) · light` for any model with a
+///   [`SpectralResponse`] (the paper's intensity for [`AguHill`](crate::AguHill); f·cos θi for a
+///   BRDF f).
 ///
 /// ```
 /// use diffraction::{AguHill, Grating, Illumination};
 /// use glam::DVec3;
 /// let model = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
 /// let shading = Illumination::new(0.1, 0.3, 1.0)?;
-/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.6, 0.0, 0.8)); // mirror: order 0
-/// let i = shading.eval(&model, wi, wo, 550.0, 1.0, 1.0);
+/// let (wo, wi) = (DVec3::new(0.6, 0.0, 0.8), DVec3::new(-0.6, 0.0, 0.8)); // mirror: order 0
+/// let i = shading.eval(&model, wo, wi, 550.0, 1.0, 1.0);
 /// assert!((i - (0.1 + 0.3 * 0.8 + 1.0)).abs() < 1e-12);
 /// # Ok::<(), diffraction::Error>(())
 /// ```
@@ -104,8 +104,9 @@ impl Illumination {
     }
 
     /// Eq. 12 at one wavelength: `ambient·ambient_light + light·(diffuse·cos θi +
-    /// diffraction·value)`, where `value` is the model's `eval` (times cos θi when the model
-    /// does not include it); the light terms are 0 when either direction is below the surface.
+    /// diffraction·response)`, where `response` is the model's
+    /// [`response`](SpectralResponse::response) (`wo` toward the viewer, `wi` toward the light);
+    /// the light terms are 0 when either direction is below the surface.
     ///
     /// Directions must be unit (cos θi = `wi.z` is clamped to 1 for other input) and lights are
     /// powers, ≥ 0 (a negative light counts as 0). The result is finite and ≥ 0 for finite
@@ -118,33 +119,32 @@ impl Illumination {
     /// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
     /// let shading = Illumination::new(0.1, 0.3, 1.0)?;
     /// // u = 0.3: order 1 at 480 nm.
-    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()));
-    /// let i = shading.eval(&m, wi, wo, 480.0, 2.0, 1.0);
-    /// let expected = 0.1 * 2.0 + 0.3 * 1.0 + m.eval(wi, wo, 480.0);
+    /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
+    /// let i = shading.eval(&m, wo, wi, 480.0, 2.0, 1.0);
+    /// let expected = 0.1 * 2.0 + 0.3 * 1.0 + m.eval(wo, wi, 480.0);
     /// assert!((i - expected).abs() < 1e-12); // the order of the additions only
     /// // Light from below the surface: only the ambient term remains.
-    /// assert_eq!(shading.eval(&m, -wi, wo, 480.0, 2.0, 1.0), 0.1 * 2.0);
+    /// assert_eq!(shading.eval(&m, wo, -wi, 480.0, 2.0, 1.0), 0.1 * 2.0);
     /// // Products that overflow saturate instead.
     /// let bright = Illumination::new(1.0, 1.0, 1.0)?;
-    /// assert_eq!(bright.eval(&m, wi, wo, 480.0, f64::MAX, f64::MAX), f64::MAX);
+    /// assert_eq!(bright.eval(&m, wo, wi, 480.0, f64::MAX, f64::MAX), f64::MAX);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
-    pub fn eval<B: DiffractionBrdf + ?Sized>(
+    pub fn eval<M: SpectralResponse + ?Sized>(
         &self,
-        model: &B,
-        wi: DVec3,
+        model: &M,
         wo: DVec3,
+        wi: DVec3,
         lambda_nm: f64,
         ambient_light: f64,
         light: f64,
     ) -> f64 {
         let (ambient_light, light) = (ambient_light.max(0.0), light.max(0.0));
         let mut i = self.ambient * ambient_light;
-        if both_above(wi.z, wo.z) {
+        if both_above(wo, wi) {
             let cos_i = wi.z.min(1.0);
-            let cos = if model.cosine_included() { 1.0 } else { cos_i };
-            let value = model.eval(wi, wo, lambda_nm) * cos;
+            let value = model.response(wo, wi, lambda_nm);
             i += light * (self.diffuse * cos_i + self.diffraction * value);
         }
         // Each term is ≥ 0, so the sum is never NaN; it saturates instead of overflowing.

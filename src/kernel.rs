@@ -125,15 +125,23 @@ fn reduce_radians(alpha: f64) -> f64 {
 /// at most 21 fraction bits below ½, so N·r_hi needs at most 53 bits.
 const SPLIT: f64 = 2_097_152.0; // 2^21
 
+/// N·r reduced modulo 1 exactly: r = r_hi + r_lo with r_hi on the 2⁻²¹ grid, N·r_hi exact and
+/// reduced by `rint`, N·r_lo added, and the sum reduced again (|result| ≤ ½). The one phase
+/// split of both N-slit kernels.
+#[inline(always)]
+fn reduce_n_phase(r: f64, nf: f64) -> f64 {
+    let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
+    let p_hi = nf * r_hi;
+    let s = (p_hi - rint(p_hi)) + nf * (r - r_hi);
+    s - rint(s)
+}
+
 /// F_N = (num/den)² at a phase reduced to |r| ≤ ½ cycles, `n` ≥ 2: the numerator and denominator
 /// of sin(πNr)/(N·sin(πr)), with N·r reduced exactly and the limit at the peak guarded.
 #[inline]
 fn n_slit_ratio(r: f64, n: u32) -> (f64, f64) {
     let nf = n as f64;
-    let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
-    let p_hi = nf * r_hi;
-    let s = (p_hi - rint(p_hi)) + nf * (r - r_hi);
-    let s = s - rint(s);
+    let s = reduce_n_phase(r, nf);
     if (nf * r).abs() <= 0.5 {
         // No wrap: s = N·r. Near the peak F = (sinc(πs)/sinc(πr))².
         if s.abs() < 1e-12 {
@@ -195,19 +203,36 @@ pub(crate) fn sinpi_flat(z: f64) -> f64 {
     p * z
 }
 
-/// √(S(y)·F_N(x)) as a numerator and a denominator, without branches (selects only), for
-/// phases in cycles (x = d·u/λ, y = w·u/λ) and `n` ≥ 2: the same reduction and the same
-/// guarded limits as [`intensity_cycles`], with a branch-free sin(π·), so that a caller can
-/// evaluate four wavelengths side by side and fold further factors into one division.
+/// sin(π·y)/(π·y) as a numerator and a denominator without branches (selects only), y in
+/// cycles: (sin(π·(y − round y)), π·y), and (1, 1) where |y| < 10⁻⁸ (the limit, 1 − (πy)²/6 = 1
+/// to 2·10⁻¹⁶). Squared it is the single-slit factor S.
+#[inline(always)]
+pub(crate) fn sinc_ratio_flat(y: f64) -> (f64, f64) {
+    let small = y.abs() < 1e-8;
+    let num = if small { 1.0 } else { sinpi_flat(y - rint(y)) };
+    let den = if small {
+        1.0
+    } else {
+        core::f64::consts::PI * y
+    };
+    (num, den)
+}
+
+/// √(S(y)·F_N(x)) as a numerator and a denominator, without branches on the phase (selects
+/// only), for phases in cycles (x = d·u/λ, y = w·u/λ): the same reduction and the same guarded
+/// limits as [`intensity_cycles`], with a branch-free sin(π·), so that a caller can evaluate four
+/// wavelengths side by side and fold further factors into one division. `n` ≤ 1 is the single
+/// slit alone (F_1 = 1; one branch on `n`, which is the same for every call of a grating).
 /// Squared, num/den agrees with [`intensity_cycles`] to a few ulp (it is not clamped to 1).
 #[inline(always)]
 pub(crate) fn intensity_ratio_flat(x: f64, y: f64, n: u32) -> (f64, f64) {
+    let (s_num, s_den) = sinc_ratio_flat(y);
+    if n <= 1 {
+        return (s_num, s_den);
+    }
     let nf = n as f64;
     let r = x - rint(x);
-    let r_hi = rint(r * SPLIT) * (1.0 / SPLIT);
-    let p_hi = nf * r_hi;
-    let s = (p_hi - rint(p_hi)) + nf * (r - r_hi);
-    let s = s - rint(s);
+    let s = reduce_n_phase(r, nf);
     let (sin_s, sin_r) = (sinpi_flat(s), sinpi_flat(r));
     let near = (nf * r).abs() <= 0.5;
     let top = s.abs() < 1e-12;
@@ -228,13 +253,6 @@ pub(crate) fn intensity_ratio_flat(x: f64, y: f64, n: u32) -> (f64, f64) {
         }
     } else {
         nf * sin_r
-    };
-    let small = y.abs() < 1e-8;
-    let s_num = if small { 1.0 } else { sinpi_flat(y - rint(y)) };
-    let s_den = if small {
-        1.0
-    } else {
-        core::f64::consts::PI * y
     };
     (f_num * s_num, f_den * s_den)
 }

@@ -84,7 +84,7 @@
 //! let wo = frame.to_local(DVec3::new(0.6, 0.7, 0.2).normalize()); // toward the eye
 //! let u = wi.x + wo.x;
 //!
-//! let xyz = spectral.xyz(&cd, u, Strategy::Auto { accuracy: 1e-3 });
+//! let xyz = spectral.xyz(&cd, u, Strategy::auto(1e-3)?);
 //! let rgb = xyz.to_linear_srgb().clip(Clip::ConstantIntensity).encode().to_rgb8();
 //! # let _ = rgb;
 //! # Ok::<(), diffraction::Error>(())
@@ -128,15 +128,19 @@ pub mod kernel;
 mod math;
 mod orders;
 mod parse;
+mod quadrature;
+mod random;
 mod special;
 pub mod spectrum;
+mod wavelengths;
 
 pub use band::Band;
 #[cfg(feature = "stam")]
 pub use bxdf::stam;
 pub use bxdf::{
-    baselines, bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf, Envelope,
-    GratingBsdf, GratingResponse, PeakSummary, SampledWavelengths, Thorman, WavelengthSample,
+    bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf, Envelope,
+    GratingBsdf, GratingResponse, PeakSummary, SpectralResponse, Thorman, WavelengthSample,
+    MIN_COS_THETA,
 };
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
@@ -145,10 +149,12 @@ pub use color_table::ColorTable;
 pub use error::{Error, Requirement};
 pub use float::Float;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
-pub use groove::GrooveSpread;
+pub use groove::{GrooveKind, GrooveSpread};
 pub use illumination::Illumination;
 pub use orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
 pub use parse::ParseError;
+pub use random::unit_random;
+pub use wavelengths::SampledWavelengths;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

@@ -24,13 +24,13 @@ use crate::Band;
 /// and [`Grating::peaks`](crate::Grating::peaks) themselves are lazy and yield every order.
 ///
 /// ```
-/// use diffraction::{AguHill, Band, DiffractionBrdf, Grating, MAX_ORDERS};
+/// use diffraction::{AguHill, Band, Grating, SpectralResponse, MAX_ORDERS};
 /// use glam::DVec3;
 /// let wide = Band::new(1e-9, 1000.0)?; // 1.6·10¹² orders at d = 1600 nm, u = 1
 /// let model = AguHill::new(Grating::new(1600.0, 800.0, 10)?);
-/// let (wi, wo) = (DVec3::new(-0.6, 0.0, 0.8), DVec3::new(0.4, 0.0, 0.9165));
+/// let (wo, wi) = (DVec3::new(0.4, 0.0, 0.9165), DVec3::new(-0.6, 0.0, 0.8));
 /// let mut seen = 0u32;
-/// let summary = model.peaks(wi, wo, wide, &mut |_| seen += 1);
+/// let summary = model.peaks(wo, wi, wide, &mut |_| seen += 1);
 /// assert_eq!((summary.orders, seen), (MAX_ORDERS, MAX_ORDERS));
 /// # Ok::<(), diffraction::Error>(())
 /// ```

@@ -133,8 +133,8 @@
 //! use diffraction::Grating;
 //! let g = Grating::new(1600.0, 800.0, 1000)?;
 //! let s = Spectral::new(Illuminant::D65);
-//! let exact = s.xyz(&g, 0.34, Strategy::Exact);
-//! let fast = s.xyz(&g, 0.34, Strategy::PeakSearch { refine: false });
+//! let exact = s.xyz(&g, 0.34, Strategy::EXACT);
+//! let fast = s.xyz(&g, 0.34, Strategy::PEAK_SEARCH);
 //! assert!((fast.y - exact.y).abs() < 2e-3 * exact.y); // O(1/N)
 //! # Ok::<(), diffraction::Error>(())
 //! ```
@@ -144,7 +144,7 @@ use glam::DVec3;
 use crate::cie;
 pub use crate::cie::Illuminant;
 use crate::color::Xyz;
-use crate::{Band, Envelope, Grating};
+use crate::{Band, Envelope, Grating, GratingResponse};
 
 mod asymptotic;
 mod auto;
@@ -158,25 +158,27 @@ mod peak_search;
 mod rules;
 mod strategy;
 
+pub mod bounds;
 use rules::{gauss_legendre_rule, midpoint_rule};
-pub use strategy::{ParseStrategyError, Strategy, DEFAULT_ACCURACY};
+pub use strategy::{
+    GenericStrategy, GenericStrategyKind, Strategy, StrategyKind, DEFAULT_ACCURACY, MAX_ACCURACY,
+    MIN_ACCURACY,
+};
 
 /// The band over which colour is integrated: that of the CIE tables.
 const BAND: Band = Band::VISIBLE;
 
-/// The most wavelengths any strategy or estimator evaluates per colour: `Uniform { samples }`
-/// and [`Spectral::xyz_hero`]'s `count` above it are taken as this many, and
-/// `GaussLegendre { intervals }` above an eighth of it as `MAX_WAVELENGTHS / 8` intervals, so
-/// every call does bounded work (2¹⁶ wavelengths: over 100 per nanometre of the band, far past
-/// where any of these rules stops improving on the 1 nm tables).
+/// The most wavelengths any strategy or estimator evaluates per colour: `uniform(K)` accepts
+/// at most this many samples and `gauss_legendre(K)` an eighth of it as intervals (a larger K
+/// is an error naming it), and [`Spectral::xyz_hero`]'s `count` above it is taken as this
+/// many, so every call does bounded work (2¹⁶ wavelengths: over 100 per nanometre of the band,
+/// far past where any of these rules stops improving on the 1 nm tables).
 ///
 /// ```
-/// use diffraction::spectrum::{Illuminant, Spectral, Strategy, MAX_WAVELENGTHS};
-/// use diffraction::Grating;
-/// let (s, g) = (Spectral::new(Illuminant::E), Grating::new(1600.0, 800.0, 10)?);
-/// let capped = Strategy::Uniform { samples: MAX_WAVELENGTHS };
-/// assert_eq!(s.xyz(&g, 0.4, Strategy::Uniform { samples: u32::MAX }), s.xyz(&g, 0.4, capped));
-/// # Ok::<(), diffraction::Error>(())
+/// use diffraction::spectrum::{Strategy, MAX_WAVELENGTHS};
+/// assert!(Strategy::uniform(MAX_WAVELENGTHS).is_ok());
+/// assert!(Strategy::uniform(u32::MAX).is_err());
+/// assert!(Strategy::gauss_legendre(MAX_WAVELENGTHS / 8 + 1).is_err());
 /// ```
 pub const MAX_WAVELENGTHS: u32 = 1 << 16;
 
@@ -187,8 +189,8 @@ pub const MAX_WAVELENGTHS: u32 = 1 << 16;
 /// use diffraction::Grating;
 /// let s = Spectral::new(Illuminant::D65);
 /// let g = Grating::new(1600.0, 800.0, 1000)?;
-/// assert_eq!(s.xyz(&g, 0.0, Strategy::Exact), s.white()); // the mirror direction is white
-/// let first = s.xyz(&g, 0.34, Strategy::Exact); // order 1 at 544 nm
+/// assert_eq!(s.xyz(&g, 0.0, Strategy::EXACT), s.white()); // the mirror direction is white
+/// let first = s.xyz(&g, 0.34, Strategy::EXACT); // order 1 at 544 nm
 /// assert!(first.y > 0.0 && first.y < 0.01); // it holds about 1/N of the light
 /// # Ok::<(), diffraction::Error>(())
 /// ```
@@ -245,9 +247,9 @@ impl Spectral {
     /// let g = Grating::new(1600.0, 800.0, 1000)?;
     /// let per_nm = s.with_envelope(Envelope::new(1, 0.0)?);
     /// // Order 1 at 544 nm: about 1/544 of the plain colour.
-    /// let (a, b) = (s.xyz(&g, 0.34, Strategy::Exact).y, per_nm.xyz(&g, 0.34, Strategy::Exact).y);
+    /// let (a, b) = (s.xyz(&g, 0.34, Strategy::EXACT).y, per_nm.xyz(&g, 0.34, Strategy::EXACT).y);
     /// assert!((b * 544.0 / a - 1.0).abs() < 2e-3);
-    /// assert!(per_nm.xyz(&g, 0.0, Strategy::Exact).y < 1.0 / 360.0); // ∫E·ȳ/λ / ∫E·ȳ
+    /// assert!(per_nm.xyz(&g, 0.0, Strategy::EXACT).y < 1.0 / 360.0); // ∫E·ȳ/λ / ∫E·ȳ
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
@@ -329,9 +331,9 @@ impl Spectral {
     /// use diffraction::Grating;
     /// let g = Grating::new(1600.0, 800.0, 1000)?;
     /// let s = Spectral::new(Illuminant::E);
-    /// let exact = s.xyz(&g, 0.34, Strategy::Exact);
-    /// assert_eq!(exact, s.xyz(&g, -0.34, Strategy::Exact)); // I is even in u
-    /// let auto = s.xyz(&g, 0.34, Strategy::Auto { accuracy: 1e-2 });
+    /// let exact = s.xyz(&g, 0.34, Strategy::EXACT);
+    /// assert_eq!(exact, s.xyz(&g, -0.34, Strategy::EXACT)); // I is even in u
+    /// let auto = s.xyz(&g, 0.34, Strategy::auto(1e-2)?);
     /// // As requested: the only visible order is the brightest, so the bound is relative to it.
     /// assert!((auto.y - exact.y).abs() <= 1e-2 * exact.y);
     /// # Ok::<(), diffraction::Error>(())
@@ -346,22 +348,53 @@ impl Spectral {
             // I(0, λ) = S(0)·F_N(0) = 1 at every wavelength.
             return self.flat();
         }
-        let v = match strategy {
-            Strategy::Uniform { samples } => {
+        let v = match self.choose(grating, u, strategy).kind() {
+            StrategyKind::Uniform { samples } => {
                 midpoint_rule(samples, &|l| self.integrand(grating, u, l))
             }
-            Strategy::GaussLegendre { intervals } => {
+            StrategyKind::GaussLegendre { intervals } => {
                 gauss_legendre_rule(intervals, &|l| self.integrand(grating, u, l))
             }
-            Strategy::PeakSearch { refine } => self.peak_search(grating, u, refine),
-            Strategy::PaperPeaks => self.paper_peaks(grating, u),
-            Strategy::Exact => self.exact(grating, u),
-            Strategy::Asymptotic => self.asymptotic(grating, u),
-            Strategy::Auto { accuracy } => {
-                return self.xyz(grating, u, self.choose(grating, u, accuracy))
-            }
+            StrategyKind::PeakSearch => self.peak_search(grating, u, false),
+            StrategyKind::PeakSearchRefined => self.peak_search(grating, u, true),
+            StrategyKind::Exact => self.exact(grating, u),
+            StrategyKind::Asymptotic => self.asymptotic(grating, u),
+            // `choose` resolves `auto` into one of the above.
+            StrategyKind::Auto { .. } => self.exact(grating, u),
         };
         Xyz::new(v.x, v.y, v.z)
+    }
+
+    /// The reference colour of a model's response in its grating form
+    /// ([`SpectralResponse::grating_response`](crate::SpectralResponse::grating_response)):
+    /// `scale · envelope(λ) · I(u, λ)` of the response's grating, by `strategy`, with the
+    /// strategy's bound.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+    /// use diffraction::{AguHill, Grating, SpectralResponse};
+    /// use glam::DVec3;
+    /// let g = Grating::new(1600.0, 800.0, 300)?;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let (wo, wi) = (DVec3::new(0.35, 0.0, (1.0f64 - 0.35 * 0.35).sqrt()), DVec3::Z);
+    /// let r = AguHill::new(g).grating_response(wo, wi).unwrap();
+    /// // The paper's model is its grating's intensity: the colour of `xyz` at u = 0.35.
+    /// assert_eq!(s.xyz_response(&r, Strategy::EXACT), s.xyz(&g, 0.35, Strategy::EXACT));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn xyz_response(&self, response: &GratingResponse, strategy: Strategy) -> Xyz {
+        let spectral = if response.envelope.is_one() {
+            *self
+        } else {
+            self.with_envelope(response.envelope)
+        };
+        let scale = if response.scale.is_finite() {
+            response.scale.max(0.0)
+        } else {
+            0.0
+        };
+        saturate(spectral.xyz(&response.grating, response.u, strategy) * scale)
     }
 
     /// E·I·cmf·norm at λ.
@@ -371,4 +404,11 @@ impl Spectral {
         let w = self.weight(lambda_nm);
         w * i
     }
+}
+
+/// Every component finite and ≥ 0: NaN and negative as 0, +∞ as `f64::MAX` (a product of a
+/// caller's huge scale with a colour saturates instead of overflowing).
+pub(crate) fn saturate(c: Xyz) -> Xyz {
+    let f = |v: f64| if v > 0.0 { v.min(f64::MAX) } else { 0.0 };
+    Xyz::new(f(c.x), f(c.y), f(c.z))
 }

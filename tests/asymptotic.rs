@@ -1,5 +1,5 @@
-//! `Strategy::Asymptotic` against the independent reference of `python_ref/`
-//! (`tests/data/spectral_xyz.csv`) and against `Strategy::Exact` over a sweep of gratings and
+//! `Strategy::ASYMPTOTIC` against the independent reference of `python_ref/`
+//! (`tests/data/spectral_xyz.csv`) and against `Strategy::EXACT` over a sweep of gratings and
 //! directions.
 //!
 //! Errors are taken as in `tests/spectral_reference.rs` and docs/accuracy.md: the largest channel
@@ -115,7 +115,7 @@ fn asymptotic_matches_reference_data() {
         }
         let s = &spectral[(ill == Illuminant::D65) as usize];
         let g = Grating::with_slits(d, w, Slits::Finite(n)).unwrap();
-        let c = s.xyz(&g, u, Strategy::Asymptotic);
+        let c = s.xyz(&g, u, Strategy::ASYMPTOTIC);
         cases.push(Case {
             d,
             w,
@@ -151,8 +151,8 @@ fn sweep(slits: &[u32], periods: &[f64], duties: &[f64], us: &[f64]) -> Vec<Case
                 for &n in slits {
                     let g = Grating::new(d, d * duty, n).unwrap();
                     for &u in us {
-                        let e = s.xyz(&g, u, Strategy::Exact);
-                        let a = s.xyz(&g, u, Strategy::Asymptotic);
+                        let e = s.xyz(&g, u, Strategy::EXACT);
+                        let a = s.xyz(&g, u, Strategy::ASYMPTOTIC);
                         out.push(Case {
                             d,
                             w: d * duty,
@@ -195,8 +195,8 @@ fn asymptotic_matches_exact_full_sweep() {
 
 #[test]
 fn asymptotic_name_round_trips() {
-    assert_eq!(Strategy::Asymptotic.to_string(), "asymptotic");
-    assert_eq!("asymptotic".parse(), Ok(Strategy::Asymptotic));
+    assert_eq!(Strategy::ASYMPTOTIC.to_string(), "asymptotic");
+    assert_eq!("asymptotic".parse(), Ok(Strategy::ASYMPTOTIC));
 }
 
 /// Finite, non-negative and bounded work at the extremes: N = 5 and 10⁷, u = 0 and 2,
@@ -209,7 +209,7 @@ fn asymptotic_is_finite_at_extremes() {
             for n in [5u32, 7, 10_000_000] {
                 let g = Grating::new(d, w, n).unwrap();
                 for u in [0.0, 1e-12, 1e-6, 0.5, 1.0, 2.0, -2.0, 1e3] {
-                    let c = s.xyz(&g, u, Strategy::Asymptotic);
+                    let c = s.xyz(&g, u, Strategy::ASYMPTOTIC);
                     assert!(
                         c.x.is_finite() && c.y.is_finite() && c.z.is_finite(),
                         "d={d} w={w} N={n} u={u}: {c:?}"
@@ -229,9 +229,9 @@ fn list_times_over_the_report_grid() {
     let s = Spectral::new(Illuminant::D65);
     let us = u_grid(false);
     let strategies = [
-        Strategy::Asymptotic,
-        Strategy::PeakSearch { refine: false },
-        Strategy::Auto { accuracy: 1e-3 },
+        Strategy::ASYMPTOTIC,
+        Strategy::PEAK_SEARCH,
+        Strategy::auto(1e-3).unwrap(),
     ];
     let mut cells = vec![Vec::new(); strategies.len()];
     for d in [740.0, 1600.0, 10_000.0, 100_000.0] {

@@ -8,7 +8,8 @@ mod bsdf_check;
 use bsdf_check::*;
 use diffraction::{
     groove::{COHERENCE_PROXY_BOUND, GAUSSIAN_PROXY_BOUND},
-    Band, Bsdf, Grating, GratingBsdf, GrooveSpread, SampledWavelengths,
+    Band, Bsdf, DiffractionBrdf, Grating, GratingBsdf, GrooveKind, GrooveSpread,
+    SampledWavelengths,
 };
 
 /// Closed-form mass against 8-point Gauss-Legendre on ≥ 4000 pieces of the value: measured
@@ -18,11 +19,9 @@ const MASS_AGREEMENT: f64 = 1e-13;
 
 fn spreads() -> [GrooveSpread; 3] {
     [
-        GrooveSpread::CoherenceLength {
-            length_nm: 20_000.0,
-        },
-        GrooveSpread::CoherenceLength { length_nm: 1.6e9 },
-        GrooveSpread::Gaussian { sigma: 0.03 },
+        GrooveSpread::coherence_length(20_000.0).unwrap(),
+        GrooveSpread::coherence_length(1.6e9).unwrap(),
+        GrooveSpread::gaussian(0.03).unwrap(),
     ]
 }
 
@@ -32,8 +31,8 @@ fn mass_is_the_integral_of_the_value() {
         for (a, b) in [(-0.2, 0.1), (0.05, 0.4), (-1e-6, 2e-6), (-2.0, -0.5)] {
             let l = 532.0;
             // Pieces fine enough for the lobe and every side lobe (period λ/L in v).
-            let scale = match g {
-                GrooveSpread::CoherenceLength { length_nm } => l / length_nm,
+            let scale = match g.kind() {
+                GrooveKind::CoherenceLength { length_nm } => l / length_nm,
                 _ => g.proxy_scale(l),
             };
             let pieces = ((b - a) / scale * 4.0).clamp(4000.0, 2_000_000.0) as usize;
@@ -79,11 +78,11 @@ fn four_wavelengths_equal_four_calls() {
     for n in [1, 30, 1_000_000] {
         let b = GratingBsdf::new(Grating::new(1600.0, 800.0, n).unwrap());
         for _ in 0..500 {
-            let (wo, wi) = (rng.hemisphere(0.01), rng.hemisphere(0.01));
-            let l = SampledWavelengths::sample_uniform(rng.uniform(), Band::VISIBLE);
-            let (f4, p4) = (b.f4(wo, wi, &l), b.pdf4(wo, wi, &l));
+            let (wo, wi) = (rng.direction(0.01), rng.direction(0.01));
+            let l = SampledWavelengths::sample_uniform(rng.next_f64(), Band::VISIBLE);
+            let (f4, p4) = (b.eval4(wo, wi, &l), b.pdf4(wo, wi, &l));
             for i in 0..4 {
-                assert_eq!(f4[i], b.f(wo, wi, l.lambda()[i]));
+                assert_eq!(f4[i], b.eval(wo, wi, l.lambda()[i]));
                 assert_eq!(p4[i], b.pdf(wo, wi, l.lambda()[i]));
             }
         }

@@ -8,7 +8,7 @@ mod bsdf_check;
 use bsdf_check::*;
 use diffraction::cie::{cmf, Illuminant};
 use diffraction::grating_bsdf::DEFENSIVE_WAVELENGTH_SHARE;
-use diffraction::{Band, Bsdf, Grating, GratingBsdf};
+use diffraction::{Band, DiffractionBrdf, Grating, GratingBsdf};
 use glam::DVec3;
 
 const PERIOD: f64 = 1600.0;
@@ -93,8 +93,8 @@ fn sampled_wavelengths_carry_their_pdf() {
     for n in [1, 30, 1000, 1_000_000] {
         let b = grating(n);
         for _ in 0..2000 {
-            let (wo, wi) = (rng.hemisphere(0.05), rng.hemisphere(0.05));
-            if let Some(s) = b.sample_wavelength(wo, wi, Band::VISIBLE, rng.uniform()) {
+            let (wo, wi) = (rng.direction(0.05), rng.direction(0.05));
+            if let Some(s) = b.sample_wavelength(wo, wi, Band::VISIBLE, rng.next_f64()) {
                 assert!(Band::VISIBLE.contains(s.lambda_nm));
                 assert_eq!(s.pdf, b.wavelength_pdf(wo, wi, Band::VISIBLE, s.lambda_nm));
             }
@@ -128,7 +128,7 @@ fn chi2_and_integral_of_the_wavelength_sampler() {
         let mut accepted = 0usize;
         let a = nf.atan();
         for _ in 0..samples {
-            if let Some(s) = b.sample_wavelength(wo, wi, band, rng.uniform()) {
+            if let Some(s) = b.sample_wavelength(wo, wi, band, rng.next_f64()) {
                 accepted += 1;
                 let x = q / s.lambda_nm;
                 let m = x.round() as i64;
@@ -176,7 +176,7 @@ fn variances(n: u32, u: f64, mc_samples: usize) -> (f64, f64, f64, f64) {
     let band = Band::VISIBLE;
     let (wo, wi) = pair(u);
     let q = PERIOD * u;
-    let h = |l: f64| b.f(wo, wi, l) * Illuminant::D65.power(l) * cmf(l)[1];
+    let h = |l: f64| b.eval(wo, wi, l) * Illuminant::D65.power(l) * cmf(l)[1];
     let mean = integrate_peaks(n as f64, q, band, &h, None);
     let h2 = integrate_peaks(n as f64, q, band, &|l| h(l) * h(l), None);
     let h2p = integrate_peaks(
@@ -199,7 +199,7 @@ fn variances(n: u32, u: f64, mc_samples: usize) -> (f64, f64, f64, f64) {
     let (mut s1, mut s2) = (0.0, 0.0);
     for _ in 0..mc_samples {
         let y = b
-            .sample_wavelength(wo, wi, band, rng.uniform())
+            .sample_wavelength(wo, wi, band, rng.next_f64())
             .map_or(0.0, |s| h(s.lambda_nm) / s.pdf);
         s1 += y;
         s2 += y * y;

@@ -10,6 +10,9 @@
 //!
 //! `sweep` runs in well under a second; `sweep_long` (ignored) runs a hundred times as many.
 
+#[path = "support/rng.rs"]
+mod rng;
+
 use diffraction::cie::{cmf, Illuminant};
 use diffraction::color::{
     delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz,
@@ -57,16 +60,12 @@ const SPECIAL: [f64; 24] = [
     f64::MAX / 2.0,
 ];
 
-/// SplitMix64: a tiny seeded generator, enough to pick inputs.
-struct Rng(u64);
+/// Inputs drawn from the tests' seeded generator.
+struct Rng(rng::Rng);
 
 impl Rng {
     fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
 
     /// Half the time a special value, otherwise ±m·10^e with e uniform in [−323, 308] (clamped
@@ -139,7 +138,7 @@ fn whites(rng: &mut Rng) -> (Xyz, Result<WhitePoint, Error>) {
 }
 
 fn run(seed: u64, iterations: u64) -> Counts {
-    let mut rng = Rng(seed);
+    let mut rng = Rng(rng::Rng(seed));
     let mut n = Counts::default();
     let d65 = WhitePoint::new(Xyz::new(
         0.950_470_713_436_261_4,

@@ -1,4 +1,4 @@
-//! `ColorTable` against the reference `Spectral::xyz(.., Strategy::Exact)`: lookups at random u,
+//! `ColorTable` against the reference `Spectral::xyz(.., Strategy::EXACT)`: lookups at random u,
 //! means over intervals against a fine quadrature of the reference in u, and extreme inputs.
 //!
 //! Errors are measured as in docs/accuracy.md: relative to the grating's brightest diffracted
@@ -107,7 +107,7 @@ struct Worst {
 }
 
 fn lookup_errors(s: &Spectral, g: &Grating, n: u32, table: &ColorTable, us: &[f64]) -> Worst {
-    let reference: Vec<Xyz> = us.iter().map(|&u| s.xyz(g, u, Strategy::Exact)).collect();
+    let reference: Vec<Xyz> = us.iter().map(|&u| s.xyz(g, u, Strategy::EXACT)).collect();
     let bright = brightest(g, n, us, &reference);
     let mut w = Worst {
         rel: 0.0,
@@ -130,7 +130,7 @@ fn lookup_errors(s: &Spectral, g: &Grating, n: u32, table: &ColorTable, us: &[f6
 /// The mean of `Exact` over [a, b] (0 ≤ a < b) by 8-point Gauss-Legendre on pieces no wider than
 /// (b − a)/16 nor than max(u/8, lobe/32), lobe = 360 nm/(N·d) the width of order 0's lobe.
 fn reference_integral(s: &Spectral, g: &Grating, n: u32, a: f64, b: f64) -> [f64; 3] {
-    use fine_quadrature::{W, X};
+    use fine_quadrature::{W8 as W, X8 as X};
     let lobe = 360.0 / (n as f64 * g.period_nm());
     let mut acc = [0.0; 3];
     let mut x = a;
@@ -139,7 +139,7 @@ fn reference_integral(s: &Spectral, g: &Grating, n: u32, a: f64, b: f64) -> [f64
         let e = (x + step).min(b);
         let (mid, half) = (0.5 * (x + e), 0.5 * (e - x));
         for (xi, wi) in X.iter().zip(W) {
-            let c = s.xyz(g, mid + half * xi, Strategy::Exact);
+            let c = s.xyz(g, mid + half * xi, Strategy::EXACT);
             acc[0] += wi * half * c.x;
             acc[1] += wi * half * c.y;
             acc[2] += wi * half * c.z;
@@ -194,7 +194,7 @@ fn intervals(g: &Grating, n: u32, seed: u64) -> Vec<(f64, f64)> {
 /// Errors of the footprint means of one grating, worst (relative, ΔE2000).
 fn mean_errors(s: &Spectral, g: &Grating, n: u32, table: &ColorTable, seed: u64) -> (f64, f64) {
     let us = sample_u(100, seed);
-    let reference: Vec<Xyz> = us.iter().map(|&u| s.xyz(g, u, Strategy::Exact)).collect();
+    let reference: Vec<Xyz> = us.iter().map(|&u| s.xyz(g, u, Strategy::EXACT)).collect();
     let bright = brightest(g, n, &us, &reference);
     let mut worst = (0.0f64, 0.0f64);
     for (u0, u1) in intervals(g, n, seed) {

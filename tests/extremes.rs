@@ -13,16 +13,22 @@ use std::cell::Cell;
 
 use diffraction::frame::{phase_projection, GratingField, ShadingFrame, Tile};
 use diffraction::kernel::{n_slit, n_slit_cycles, single_slit, single_slit_cycles};
-use diffraction::spectrum::{Illuminant, Spectral, Strategy};
+use diffraction::spectrum::{GenericStrategy, Illuminant, Spectral, Strategy};
 use diffraction::stam::bessel_j;
 use diffraction::{
-    AguHill, Band, DiffractionBrdf, Grating, GratingEquation, Illumination, Peak, PeakSummary,
-    Profile, Slits, Stam, Thorman, MAX_ORDERS,
+    AguHill, Band, Grating, GratingEquation, Illumination, Peak, PeakSummary, Profile, Slits,
+    SpectralResponse, Stam, Thorman, MAX_ORDERS,
 };
 use glam::{DVec2, DVec3};
 
-/// The most `eval` calls one `Spectral::xyz_brdf` call may make on the generic path. `Exact`
-/// is the largest: 470·8 for the 1 nm rule, plus per refined window 16 per nm it spans + 16 +
+#[path = "support/generic_models.rs"]
+mod generic_models;
+#[path = "support/rng.rs"]
+mod rng;
+use generic_models::Model;
+
+/// The most `response` calls one `Spectral::xyz_brdf` call may make on the generic path.
+/// `WINDOWS` is the largest: 470·8 for the 1 nm rule, plus per refined window 16 per nm it spans + 16 +
 /// 128 pieces × 2 rows × 8; the windows never overlap and each spans whole nanometres, so at
 /// most 470 of them: 3760 + 16·470 + 470·2064 < 10⁶. Measured maximum over the quick sweep:
 /// 496 320 (a 2× margin).
@@ -30,20 +36,20 @@ const MAX_EVALS_PER_CALL: u64 = 1_000_000;
 
 /// The most peaks one `peaks` call may visit: the documented cap.
 const MAX_VISITS_PER_CALL: u64 = MAX_ORDERS as u64;
+/// The most `peaks` passes one colour call makes on the generic path: `auto` reads the peaks'
+/// sharpness first, then runs its rule, whose peak search may hand over to `WINDOWS`, each
+/// one pass.
+const MAX_PASSES_PER_CALL: u64 = 3;
 
 /// Cases drawn by the quick sweep.
 const QUICK_CASES: usize = 300;
 
-/// SplitMix64: a seeded generator, so that every run tries the same inputs.
-struct Rng(u64);
+/// Inputs drawn from the tests' seeded generator, so that every run tries the same ones.
+struct Rng(rng::Rng);
 
 impl Rng {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
     fn pick<T: Copy>(&mut self, pool: &[T]) -> T {
         pool[(self.next() % pool.len() as u64) as usize]
@@ -118,27 +124,23 @@ const EXTREMES: &[f64] = &[
 
 const COUNTS: &[u32] = &[0, 1, 2, 3, 7, 1000, 1_000_000, 10_000_000, u32::MAX];
 
-/// A model that counts what the integrator asks of it, delegating to `inner` but without a
-/// grating response, so that `Spectral::xyz_brdf` takes the generic path.
+/// A model that counts what the colour integrator asks of it, delegating to `inner`.
 struct Counting<'a> {
-    inner: &'a dyn DiffractionBrdf,
+    inner: &'a dyn Model,
     evals: Cell<u64>,
     visits: Cell<u64>,
 }
 
-impl DiffractionBrdf for Counting<'_> {
-    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
+impl SpectralResponse for Counting<'_> {
+    fn response(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
         self.evals.set(self.evals.get() + 1);
-        self.inner.eval(wi, wo, lambda_nm)
+        self.inner.response(wo, wi, lambda_nm)
     }
-    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        self.inner.peaks(wi, wo, band, &mut |p| {
+    fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
+        self.inner.peaks(wo, wi, band, &mut |p| {
             self.visits.set(self.visits.get() + 1);
             visit(p)
         })
-    }
-    fn cosine_included(&self) -> bool {
-        self.inner.cosine_included()
     }
 }
 
@@ -157,26 +159,78 @@ fn finite(v: f64, what: &str) {
     assert!(v.is_finite(), "{what}: {v}");
 }
 
-const STRATEGIES: &[Strategy] = &[
-    Strategy::Uniform { samples: 0 },
-    Strategy::Uniform { samples: 7 },
-    Strategy::Uniform { samples: u32::MAX },
-    Strategy::GaussLegendre { intervals: 0 },
-    Strategy::GaussLegendre { intervals: 16 },
-    Strategy::GaussLegendre {
-        intervals: u32::MAX,
-    },
-    Strategy::PeakSearch { refine: false },
-    Strategy::PeakSearch { refine: true },
-    Strategy::PaperPeaks,
-    Strategy::Asymptotic,
-    Strategy::Exact,
-    Strategy::Auto { accuracy: 1e-3 },
-    Strategy::Auto { accuracy: 1e-12 },
-    Strategy::Auto { accuracy: 5e-324 },
-    Strategy::Auto { accuracy: f64::MAX },
-    Strategy::Auto { accuracy: -1.0 },
-];
+/// Every grating strategy at the ends of its accepted range.
+fn strategies() -> Vec<Strategy> {
+    vec![
+        Strategy::uniform(1).unwrap(),
+        Strategy::uniform(7).unwrap(),
+        Strategy::uniform(diffraction::spectrum::MAX_WAVELENGTHS).unwrap(),
+        Strategy::gauss_legendre(1).unwrap(),
+        Strategy::gauss_legendre(16).unwrap(),
+        Strategy::gauss_legendre(diffraction::spectrum::MAX_WAVELENGTHS / 8).unwrap(),
+        Strategy::PEAK_SEARCH,
+        Strategy::PEAK_SEARCH_REFINED,
+        Strategy::ASYMPTOTIC,
+        Strategy::EXACT,
+        Strategy::auto(1e-3).unwrap(),
+        Strategy::auto(diffraction::spectrum::MIN_ACCURACY).unwrap(),
+        Strategy::auto(diffraction::spectrum::MAX_ACCURACY).unwrap(),
+    ]
+}
+
+/// Every generic rule at the ends of its accepted range.
+fn generic_strategies() -> Vec<GenericStrategy> {
+    vec![
+        GenericStrategy::uniform(1).unwrap(),
+        GenericStrategy::uniform(diffraction::spectrum::MAX_WAVELENGTHS).unwrap(),
+        GenericStrategy::gauss_legendre(16).unwrap(),
+        GenericStrategy::gauss_legendre(diffraction::spectrum::MAX_WAVELENGTHS / 8).unwrap(),
+        GenericStrategy::PEAK_SEARCH,
+        GenericStrategy::WINDOWS,
+        GenericStrategy::auto(1e-3).unwrap(),
+        GenericStrategy::auto(diffraction::spectrum::MIN_ACCURACY).unwrap(),
+    ]
+}
+
+/// Counts and accuracies outside the accepted ranges are refused where the strategy is built,
+/// with the parameter's name.
+#[test]
+fn strategies_outside_their_range_are_refused() {
+    for k in [0, diffraction::spectrum::MAX_WAVELENGTHS + 1, u32::MAX] {
+        assert_eq!(Strategy::uniform(k).unwrap_err().parameter(), "samples");
+        assert_eq!(
+            GenericStrategy::uniform(k).unwrap_err().parameter(),
+            "samples"
+        );
+    }
+    for k in [0, diffraction::spectrum::MAX_WAVELENGTHS, u32::MAX] {
+        assert_eq!(
+            Strategy::gauss_legendre(k).unwrap_err().parameter(),
+            "intervals"
+        );
+    }
+    for a in [
+        0.0,
+        -1.0,
+        5e-324,
+        1e-12,
+        2.0,
+        f64::MAX,
+        f64::NAN,
+        f64::INFINITY,
+    ] {
+        assert_eq!(
+            Strategy::auto(a).unwrap_err().parameter(),
+            "accuracy",
+            "{a}"
+        );
+        assert_eq!(
+            GenericStrategy::auto(a).unwrap_err().parameter(),
+            "accuracy",
+            "{a}"
+        );
+    }
+}
 
 fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
     // Gratings: d from the pools (1e-6 to 1e12 nm and beyond), w ≤ d, N from the counts.
@@ -240,7 +294,7 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
         finite_nonneg(p.intensity, "peak intensity");
         finite_nonneg(p.equivalent_width_nm, "peak width");
     }
-    let (wi, wo) = (rng.direction(), rng.direction());
+    let (wo, wi) = (rng.direction(), rng.direction());
     for o in g.diffracted_orders(wi, lambda).take(8) {
         assert!(
             o.direction.is_finite() && o.intensity.is_finite(),
@@ -258,7 +312,7 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
     )
     .ok();
     let _ = Thorman::matching(&g, lambda);
-    let mut models: Vec<&dyn DiffractionBrdf> = vec![&agu];
+    let mut models: Vec<&dyn Model> = vec![&agu];
     if let Some(t) = &thorman {
         models.push(t);
     }
@@ -269,15 +323,16 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
     let light = rng.positive().min(1e6);
     let shading = Illumination::new(0.1, 0.5, 1.0).unwrap();
     for &m in &models {
-        finite_nonneg(m.eval(wi, wo, lambda), "eval");
+        finite_nonneg(m.eval(wo, wi, lambda), "eval");
         let clamp3 = |v: DVec3| {
             v.as_vec3()
                 .clamp(glam::Vec3::splat(f32::MIN), glam::Vec3::splat(f32::MAX))
         };
         let l32 = (lambda as f32).clamp(f32::MIN, f32::MAX);
-        finite_nonneg(m.eval_f32(clamp3(wi), clamp3(wo), l32) as f64, "eval_f32");
+        finite_nonneg(m.eval_f32(clamp3(wo), clamp3(wi), l32) as f64, "eval_f32");
+        finite_nonneg(m.response(wo, wi, lambda), "response");
         finite_nonneg(
-            shading.eval(m, wi, wo, lambda, light, light),
+            shading.eval(m, wo, wi, lambda, light, light),
             "Illumination::eval",
         );
         let counting = Counting {
@@ -285,7 +340,7 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
             evals: Cell::new(0),
             visits: Cell::new(0),
         };
-        let summary = counting.peaks(wi, wo, band, &mut |p| {
+        let summary = counting.peaks(wo, wi, band, &mut |p| {
             assert!(
                 p.intensity.is_finite() && p.intensity >= 0.0,
                 "peak of a model"
@@ -293,36 +348,51 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
         });
         assert!(u64::from(summary.orders) <= MAX_VISITS_PER_CALL);
         tally.max_visits = tally.max_visits.max(counting.visits.get());
-        let strategy = rng.pick(STRATEGIES);
-        counting.visits.set(0);
-        let c = spectral.xyz_brdf(&counting, wi, wo, strategy);
-        for v in [c.x, c.y, c.z] {
-            finite_nonneg(v, "xyz_brdf");
+        let strategy = rng.pick(&generic_strategies());
+        for paper in [false, true] {
+            counting.visits.set(0);
+            counting.evals.set(0);
+            let c = if paper {
+                spectral.paper_peaks_brdf(&counting, wo, wi)
+            } else {
+                spectral.xyz_brdf(&counting, wo, wi, strategy)
+            };
+            for v in [c.x, c.y, c.z] {
+                finite_nonneg(
+                    v,
+                    if paper {
+                        "paper_peaks_brdf"
+                    } else {
+                        "xyz_brdf"
+                    },
+                );
+            }
+            assert!(
+                counting.evals.get() <= MAX_EVALS_PER_CALL,
+                "{} evals",
+                counting.evals.get()
+            );
+            assert!(
+                counting.visits.get() <= MAX_PASSES_PER_CALL * MAX_VISITS_PER_CALL,
+                "{} visits",
+                counting.visits.get()
+            );
+            tally.max_evals = tally.max_evals.max(counting.evals.get());
+            tally.max_visits = tally.max_visits.max(counting.visits.get());
+            tally.calls += 1;
         }
-        assert!(
-            counting.evals.get() <= MAX_EVALS_PER_CALL,
-            "{} evals",
-            counting.evals.get()
-        );
-        assert!(
-            counting.visits.get() <= MAX_VISITS_PER_CALL,
-            "{} visits",
-            counting.visits.get()
-        );
-        tally.max_evals = tally.max_evals.max(counting.evals.get());
-        tally.max_visits = tally.max_visits.max(counting.visits.get());
-        tally.calls += 1;
     }
     // The grating paths of every strategy, and the Monte-Carlo estimators.
-    let strategy = rng.pick(STRATEGIES);
+    let strategy = rng.pick(&strategies());
     let c = spectral.xyz(&g, u, strategy);
-    for v in [c.x, c.y, c.z] {
+    let p = spectral.paper_peaks(&g, u);
+    for v in [c.x, c.y, c.z, p.x, p.y, p.z] {
         finite_nonneg(
             v,
             &format!("xyz(d = {d:e}, w = {w:e}, {slits:?}, u = {u:e}, {strategy})"),
         );
     }
-    let _ = spectral.choose(&g, u, rng.real());
+    let _ = spectral.choose(&g, u, strategy);
     let h = spectral.xyz_hero(&g, u, rng.real(), rng.pick(COUNTS));
     let st = spectral.xyz_stratified(&g, u, &[rng.real(), rng.real(), rng.real()]);
     for v in [h.x, h.y, h.z, st.x, st.y, st.z] {
@@ -370,7 +440,7 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
 
 fn sweep_with(cases: usize, seed: u64) {
     let spectral = Spectral::new(Illuminant::D65);
-    let mut rng = Rng(seed);
+    let mut rng = Rng(rng::Rng(seed));
     let mut tally = Tally::default();
     for _ in 0..cases {
         one_case(&mut rng, &spectral, &mut tally);
@@ -400,26 +470,23 @@ fn reproducers() {
     let g = Grating::new(1600.0, 800.0, 1000).unwrap();
     for u in [1e-310, 5e-324, 1e-300] {
         for st in [
-            Strategy::Exact,
-            Strategy::PeakSearch { refine: false },
-            Strategy::PeakSearch { refine: true },
-            Strategy::Auto { accuracy: 1e-12 },
+            Strategy::EXACT,
+            Strategy::PEAK_SEARCH,
+            Strategy::PEAK_SEARCH_REFINED,
+            Strategy::auto(diffraction::spectrum::MIN_ACCURACY).unwrap(),
         ] {
             assert_eq!(s.xyz(&g, u, st), s.white(), "u = {u}, {st}");
         }
     }
     let fine = Grating::new(200.0, 100.0, 1000).unwrap();
-    assert_eq!(
-        s.xyz(&fine, 5e-324, Strategy::PeakSearch { refine: false }),
-        s.white()
-    );
+    assert_eq!(s.xyz(&fine, 5e-324, Strategy::PEAK_SEARCH), s.white());
     // Periods of 10¹⁹ and 10³⁰⁰ nm: finite, and the dense comb scales as 1/(d·u)² (its mean
     // intensity is λ²/(2π²·N·w²·u²)), so 1e9 → 1e19 divides the colour by 1e20.
     let y = |d: f64, st| s.xyz(&Grating::new(d, d / 2.0, 1000).unwrap(), 1.0, st).y;
     for st in [
-        Strategy::Exact,
-        Strategy::Auto { accuracy: 1e-3 },
-        Strategy::PeakSearch { refine: false },
+        Strategy::EXACT,
+        Strategy::auto(1e-3).unwrap(),
+        Strategy::PEAK_SEARCH,
     ] {
         let (a, b) = (y(1e9, st), y(1e19, st));
         assert!(

@@ -9,10 +9,10 @@ mod generic_models;
 mod tolerance;
 
 use diffraction::cie::{cmf, Illuminant};
-use diffraction::spectrum::{Spectral, Strategy};
-use diffraction::{AguHill, Band, DiffractionBrdf, Grating, Thorman};
+use diffraction::spectrum::{GenericStrategy, Spectral, Strategy};
+use diffraction::{AguHill, Band, Grating, SpectralResponse, Thorman};
 use fine_quadrature::reference_xyz;
-use generic_models::{sharpest, unit_upper, Opaque};
+use generic_models::{sharpest, unit_upper, Model};
 use glam::DVec3;
 use proptest::prelude::*;
 use std::fs;
@@ -77,13 +77,13 @@ fn white_points() {
     let g = Grating::new(1600.0, 800.0, 100).unwrap();
     let s = Spectral::new(Illuminant::D65);
     for st in [
-        Strategy::Exact,
-        Strategy::PeakSearch { refine: false },
-        Strategy::Uniform { samples: 10 },
-        Strategy::PaperPeaks,
+        Strategy::EXACT,
+        Strategy::PEAK_SEARCH,
+        Strategy::uniform(10).unwrap(),
     ] {
         assert_eq!(s.xyz(&g, 0.0, st), d);
     }
+    assert_eq!(s.paper_peaks(&g, 0.0), d);
 }
 
 /// The paper's mode is Σ S(β_m)·(E(λ_m)/Ē)·cmf(λ_m): under E (Ē = 1) one visible order gives
@@ -96,7 +96,7 @@ fn paper_peaks_are_weighted_spectral_colours() {
         let u = 0.35; // d·u = 560 nm: only order 1 is in the band
         let p: Vec<_> = g.peaks(u, Band::VISIBLE).collect();
         assert_eq!(p.len(), 1);
-        let c = s.xyz(&g, u, Strategy::PaperPeaks);
+        let c = s.paper_peaks(&g, u);
         let want = cmf(560.0).map(|v| v * p[0].intensity);
         assert!((c.x - want[0]).abs() < 1e-12 && (c.y - want[1]).abs() < 1e-12);
         assert!((c.z - want[2]).abs() < 1e-12);
@@ -109,7 +109,7 @@ fn peak_search_is_the_analytic_weight() {
     let s = Spectral::new(Illuminant::E);
     let g = Grating::new(1600.0, 800.0, 5000).unwrap();
     let u = 0.9; // orders 2, 3, 4 at 720, 480, 360 nm; the 360 nm one sits on the band edge
-    let c = s.xyz(&g, u, Strategy::PeakSearch { refine: false });
+    let c = s.xyz(&g, u, Strategy::PEAK_SEARCH);
     // ∫ȳ of the linearly interpolated table: the trapezoid rule on its 1 nm rows is exact.
     let ybar_area: f64 = (360..830)
         .map(|l| 0.5 * (cmf(l as f64)[1] + cmf(l as f64 + 1.0)[1]))
@@ -128,7 +128,7 @@ fn peak_search_is_the_analytic_weight() {
     let two_orders = s.xyz(
         &Grating::new(1600.0, 800.0, 5000).unwrap(),
         0.7,
-        Strategy::PeakSearch { refine: false },
+        Strategy::PEAK_SEARCH,
     );
     let mut want2 = 0.0; // d·u = 1120: orders 2 (560 nm) and 3 (373.3 nm), both inside
     for p in g.peaks(0.7, Band::VISIBLE) {
@@ -140,15 +140,24 @@ fn peak_search_is_the_analytic_weight() {
 #[test]
 fn strategy_names_round_trip() {
     for st in [
-        Strategy::Uniform { samples: 471 },
-        Strategy::GaussLegendre { intervals: 16 },
-        Strategy::PeakSearch { refine: false },
-        Strategy::PeakSearch { refine: true },
-        Strategy::PaperPeaks,
-        Strategy::Exact,
-        Strategy::Auto { accuracy: 1e-3 },
+        Strategy::uniform(471).unwrap(),
+        Strategy::gauss_legendre(16).unwrap(),
+        Strategy::PEAK_SEARCH,
+        Strategy::PEAK_SEARCH_REFINED,
+        Strategy::ASYMPTOTIC,
+        Strategy::EXACT,
+        Strategy::auto(1e-3).unwrap(),
     ] {
         assert_eq!(st.to_string().parse::<Strategy>(), Ok(st));
+    }
+    for st in [
+        GenericStrategy::uniform(471).unwrap(),
+        GenericStrategy::gauss_legendre(16).unwrap(),
+        GenericStrategy::PEAK_SEARCH,
+        GenericStrategy::WINDOWS,
+        GenericStrategy::auto(1e-3).unwrap(),
+    ] {
+        assert_eq!(st.to_string().parse::<GenericStrategy>(), Ok(st));
     }
     for bad in [
         "",
@@ -157,9 +166,12 @@ fn strategy_names_round_trip() {
         "gauss:x",
         "auto:0",
         "auto:nan",
+        "auto:1e-9",
+        "paper",
         "fast",
     ] {
         assert!(bad.parse::<Strategy>().is_err(), "{bad}");
+        assert!(bad.parse::<GenericStrategy>().is_err(), "{bad}");
     }
 }
 
@@ -170,7 +182,7 @@ fn monte_carlo_estimators_are_unbiased() {
     let s = Spectral::new(Illuminant::D65);
     let g = Grating::new(1600.0, 800.0, 20).unwrap();
     let u = 0.4;
-    let exact = s.xyz(&g, u, Strategy::Exact);
+    let exact = s.xyz(&g, u, Strategy::EXACT);
     let mut state = 0x9E3779B97F4A7C15u64;
     let mut rand = move || {
         state ^= state << 13;
@@ -212,13 +224,16 @@ proptest! {
                                               n in 1u32..2_000_000, u in -2.5f64..2.5) {
         let g = Grating::new(d, duty * d, n).unwrap();
         let s = Spectral::new(Illuminant::D65);
-        for st in [Strategy::Uniform { samples: 16 }, Strategy::GaussLegendre { intervals: 2 },
-                   Strategy::PeakSearch { refine: false }, Strategy::PeakSearch { refine: true },
-                   Strategy::PaperPeaks, Strategy::Auto { accuracy: 1e-2 }] {
+        for st in [Strategy::uniform(16).unwrap(), Strategy::gauss_legendre(2).unwrap(),
+                   Strategy::PEAK_SEARCH, Strategy::PEAK_SEARCH_REFINED,
+                   Strategy::auto(1e-2).unwrap()] {
             let c = s.xyz(&g, u, st);
             prop_assert!(c.x.is_finite() && c.y.is_finite() && c.z.is_finite(), "{st}: {c:?}");
             prop_assert!(c.x >= 0.0 && c.y >= 0.0 && c.z >= 0.0, "{st}: {c:?}");
         }
+        let c = s.paper_peaks(&g, u);
+        prop_assert!(c.x.is_finite() && c.y.is_finite() && c.z.is_finite(), "paper: {c:?}");
+        prop_assert!(c.x >= 0.0 && c.y >= 0.0 && c.z >= 0.0, "paper: {c:?}");
     }
 
     /// Uniform and Gauss-Legendre converge to Exact for a broad pattern (N = 1). Gauss-Legendre
@@ -228,9 +243,9 @@ proptest! {
     fn quadratures_converge_for_one_slit(d in 300.0f64..3000.0, u in -2.0f64..2.0) {
         let g = Grating::new(d, 0.5 * d, 1).unwrap();
         let s = Spectral::new(Illuminant::E);
-        let exact = s.xyz(&g, u, Strategy::Exact).y;
-        let gl = s.xyz(&g, u, Strategy::GaussLegendre { intervals: 470 }).y;
-        let uni = s.xyz(&g, u, Strategy::Uniform { samples: 471 }).y;
+        let exact = s.xyz(&g, u, Strategy::EXACT).y;
+        let gl = s.xyz(&g, u, Strategy::gauss_legendre(470).unwrap()).y;
+        let uni = s.xyz(&g, u, Strategy::uniform(471).unwrap()).y;
         prop_assert!((gl - exact).abs() <= tol::ONE_SLIT_GAUSS * exact.max(1e-3));
         prop_assert!((uni - exact).abs() <= tol::ONE_SLIT_MIDPOINT * exact.max(1e-3));
     }
@@ -240,36 +255,31 @@ proptest! {
 fn infinite_gratings_integrate_to_zero_off_the_mirror() {
     let g = Grating::infinite(1600.0, 800.0).unwrap();
     let s = Spectral::new(Illuminant::E);
-    assert_eq!(s.xyz(&g, 0.4, Strategy::Exact).y, 0.0);
-    assert_eq!(
-        s.xyz(&g, 0.4, Strategy::PeakSearch { refine: false }).y,
-        0.0
-    );
-    assert!(s.xyz(&g, 0.4, Strategy::PaperPeaks).y > 0.0);
-    assert_eq!(s.xyz(&g, 0.0, Strategy::Exact).y, 1.0);
+    assert_eq!(s.xyz(&g, 0.4, Strategy::EXACT).y, 0.0);
+    assert_eq!(s.xyz(&g, 0.4, Strategy::PEAK_SEARCH).y, 0.0);
+    assert!(s.paper_peaks(&g, 0.4).y > 0.0);
+    assert_eq!(s.xyz(&g, 0.0, Strategy::EXACT).y, 1.0);
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(60))]
 
-    /// The generic BRDF path (what any model gets) agrees with the grating's lobe-exact path on
-    /// the Agu-Hill model: Exact to the generic path's measured error relative to the brightest
-    /// order (`EXACT_GENERIC_OF_BRIGHTEST`), and the paper's mode to rounding for the orders
-    /// (away from order 0 and the band edges).
+    /// The generic path (what any model gets) on the Agu-Hill model, outside its contract,
+    /// agrees with the grating's lobe-exact path to the generic `WINDOWS` rule's measured error
+    /// on it relative to the brightest order (`WINDOWS_ON_GRATING_OF_BRIGHTEST`), and the
+    /// paper's mode to rounding for the orders (away from order 0 and the band edges).
     #[test]
-    fn generic_brdf_path_agrees_with_grating_path(d in 700.0f64..20000.0, n in 100u32..1_000_000,
-                                                   t in 0.05f64..1.2) {
+    fn generic_path_agrees_with_grating_path(d in 700.0f64..20000.0, n in 100u32..1_000_000,
+                                              t in 0.05f64..1.2) {
         let g = Grating::new(d, 0.5 * d, n).unwrap();
         let m = AguHill::new(g);
-        let opaque = Opaque(m);
         let s = Spectral::new(Illuminant::D65);
         let wi = DVec3::Z;
         let wo = DVec3::new(t.sin(), 0.0, t.cos());
-        let special = s.xyz_brdf(&m, wi, wo, Strategy::Exact);
-        let generic = s.xyz_brdf(&opaque, wi, wo, Strategy::Exact);
-        // The Y of an ideal first-order peak at 555 nm under E, 555/(N·∫ȳ).
-        let scale = 555.0 / (n as f64 * diffraction::cie::cmf_areas()[1]);
-        prop_assert!((special.y - generic.y).abs() <= tol::EXACT_GENERIC_OF_BRIGHTEST * scale.max(special.y),
+        let special = s.xyz_response(&m.grating_response(wo, wi).unwrap(), Strategy::EXACT);
+        let generic = s.xyz_brdf(&m, wo, wi, GenericStrategy::WINDOWS);
+        let scale = diffraction::spectrum::bounds::accuracy_floor(n as f64);
+        prop_assert!((special.y - generic.y).abs() <= tol::WINDOWS_ON_GRATING_OF_BRIGHTEST * scale.max(special.y),
             "special {:?} generic {:?}", special, generic);
         let q = d * t.sin();
         let clear_of_edges = g.peaks(t.sin(), Band::VISIBLE).all(|p| {
@@ -277,18 +287,19 @@ proptest! {
             p.wavelength_nm - w > 360.0 && p.wavelength_nm + w < 830.0
         });
         if q > 830.0 && clear_of_edges {
-            let a = s.xyz_brdf(&m, wi, wo, Strategy::PaperPeaks);
-            let b = s.xyz_brdf(&opaque, wi, wo, Strategy::PaperPeaks);
+            let a = s.paper_peaks(&g, t.sin());
+            let b = s.paper_peaks_brdf(&m, wo, wi);
             prop_assert!((a.y - b.y).abs() <= tol::PAPER_PEAKS_PATHS * a.y, "{} vs {}", a.y, b.y);
         }
     }
 }
 
 /// The models of the generic-path tests: Thorman with narrow, broad and sub-nanometre lobes,
-/// Stam (feature `stam`) and the Agu-Hill grating behind `Opaque`.
-fn generic_models() -> Vec<(&'static str, Box<dyn DiffractionBrdf>)> {
+/// Stam (feature `stam`), and the Agu-Hill grating, which is outside the generic path's
+/// contract (its F_N side lobes are narrow features it does not report).
+fn generic_models() -> Vec<(&'static str, Box<dyn Model>)> {
     #[cfg_attr(not(feature = "stam"), allow(unused_mut))]
-    let mut v: Vec<(&'static str, Box<dyn DiffractionBrdf>)> = vec![
+    let mut v: Vec<(&'static str, Box<dyn Model>)> = vec![
         (
             "thorman σ=0.002",
             Box::new(Thorman::new(1600.0, 0.002).unwrap()),
@@ -306,16 +317,12 @@ fn generic_models() -> Vec<(&'static str, Box<dyn DiffractionBrdf>)> {
             Box::new(Thorman::new(10_000.0, 0.01).unwrap()),
         ),
         (
-            "opaque N=30",
-            Box::new(Opaque(AguHill::new(
-                Grating::new(1600.0, 800.0, 30).unwrap(),
-            ))),
+            "agu-hill N=30",
+            Box::new(AguHill::new(Grating::new(1600.0, 800.0, 30).unwrap())),
         ),
         (
-            "opaque N=300 d=10000",
-            Box::new(Opaque(AguHill::new(
-                Grating::new(10_000.0, 3000.0, 300).unwrap(),
-            ))),
+            "agu-hill N=300 d=10000",
+            Box::new(AguHill::new(Grating::new(10_000.0, 3000.0, 300).unwrap())),
         ),
     ];
     #[cfg(feature = "stam")]
@@ -335,9 +342,9 @@ fn generic_models() -> Vec<(&'static str, Box<dyn DiffractionBrdf>)> {
     v
 }
 
-/// The directions of the generic-path tests: light at 0.25 rad, viewer at phase projections
-/// from the mirror direction (u = 0) across the orders, in the plane of incidence and
-/// (for Stam's cone) slightly off it.
+/// The directions of the generic-path tests as (wo, wi): light at 0.25 rad, viewer at phase
+/// projections from the mirror direction (u = 0) across the orders, in the plane of incidence
+/// and (for Stam's cone) slightly off it.
 fn generic_directions() -> Vec<(DVec3, DVec3)> {
     let wi = unit_upper(0.25, 0.0);
     let mut v = vec![];
@@ -356,30 +363,30 @@ fn generic_directions() -> Vec<(DVec3, DVec3)> {
     ] {
         let x: f64 = u - wi.x;
         let y: f64 = -wi.y + dv;
-        v.push((wi, DVec3::new(x, y, (1.0 - x * x - y * y).sqrt())));
+        v.push((DVec3::new(x, y, (1.0 - x * x - y * y).sqrt()), wi));
     }
     v
 }
 
 struct GenericCase {
     model: &'static str,
-    wi: DVec3,
     wo: DVec3,
-    reference: [f64; 3],
-    got: Vec<(Strategy, [f64; 3])>,
+    wi: DVec3,
+    reference: DVec3,
+    /// `WINDOWS`, `PEAK_SEARCH`, then `auto` at each of `AUTO_ACCURACIES`.
+    got: Vec<(GenericStrategy, DVec3)>,
     n_eff: Option<f64>,
     specular: bool,
 }
 
-const GENERIC_STRATEGIES: [Strategy; 7] = [
-    Strategy::Exact,
-    Strategy::PeakSearch { refine: false },
-    Strategy::PeakSearch { refine: true },
-    Strategy::Auto { accuracy: 1e-2 },
-    Strategy::Auto { accuracy: 1e-3 },
-    Strategy::Auto { accuracy: 1e-4 },
-    Strategy::Auto { accuracy: 1e-6 },
-];
+/// The accuracies `GenericStrategy::auto` is tried at.
+const AUTO_ACCURACIES: [f64; 4] = [1e-2, 1e-3, 1e-4, 1e-6];
+
+fn generic_strategies() -> Vec<GenericStrategy> {
+    let mut v = vec![GenericStrategy::WINDOWS, GenericStrategy::PEAK_SEARCH];
+    v.extend(AUTO_ACCURACIES.map(|a| GenericStrategy::auto(a).unwrap()));
+    v
+}
 
 /// Every model at every direction, with its reference and its colour by each strategy,
 /// computed once per test run.
@@ -392,23 +399,23 @@ fn compute_generic_cases() -> Vec<GenericCase> {
     let s = Spectral::new(Illuminant::D65);
     let mut out = vec![];
     for (name, model) in generic_models() {
-        for (wi, wo) in generic_directions() {
-            let reference = reference_xyz(model.as_ref(), wi, wo, Illuminant::D65);
-            let got = GENERIC_STRATEGIES
-                .iter()
-                .map(|&st| {
-                    let c = s.xyz_brdf(model.as_ref(), wi, wo, st);
-                    (st, [c.x, c.y, c.z])
+        for (wo, wi) in generic_directions() {
+            let reference = reference_xyz(model.as_ref(), wo, wi, Illuminant::D65);
+            let got = generic_strategies()
+                .into_iter()
+                .map(|st| {
+                    let c = s.xyz_brdf(model.as_ref(), wo, wi, st);
+                    (st, DVec3::new(c.x, c.y, c.z))
                 })
                 .collect();
-            let specular = model.peaks(wi, wo, Band::VISIBLE, &mut |_| {}).specular;
+            let specular = model.peaks(wo, wi, Band::VISIBLE, &mut |_| {}).specular;
             out.push(GenericCase {
                 model: name,
-                wi,
                 wo,
+                wi,
                 reference,
                 got,
-                n_eff: sharpest(model.as_ref(), wi, wo),
+                n_eff: sharpest(model.as_ref(), wo, wi),
                 specular,
             });
         }
@@ -423,20 +430,21 @@ fn brightest_by_model(cases: &[GenericCase]) -> std::collections::HashMap<&'stat
     for c in cases {
         let e = scale.entry(c.model).or_insert(0.0f64);
         if c.n_eff.is_some() && !c.specular {
-            *e = e.max(c.reference[1]);
+            *e = e.max(c.reference.y);
         }
     }
     scale
 }
 
-/// Whether the case's model meets the generic path's contract (see `DiffractionBrdf::peaks`):
-/// every model but `Opaque`, which hides the grating's side lobes on purpose.
+/// Whether the case's model meets the generic path's contract (see `SpectralResponse::peaks`):
+/// every model but the Agu-Hill grating, whose side lobes are narrow features it does not
+/// report (it says what it is through `grating_response` instead).
 fn meets_contract(c: &GenericCase) -> bool {
-    !c.model.starts_with("opaque")
+    !c.model.starts_with("agu-hill")
 }
 
-fn max_error(got: &[f64; 3], want: &[f64; 3]) -> f64 {
-    (0..3).map(|k| (got[k] - want[k]).abs()).fold(0.0, f64::max)
+fn max_error(got: DVec3, want: DVec3) -> f64 {
+    (got - want).abs().max_element()
 }
 
 fn describe_case(c: &GenericCase) -> String {
@@ -445,12 +453,12 @@ fn describe_case(c: &GenericCase) -> String {
         c.model,
         c.wi.x + c.wo.x,
         c.wi.y + c.wo.y,
-        c.reference[1]
+        c.reference.y
     )
 }
 
 /// The reference quadrature against the grating path's `Exact` (itself within 7e-8 of the
-/// Python oracle) on `Opaque` models, and against itself on a grid twice as coarse.
+/// Python oracle) on the Agu-Hill models, and against itself on a grid twice as coarse.
 #[test]
 #[ignore = "slow: checks the fine quadrature of the generic-path tests (prints its accuracy)"]
 fn fine_quadrature_is_accurate() {
@@ -462,15 +470,15 @@ fn fine_quadrature_is_accurate() {
         }
     };
     for (name, model) in generic_models() {
-        for (wi, wo) in generic_directions() {
-            let fine = reference_xyz(model.as_ref(), wi, wo, Illuminant::D65);
+        for (wo, wi) in generic_directions() {
+            let fine = reference_xyz(model.as_ref(), wo, wi, Illuminant::D65);
             let coarse =
-                fine_quadrature::reference_xyz_with(model.as_ref(), wi, wo, Illuminant::D65, 50);
-            let size = fine.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+                fine_quadrature::reference_xyz_with(model.as_ref(), wo, wi, Illuminant::D65, 50);
+            let size = fine.abs().max_element();
             if size > 0.0 {
                 note(
                     0,
-                    max_error(&fine, &coarse) / size,
+                    max_error(fine, coarse) / size,
                     format!("{name} u={}", wi.x + wo.x),
                 );
             }
@@ -480,14 +488,14 @@ fn fine_quadrature_is_accurate() {
         Grating::new(1600.0, 800.0, 30).unwrap(),
         Grating::new(10_000.0, 3000.0, 300).unwrap(),
     ] {
-        for (wi, wo) in generic_directions() {
-            let fine = reference_xyz(&Opaque(AguHill::new(g)), wi, wo, Illuminant::D65);
-            let c = s.xyz(&g, wi.x + wo.x, Strategy::Exact);
-            let size = fine.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
+        for (wo, wi) in generic_directions() {
+            let fine = reference_xyz(&AguHill::new(g), wo, wi, Illuminant::D65);
+            let c = s.xyz(&g, wi.x + wo.x, Strategy::EXACT);
+            let size = fine.abs().max_element();
             if size > 0.0 {
                 note(
                     1,
-                    max_error(&fine, &[c.x, c.y, c.z]) / size,
+                    max_error(fine, DVec3::new(c.x, c.y, c.z)) / size,
                     format!("{g:?} u={}", wi.x + wo.x),
                 );
             }
@@ -504,21 +512,20 @@ fn fine_quadrature_is_accurate() {
     );
 }
 
-/// `Exact` (and `Auto`, which is `Exact` on this path) on the generic path against the fine
-/// quadrature: the measured error relative to the model's brightest order, as a regression
-/// bound. (Relative to the colour itself, the documented bound, see
-/// `exact_meets_its_documented_bound_on_the_generic_path`.)
+/// `WINDOWS` on the generic path against the fine quadrature, relative to the model's
+/// brightest order (every model, Agu-Hill included), as a regression bound; and `auto` at
+/// every accuracy within it (where the model keeps the contract: the documented bound).
 #[test]
-fn generic_path_exact_and_auto_against_fine_quadrature() {
+fn generic_path_windows_and_auto_against_fine_quadrature() {
     let cases = generic_cases();
     let scale = brightest_by_model(cases);
     let mut worst = (0.0f64, String::new());
     for c in cases {
-        let exact = c.got[0].1;
-        for (st, got) in &c.got {
-            if let Strategy::Auto { accuracy } = st {
-                assert_eq!(*got, exact, "auto is exact on the generic path");
-                let err = max_error(got, &c.reference) / scale[c.model];
+        let windows = c.got[0].1;
+        for (k, accuracy) in AUTO_ACCURACIES.iter().enumerate() {
+            let got = c.got[2 + k].1;
+            let err = max_error(got, c.reference) / scale[c.model];
+            if meets_contract(c) {
                 assert!(
                     err <= *accuracy,
                     "auto:{accuracy:e} {}: {err:e}",
@@ -526,34 +533,35 @@ fn generic_path_exact_and_auto_against_fine_quadrature() {
                 );
             }
         }
-        let err = max_error(&exact, &c.reference) / scale[c.model];
+        let err = max_error(windows, c.reference) / scale[c.model];
         if err > worst.0 {
             worst = (err, describe_case(c));
         }
     }
     println!(
-        "generic exact: worst {:.2e} of the brightest at {}",
+        "generic windows: worst {:.2e} of the brightest at {}",
         worst.0, worst.1
     );
-    assert!(worst.0 <= tol::EXACT_GENERIC_FINE_OF_BRIGHTEST, "{worst:?}");
+    assert!(worst.0 <= tol::WINDOWS_FINE_OF_BRIGHTEST, "{worst:?}");
 }
 
-/// `Exact`'s documented bound on the generic path, for the models that meet the generic path's
-/// contract (every feature narrower than 2 nm reported by `peaks`: Thorman's and Stam's
-/// lobes). `Opaque` hides AguHill's side lobes (0.24 nm wide at N = 300, d = 10 µm, u = 0.35, where
-/// it is 3.4·10⁻⁶ off) and is held to the regression bound above instead.
+/// `WINDOWS`' documented bound on the generic path, for the models that meet the generic
+/// path's contract (every feature narrower than 2 nm reported by `peaks`: Thorman's and
+/// Stam's lobes). The Agu-Hill grating hides its side lobes from `peaks` (0.24 nm wide at
+/// N = 300, d = 10 µm, u = 0.35, where it is 3.4·10⁻⁶ off) and is held to the regression bound
+/// above instead.
 #[test]
-fn exact_meets_its_documented_bound_on_the_generic_path() {
+fn windows_meets_its_documented_bound_on_the_generic_path() {
     let cases = generic_cases();
     let scale = brightest_by_model(cases);
     let mut worst = (0.0f64, String::new());
     for c in cases.iter().filter(|c| meets_contract(c)) {
         for k in 0..3 {
-            // 10⁻⁶ of the colour, or 10⁻⁹ of the brightest order for darker colours.
+            // The bound of the colour, or of 10⁻³ of the brightest order for darker colours.
             let size = c.reference[k].abs().max(1e-3 * scale[c.model]);
             let rel = (c.got[0].1[k] - c.reference[k]).abs() / size;
             assert!(
-                rel <= tol::EXACT_DOCUMENTED,
+                rel <= tol::WINDOWS_DOCUMENTED,
                 "{}: {rel:e}",
                 describe_case(c)
             );
@@ -563,30 +571,35 @@ fn exact_meets_its_documented_bound_on_the_generic_path() {
         }
     }
     println!(
-        "generic exact: worst {:.2e} of the documented scale at {}",
+        "generic windows: worst {:.2e} of the documented scale at {}",
         worst.0, worst.1
     );
-    assert!(worst.0 <= tol::EXACT_GENERIC, "{worst:?}");
+    assert!(worst.0 <= tol::WINDOWS_GENERIC, "{worst:?}");
 }
 
-/// The documented bound of `PeakSearch`: 8/N_eff of the brightest order (N_eff of the
-/// sharpest visited peak), plus 2·10⁻³ of the colour where order 0's lobe is seen.
+/// The documented bound of `PEAK_SEARCH`: 8/N_eff of the brightest order (N_eff of the
+/// sharpest visited peak); where order 0's lobe is seen the rule is `WINDOWS`.
 fn peak_search_bound(c: &GenericCase, scale: f64) -> f64 {
-    let size = c.reference.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
-    c.n_eff.map_or(0.0, |n| 8.0 / n * scale) + if c.specular { 2e-3 * size } else { 0.0 }
+    let size = c.reference.abs().max_element();
+    let orders = c.n_eff.map_or(0.0, |n| {
+        diffraction::spectrum::bounds::GENERIC_PEAK_SEARCH_PER_SLIT / n * scale
+    });
+    // Where order 0's lobe is seen the rule is `WINDOWS`, with its bound of the colour (or of
+    // 10⁻³ of the brightest order for darker colours).
+    let windows = tol::WINDOWS_DOCUMENTED * size.max(1e-3 * scale);
+    orders + if c.specular { windows } else { 0.0 }
 }
 
-/// `PeakSearch` (both modes, one algorithm on this path) on the generic path against the fine
-/// quadrature, wherever a peak m ≠ 0 is visited outside order 0's lobe: within the documented bound, and within the
-/// measured fraction of it with its margin.
+/// `PEAK_SEARCH` on the generic path against the fine quadrature, wherever a peak m ≠ 0 is
+/// visited outside order 0's lobe: within the documented bound, and within the measured
+/// fraction of it with its margin.
 #[test]
 fn generic_path_peak_search_against_fine_quadrature() {
     let cases = generic_cases();
     let scale = brightest_by_model(cases);
     let mut worst = (0.0f64, String::new());
     for c in cases.iter().filter(|c| c.n_eff.is_some() && !c.specular) {
-        assert_eq!(c.got[1].1, c.got[2].1, "{}", describe_case(c));
-        let ratio = max_error(&c.got[1].1, &c.reference) / peak_search_bound(c, scale[c.model]);
+        let ratio = max_error(c.got[1].1, c.reference) / peak_search_bound(c, scale[c.model]);
         if ratio > worst.0 {
             worst = (ratio, describe_case(c));
         }
@@ -602,15 +615,16 @@ fn generic_path_peak_search_against_fine_quadrature() {
     );
 }
 
-/// `PeakSearch`'s documented bound everywhere on the generic path, for the models that meet its
-/// contract (`peaks` reports order 0's light where it reaches the band: `Opaque` says only where
-/// its central lobe does, and misses its side lobes, e.g. N = 30 at u = 0.03, 1.0 of the colour).
+/// `PEAK_SEARCH`'s documented bound everywhere on the generic path, for the models that meet
+/// its contract (`peaks` reports order 0's light where it reaches the band: the Agu-Hill
+/// grating says only where its central lobe does, and misses its side lobes, e.g. N = 30 at
+/// u = 0.03, 1.0 of the colour).
 #[test]
 fn generic_path_peak_search_meets_its_documented_bound_everywhere() {
     let cases = generic_cases();
     let scale = brightest_by_model(cases);
     for c in cases.iter().filter(|c| meets_contract(c)) {
-        let err = max_error(&c.got[1].1, &c.reference);
+        let err = max_error(c.got[1].1, c.reference);
         assert!(
             err <= peak_search_bound(c, scale[c.model]),
             "{}: {err:e}",

@@ -3,7 +3,7 @@
 
 use glam::{DVec3, Vec3};
 
-use crate::bxdf::{both_above, DiffractionBrdf, GratingResponse, PeakSummary};
+use crate::bxdf::{both_above, DiffractionBrdf, GratingResponse, PeakSummary, SpectralResponse};
 use crate::{Band, Grating, Peak, MAX_ORDERS};
 
 /// The paper's model: the unitless Agu-Hill intensity of a grating, S(β)·F_N(α) at
@@ -19,9 +19,9 @@ use crate::{Band, Grating, Peak, MAX_ORDERS};
 /// use diffraction::{AguHill, DiffractionBrdf, Grating};
 /// use glam::DVec3;
 /// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
-/// let wi = DVec3::new(-0.6, 0.0, 0.8);
-/// let wo = DVec3::new(0.6, 0.0, 0.8); // mirror: order 0
-/// assert_eq!(m.eval(wi, wo, 550.0), 1.0);
+/// let wo = DVec3::new(0.6, 0.0, 0.8);
+/// let wi = DVec3::new(-0.6, 0.0, 0.8); // mirror: order 0
+/// assert_eq!(m.eval(wo, wi, 550.0), 1.0);
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,25 +59,38 @@ impl AguHill {
 }
 
 impl DiffractionBrdf for AguHill {
+    /// I(u, λ) = S(β)·F_N(α) at u = wi.x + wo.x; 0 below the surface.
     #[inline]
-    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        if !both_above(wi.z, wo.z) {
+    fn eval(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        if !both_above(wo, wi) {
             return 0.0;
         }
         self.grating.intensity_f64(wi.x + wo.x, lambda_nm)
     }
 
+    /// The f64 intensity at the f32 directions' u (summed in f64), rounded once.
     #[inline]
-    fn eval_f32(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
-        if !both_above(wi.z as f64, wo.z as f64) {
+    fn eval_f32(&self, wo: Vec3, wi: Vec3, lambda_nm: f32) -> f32 {
+        if !both_above(wo.as_dvec3(), wi.as_dvec3()) {
             return 0.0;
         }
         let u = wi.x as f64 + wo.x as f64;
         self.grating.intensity_f64(u, lambda_nm as f64) as f32
     }
+}
 
-    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        if !both_above(wi.z, wo.z) {
+impl SpectralResponse for AguHill {
+    /// The paper applies no cosine to its diffraction term (eq. 12): the response is
+    /// [`eval`](DiffractionBrdf::eval).
+    #[inline]
+    fn response(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eval(wo, wi, lambda_nm)
+    }
+
+    /// The grating's peaks ([`Grating::peaks`]) at u = wi.x + wo.x, at most
+    /// [`MAX_ORDERS`] of them.
+    fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
+        if !both_above(wo, wi) {
             return PeakSummary::default();
         }
         let peaks = self.grating.peaks(wi.x + wo.x, band);
@@ -90,13 +103,9 @@ impl DiffractionBrdf for AguHill {
         PeakSummary { orders, specular }
     }
 
-    fn cosine_included(&self) -> bool {
-        true
-    }
-
-    /// The grating itself, at u = `wi.x + wo.x`, with scale 1 (`None` below the surface).
-    fn grating_response(&self, wi: DVec3, wo: DVec3) -> Option<GratingResponse> {
-        if !both_above(wi.z, wo.z) {
+    /// The grating itself at u = wi.x + wo.x, scale 1.
+    fn grating_response(&self, wo: DVec3, wi: DVec3) -> Option<GratingResponse> {
+        if !both_above(wo, wi) {
             return None;
         }
         Some(GratingResponse::new(self.grating, wi.x + wo.x, 1.0))

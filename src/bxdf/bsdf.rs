@@ -1,30 +1,25 @@
 //! The radiometric, samplable BSDF interface for path tracers, shaped like pbrt-v4's `BxDF`.
 //!
-//! [`DiffractionBrdf`] is the crate's shared colour-integration interface: a spectral value
-//! `eval(wi, wo, λ)`, the `peaks` it shows and whether the cosine is included. Every model has
-//! it, including the paper's unitless intensity ([`AguHill`](crate::AguHill)). [`Bsdf`]
-//! **extends** it (it is a supertrait, not a replacement) with what a Monte-Carlo integrator
-//! needs: a value in physical units, importance sampling with an exact density, several
-//! wavelengths per call, flags and regularisation. The colour integrator keeps working on
-//! `DiffractionBrdf` for every model; a path tracer asks for `Bsdf`.
+//! A model's value is [`DiffractionBrdf::eval`]`(wo, wi, λ)`, the one value interface of the
+//! crate; [`Bsdf`] **extends** it with what a Monte-Carlo integrator needs: importance sampling
+//! with an exact density, densities at four wavelengths, flags and regularisation. The colour
+//! integrator's needs are a separate capability ([`SpectralResponse`](crate::SpectralResponse)).
 //!
 //! # Conventions (pbrt-v4's)
 //!
 //! * Directions are unit vectors in the local frame: `z` the normal, `x` the grating vector,
-//!   `y` along the grooves. **`wo` points toward the viewer** (the camera side of the path),
-//!   **`wi` toward the light**; both above the surface (z > 0) for a reflection, otherwise
-//!   `f` and `pdf` are 0.
-//! * [`f`](Bsdf::f) is the BRDF in 1/sr, **cosine excluded**: reflected radiance is
-//!   `∫ f(wo, wi, λ)·L(wi, λ)·cos θi dωi`.
+//!   `y` along the grooves. **`wo` points toward the viewer** (the camera side of the path) and
+//!   comes first, **`wi` toward the light**; both above the surface (cos θ ≥
+//!   [`MIN_COS_THETA`](crate::MIN_COS_THETA)) for a reflection, otherwise `eval` and `pdf` are 0.
+//! * [`eval`](DiffractionBrdf::eval) is the BRDF in 1/sr, **cosine excluded**: reflected
+//!   radiance is `∫ eval(wo, wi, λ)·L(wi, λ)·cos θi dωi` (pbrt's `f`).
 //! * [`sample`](Bsdf::sample) returns wi with the value f and the density `pdf` in **solid
 //!   angle** (1/sr) of the procedure that produced it. The Monte-Carlo weight is
 //!   `f·cos θi / pdf`. A sample flagged [`BsdfFlags::SPECULAR`] comes from a lobe that is a
 //!   Dirac delta in at least one dimension: then `f` and `pdf` both omit the same delta factor
 //!   and only the weight `f·cos θi / pdf` is meaningful (for a pure delta lobe `pdf` is the
-//!   discrete probability of choosing it), exactly as pbrt's specular BxDFs do; `f` and `pdf`
-//!   of the trait return 0 for such lobes.
-//! * For radiometric models `DiffractionBrdf::eval(wi, wo, λ) == Bsdf::f(wo, wi, λ)` (note the
-//!   argument order) and `cosine_included()` is `false`.
+//!   discrete probability of choosing it), exactly as pbrt's specular BxDFs do; `eval` and
+//!   `pdf` of the traits return 0 for such lobes.
 //!
 //! # Why the paper's model is not a `Bsdf`
 //!
@@ -32,11 +27,15 @@
 //! the area of each order falls as 1/N, so the light it reflects depends on N and the paper
 //! needs an exposure per material; it includes no cos θi and has no unit. Reading it as 1/sr
 //! would make a grating almost black for large N and brighter than a mirror for small N. It is
-//! kept exactly as it is (for the paper's pictures) and implements only `DiffractionBrdf`. The
-//! energy-normalised reading of the same optics is [`GratingBsdf`](crate::GratingBsdf).
+//! kept exactly as it is (for the paper's pictures) and is not a `Bsdf`. The energy-normalised
+//! reading of the same optics is [`GratingBsdf`](crate::GratingBsdf).
 //!
-//! # Mapping to Mitsuba 3
+//! # Mapping to pbrt-v4 and Mitsuba 3
 //!
+//! pbrt-v4's `BxDF` has the same argument order and the same cosine convention:
+//! `f(wo, wi)` is [`eval`](DiffractionBrdf::eval), `Sample_f(wo, uc, u)` is
+//! [`sample`](Bsdf::sample), `PDF(wo, wi)` is [`pdf`](Bsdf::pdf), `Flags()` is
+//! [`flags`](Bsdf::flags), `Regularize()` is [`regularize`](Bsdf::regularize).
 //! Mitsuba's `BSDF` calls the direction toward the camera `si.wi` and the sampled one `wo`,
 //! and includes the cosine in its values:
 //!
@@ -44,10 +43,10 @@
 //! |---|---|
 //! | `si.wi` | `wo` |
 //! | `wo` (argument / sampled) | `wi` |
-//! | `eval(ctx, si, wo)` | `f(wo, wi, λ) · wi.z` |
+//! | `eval(ctx, si, wo)` | `eval(wo, wi, λ) · wi.z` |
 //! | `pdf(ctx, si, wo)` | `pdf(wo, wi, λ)` |
 //! | `sample(ctx, si, sample1, sample2)` → (bs, weight) | `sample(wo, λ, uc, u2)` → bs, weight = `f·wi.z/pdf` |
-//! | `eval_pdf(ctx, si, wo)` | `f4` and `pdf4` (the four-wavelength calls share their work) |
+//! | `eval_pdf(ctx, si, wo)` | `eval4` and `pdf4` (the four-wavelength calls share their work) |
 //! | `BSDFSample3f.sampled_type` | `flags` |
 //!
 //! ```
@@ -56,11 +55,9 @@
 //! let bsdf = GratingBsdf::new(Grating::new(1600.0, 800.0, 1000)?);
 //! let wo = DVec3::new(0.2, 0.1, (1.0f64 - 0.05).sqrt());
 //! let s = bsdf.sample(wo, 550.0, 0.3, DVec2::new(0.4, 0.6)).unwrap();
-//! // The sample's value and density are those of `f` and `pdf` at its direction.
-//! assert!((s.f - bsdf.f(wo, s.wi, 550.0)).abs() <= 1e-9 * s.f);
+//! // The sample's value and density are those of `eval` and `pdf` at its direction.
+//! assert!((s.f - bsdf.eval(wo, s.wi, 550.0)).abs() <= 1e-9 * s.f);
 //! assert!((s.pdf - bsdf.pdf(wo, s.wi, 550.0)).abs() <= 1e-9 * s.pdf);
-//! // The colour interface sees the same value with the arguments in its own order.
-//! assert_eq!(bsdf.eval(s.wi, wo, 550.0), bsdf.f(wo, s.wi, 550.0));
 //! # Ok::<(), diffraction::Error>(())
 //! ```
 
@@ -68,9 +65,8 @@ use core::ops::BitOr;
 
 use glam::{DVec2, DVec3};
 
-use crate::error::{Error, Requirement};
 use crate::math;
-use crate::Band;
+use crate::wavelengths::SampledWavelengths;
 use crate::DiffractionBrdf;
 
 /// What kind of scattering a lobe or a sample is (pbrt-v4's `BxDFFlags`, reflection only).
@@ -256,250 +252,28 @@ impl BsdfSample {
     }
 }
 
-/// Four wavelengths carried by one path, with the densities they were sampled with
-/// (pbrt-v4's `SampledWavelengths`). Index 0 is the **hero** wavelength: the one
-/// [`Bsdf::sample`] follows.
-///
-/// Two ways to use the four with a dispersive BSDF (the sampled direction depends on λ):
-///
-/// * **Hero-wavelength MIS** (Wilkie et al., "Hero Wavelength Spectral Sampling", EGSR 2014):
-///   the direction was sampled for the hero; weight wavelength j's contribution by the balance
-///   heuristic over the four, `p_j / Σ_k p_k` with `p_k = pdf4(wo, wi)[k]` (and the
-///   wavelength densities), see [`balance_heuristic`](Self::balance_heuristic). Unbiased, and
-///   where the lobes of the four overlap (small N) all four contribute.
-/// * **Terminate the secondaries** (pbrt-v4's `TerminateSecondary`): keep the hero only and
-///   divide by its density alone ([`terminate_secondary`](Self::terminate_secondary)).
-///
-/// For gratings the crate recommends **hero MIS with [`Bsdf::pdf4`]** for glossy samples: the
-/// lobes of order m sit at u = m·λ/d, so for large N the secondaries' pdfs at the hero's
-/// direction are tiny and the balance heuristic gives them weight ≈ 0 by itself (it degrades
-/// gracefully into termination, with no bias and no branch), while for small N, where the
-/// lobes overlap, it keeps their contribution. For **SPECULAR** samples (N = ∞ or an ideal
-/// groove) the secondaries' densities are exactly 0 and `pdf4` cannot express the delta: there
-/// terminate the secondaries, as pbrt does for dispersive specular surfaces.
-///
-/// ```
-/// use diffraction::{Band, SampledWavelengths};
-/// let mut l = SampledWavelengths::sample_uniform(0.0, Band::VISIBLE);
-/// assert_eq!(l.lambda(), [360.0, 477.5, 595.0, 712.5]); // stratified: B/4 apart
-/// assert_eq!(l.pdf(), [1.0 / 470.0; 4]);
-/// l.terminate_secondary();
-/// assert!(l.secondary_terminated());
-/// assert_eq!(l.pdf(), [0.25 / 470.0, 0.0, 0.0, 0.0]); // the hero now stands for all four
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SampledWavelengths {
-    lambda: [f64; 4],
-    pdf: [f64; 4],
-}
-
-impl SampledWavelengths {
-    /// Stratified uniform wavelengths: the hero at `band.min + u·B`, the others B/4 apart
-    /// (wrapping around the band), each with density 1/B. `u` outside [0, 1) is taken modulo 1
-    /// (NaN and infinities as 0).
-    ///
-    /// ```
-    /// use diffraction::{Band, SampledWavelengths};
-    /// let l = SampledWavelengths::sample_uniform(0.5, Band::new(400.0, 800.0)?);
-    /// assert_eq!(l.lambda(), [600.0, 700.0, 400.0, 500.0]);
-    /// assert_eq!(l.hero(), 600.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn sample_uniform(u: f64, band: Band) -> SampledWavelengths {
-        let u = if u.is_finite() {
-            u - math::floor(u)
-        } else {
-            0.0
-        };
-        let b = band.width_nm();
-        let mut lambda = [0.0; 4];
-        for (i, l) in lambda.iter_mut().enumerate() {
-            let mut t = u + 0.25 * i as f64;
-            if t >= 1.0 {
-                t -= 1.0;
-            }
-            *l = (band.min_nm() + t * b).min(band.max_nm());
-        }
-        SampledWavelengths {
-            lambda,
-            pdf: [1.0 / b; 4],
-        }
-    }
-
-    /// Four wavelengths (finite, > 0) with their densities (finite, ≥ 0), for example from a
-    /// grating's own wavelength sampler. Errors name `lambda_nm` or `pdf`.
-    ///
-    /// ```
-    /// use diffraction::SampledWavelengths;
-    /// let l = SampledWavelengths::new([500.0, 510.0, 520.0, 530.0], [0.01; 4])?;
-    /// assert_eq!(l.lambda()[3], 530.0);
-    /// assert_eq!(SampledWavelengths::new([0.0; 4], [0.01; 4]).unwrap_err().parameter(), "lambda_nm");
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    pub fn new(lambda: [f64; 4], pdf: [f64; 4]) -> Result<SampledWavelengths, Error> {
-        for &l in &lambda {
-            crate::error::positive("lambda_nm", l)?;
-        }
-        for &p in &pdf {
-            if !(p.is_finite() && p >= 0.0) {
-                return Err(Error::invalid(
-                    "pdf",
-                    p,
-                    Requirement::Within {
-                        min: 0.0,
-                        max: f64::MAX,
-                    },
-                ));
-            }
-        }
-        Ok(SampledWavelengths { lambda, pdf })
-    }
-
-    /// The four wavelengths, nm (index 0 is the hero).
-    ///
-    /// ```
-    /// # use diffraction::{Band, SampledWavelengths};
-    /// assert_eq!(SampledWavelengths::sample_uniform(0.0, Band::VISIBLE).lambda()[0], 360.0);
-    /// ```
-    #[must_use]
-    pub fn lambda(&self) -> [f64; 4] {
-        self.lambda
-    }
-
-    /// The hero wavelength, nm.
-    ///
-    /// ```
-    /// # use diffraction::{Band, SampledWavelengths};
-    /// assert_eq!(SampledWavelengths::sample_uniform(0.25, Band::new(400.0, 800.0)?).hero(), 500.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn hero(&self) -> f64 {
-        self.lambda[0]
-    }
-
-    /// The densities, 1/nm (0 for terminated secondaries).
-    ///
-    /// ```
-    /// # use diffraction::{Band, SampledWavelengths};
-    /// assert_eq!(SampledWavelengths::sample_uniform(0.0, Band::new(400.0, 800.0)?).pdf()[1], 1.0 / 400.0);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn pdf(&self) -> [f64; 4] {
-        self.pdf
-    }
-
-    /// Keeps the hero only (pbrt-v4's `TerminateSecondary`): the secondaries' densities become
-    /// 0 and the hero's is divided by 4, since it now stands for all four strata. Idempotent.
-    ///
-    /// ```
-    /// # use diffraction::{Band, SampledWavelengths};
-    /// let mut l = SampledWavelengths::sample_uniform(0.1, Band::new(400.0, 800.0)?);
-    /// l.terminate_secondary();
-    /// l.terminate_secondary();
-    /// assert_eq!(l.pdf(), [1.0 / 1600.0, 0.0, 0.0, 0.0]);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    pub fn terminate_secondary(&mut self) {
-        if self.secondary_terminated() {
-            return;
-        }
-        for i in 1..4 {
-            self.pdf[i] = 0.0;
-        }
-        self.pdf[0] *= 0.25;
-    }
-
-    /// Whether the secondaries were terminated.
-    ///
-    /// ```
-    /// # use diffraction::{Band, SampledWavelengths};
-    /// assert!(!SampledWavelengths::sample_uniform(0.1, Band::VISIBLE).secondary_terminated());
-    /// ```
-    #[must_use]
-    pub fn secondary_terminated(&self) -> bool {
-        self.pdf[1..].iter().all(|&p| p == 0.0)
-    }
-
-    /// The balance-heuristic weight of wavelength `index` for a direction whose sampling
-    /// densities under the four wavelengths are `pdf4`: `pdf4[index] / Σ pdf4` (0 when the sum
-    /// is 0 or `index` > 3). Multiply wavelength j's contribution f_j·cos/pdf4\[j\] by it, or
-    /// equivalently use f_j·cos/Σ pdf4 for every j (Wilkie et al. 2014).
-    ///
-    /// ```
-    /// use diffraction::SampledWavelengths;
-    /// let w = SampledWavelengths::balance_heuristic([3.0, 1.0, 0.0, 0.0], 0);
-    /// assert_eq!(w, 0.75);
-    /// assert_eq!(SampledWavelengths::balance_heuristic([0.0; 4], 0), 0.0);
-    /// ```
-    #[must_use]
-    pub fn balance_heuristic(pdf4: [f64; 4], index: usize) -> f64 {
-        let sum: f64 = pdf4.iter().sum();
-        if index > 3 || !(sum > 0.0 && sum.is_finite()) {
-            return 0.0;
-        }
-        pdf4[index] / sum
-    }
-}
-
-/// A radiometric, samplable BSDF (pbrt-v4's `BxDF`), extending the colour interface
-/// [`DiffractionBrdf`]. See the [module docs](self) for conventions, the Mitsuba mapping and why
+/// A radiometric, samplable BSDF (pbrt-v4's `BxDF`): the value
+/// [`eval`](DiffractionBrdf::eval) in 1/sr (cosine excluded) with an importance sampler of exact
+/// density. See the [module docs](self) for conventions, the pbrt and Mitsuba mappings and why
 /// [`AguHill`](crate::AguHill) does not implement it.
 ///
 /// Every method returns finite, non-negative values for finite input, and 0 / `None` for
 /// directions below the surface or a non-positive wavelength.
 ///
 /// ```
-/// use diffraction::{Bsdf, BsdfFlags, Grating, GratingBsdf};
+/// use diffraction::{Bsdf, BsdfFlags, DiffractionBrdf, Grating, GratingBsdf};
 /// use glam::DVec3;
 /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 30)?);
 /// assert_eq!(b.flags(), BsdfFlags::REFLECTION | BsdfFlags::GLOSSY);
 /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
-/// assert_eq!(b.f(wo, wi, 480.0), b.f(wi, wo, 480.0)); // reciprocal
+/// assert_eq!(b.eval(wo, wi, 480.0), b.eval(wi, wo, 480.0)); // reciprocal
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 pub trait Bsdf: DiffractionBrdf {
-    /// The BSDF value f(wo, wi, λ) in 1/sr, cosine excluded (0 for delta lobes).
-    ///
-    /// ```
-    /// use diffraction::{Bsdf, Grating, GratingBsdf};
-    /// use glam::DVec3;
-    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
-    /// assert_eq!(b.f(DVec3::Z, -DVec3::Z, 550.0), 0.0); // light below the surface
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    fn f(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64;
-
-    /// `f` at the four wavelengths of `lambdas`. Models override it to share the work that
-    /// does not depend on λ; the default calls `f` four times.
-    ///
-    /// ```
-    /// use diffraction::{Band, Bsdf, Grating, GratingBsdf, SampledWavelengths};
-    /// use glam::DVec3;
-    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
-    /// let l = SampledWavelengths::sample_uniform(0.3, Band::VISIBLE);
-    /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
-    /// let four = b.f4(wo, wi, &l);
-    /// for i in 0..4 {
-    ///     assert!((four[i] - b.f(wo, wi, l.lambda()[i])).abs() <= 1e-12 * four[i].max(1e-300));
-    /// }
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    fn f4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
-        let l = lambdas.lambda();
-        [
-            self.f(wo, wi, l[0]),
-            self.f(wo, wi, l[1]),
-            self.f(wo, wi, l[2]),
-            self.f(wo, wi, l[3]),
-        ]
-    }
-
     /// Samples wi for `wo` at wavelength `lambda_nm` from the uniform numbers `uc` (lobe
-    /// choice) and `u2` (position), each in [0, 1). `None` when the procedure produced no
-    /// direction above the surface (its pdf then integrates to the probability of `Some`).
+    /// choice) and `u2` (position), each in [0, 1) (other values by the crate's rule,
+    /// [`unit_random`](crate::unit_random)). `None` when the procedure produced no direction
+    /// above the surface (its pdf then integrates to the probability of `Some`).
     ///
     /// ```
     /// use diffraction::{Bsdf, Grating, GratingBsdf};
@@ -535,13 +309,7 @@ pub trait Bsdf: DiffractionBrdf {
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     fn pdf4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
-        let l = lambdas.lambda();
-        [
-            self.pdf(wo, wi, l[0]),
-            self.pdf(wo, wi, l[1]),
-            self.pdf(wo, wi, l[2]),
-            self.pdf(wo, wi, l[3]),
-        ]
+        lambdas.lambda().map(|l| self.pdf(wo, wi, l))
     }
 
     /// The kinds of lobe the model has.

@@ -61,22 +61,24 @@
 //!   G/w² is 1 in the mirror direction but not in general elsewhere (at normal incidence it is
 //!   1/cos θo, above 1). What holds
 //!   exactly is Parseval, Σ_m |c_m|² = 1, and reciprocity f(wi, wo) = f(wo, wi).
-//! * It is a BRDF: [`cosine_included`](DiffractionBrdf::cosine_included) is `false`, the
-//!   renderer multiplies by cos θi.
+//! * It is a BRDF (1/sr, cosine excluded): the renderer multiplies by cos θi, and its
+//!   [`response`](SpectralResponse::response) is `eval·cos θi`.
 //! * Unlike the paper's model and [`Thorman`](crate::Thorman), the light is confined to the
 //!   cone of diffracted directions: the factor exp(−k²σ_c²v²), v = `wi.y + wo.y`, darkens every
 //!   direction off the plane of the grating equation's cone.
 
 use core::f64::consts::PI;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 pub use crate::bessel::bessel_j;
 pub use crate::bxdf::profile::Profile;
 
 use crate::bessel::bessel_squares;
+use crate::bxdf::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use crate::bxdf::profile::binary_coefficient;
-use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary};
+use crate::bxdf::{both_above, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf, PeakSummary};
+use crate::bxdf::{SpectralResponse, MIN_COS_THETA};
 use crate::error::{positive, Error, Requirement};
 use crate::math;
 use crate::{Band, GratingEquation, Peak, MAX_ORDERS};
@@ -98,28 +100,28 @@ const SQRT_PI: f64 = 1.772453850905516;
 /// every Bessel sum, and a non-finite result is returned as 0.
 ///
 /// ```text
-/// f(wi, wo, λ) = F² · G/w² · Σ_m |c_m(k·w·h₀)|² · (k²σ_c²/π) · exp(−k²σ_c²·[(u − m·λ/d)² + v²])
+/// f(wo, wi, λ) = F² · G/w² · Σ_m |c_m(k·w·h₀)|² · (k²σ_c²/π) · exp(−k²σ_c²·[(u − m·λ/d)² + v²])
 /// ```
 ///
 /// with (u, v, w) = wi + wo in the local frame, k = 2π/λ, G = (1 + wi·wo)²/(wi.z·wo.z), c_m the
 /// [`Profile`]'s Fourier coefficients and F² Schlick's reflectance. A BRDF: multiply by
-/// cos θi ([`cosine_included`](DiffractionBrdf::cosine_included) is `false`).
+/// cos θi (its [`response`](SpectralResponse::response) does).
 ///
 /// ```
-/// use diffraction::{Band, DiffractionBrdf, Profile, Stam};
+/// use diffraction::{Band, DiffractionBrdf, Profile, SpectralResponse, Stam};
 /// use glam::DVec3;
 /// // A sinusoidal grating of period 1.6 µm and amplitude 80 nm, coherent over 8 µm.
 /// let s = Stam::new(Profile::Sine, 1600.0, 80.0, 8000.0)?;
 /// let wi = DVec3::Z;
 /// let wo = DVec3::new(0.3, 0.0, (1.0f64 - 0.09).sqrt()); // u = 0.3: order 1 at 480 nm
 /// let mut peaks = vec![];
-/// let summary = s.peaks(wi, wo, Band::VISIBLE, &mut |p| peaks.push(p));
+/// let summary = s.peaks(wo, wi, Band::VISIBLE, &mut |p| peaks.push(p));
 /// assert_eq!((summary.orders, peaks[0].order), (1, 1));
 /// assert!((peaks[0].wavelength_nm - 480.0).abs() < 1e-9);
-/// assert!((s.eval(wi, wo, 480.0) - peaks[0].intensity).abs() < 1e-9 * peaks[0].intensity);
-/// assert!(s.eval(wi, wo, 480.0) > 1e3 * s.eval(wi, wo, 530.0)); // between the orders: dark
-/// assert_eq!(s.eval(wi, wo, 480.0), s.eval(wo, wi, 480.0)); // reciprocity
-/// assert!(!s.cosine_included());
+/// assert!((s.eval(wo, wi, 480.0) - peaks[0].intensity).abs() < 1e-9 * peaks[0].intensity);
+/// assert!(s.eval(wo, wi, 480.0) > 1e3 * s.eval(wo, wi, 530.0)); // between the orders: dark
+/// assert_eq!(s.eval(wo, wi, 480.0), s.eval(wi, wo, 480.0)); // reciprocity
+/// assert_eq!(s.response(wo, wi, 480.0), s.eval(wo, wi, 480.0) * wi.z);
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -213,8 +215,8 @@ impl Stam {
     /// let s = Stam::new(Profile::Sine, 1600.0, 80.0, 8000.0)?;
     /// let dim = s.with_reflectance(0.5)?;
     /// // At normal incidence and the mirror direction cos θh = 1: F² = R₀.
-    /// let (wi, wo) = (DVec3::Z, DVec3::Z);
-    /// assert!((dim.eval(wi, wo, 550.0) - 0.5 * s.eval(wi, wo, 550.0)).abs() < 1e-9 * s.eval(wi, wo, 550.0));
+    /// let (wo, wi) = (DVec3::Z, DVec3::Z);
+    /// assert!((dim.eval(wo, wi, 550.0) - 0.5 * s.eval(wo, wi, 550.0)).abs() < 1e-9 * s.eval(wo, wi, 550.0));
     /// assert_eq!(s.with_reflectance(1.5).unwrap_err().parameter(), "reflectance");
     /// # Ok::<(), diffraction::Error>(())
     /// ```
@@ -349,11 +351,8 @@ fn unit_cosine(z: f64) -> f64 {
 impl DiffractionBrdf for Stam {
     /// The formula of [`Stam`]; 0 below the surface, for λ < 1 nm (outside optics) and for
     /// non-finite input.
-    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        if !(both_above(wi.z, wo.z) && lambda_nm >= MIN_WAVELENGTH_NM) {
-            return 0.0;
-        }
-        if !(wi.is_finite() && wo.is_finite() && lambda_nm.is_finite()) {
+    fn eval(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        if !(both_above(wo, wi) && lambda_nm >= MIN_WAVELENGTH_NM && lambda_nm.is_finite()) {
             return 0.0;
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
@@ -392,19 +391,27 @@ impl DiffractionBrdf for Stam {
             0.0
         }
     }
+}
 
-    /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with its own lobe's value at
-    /// λ_m (the whole of `eval` there but for the far tails of the other orders, below
+impl SpectralResponse for Stam {
+    /// A BRDF: `eval·cos θi`.
+    fn response(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eval(wo, wi, lambda_nm) * wi.z.clamp(0.0, 1.0)
+    }
+
+    /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with its own lobe's response
+    /// (`eval·cos θi`) at λ_m (the whole of `eval` there but for the far tails of the other orders, below
     /// 10⁻¹⁶ of their peaks) and the equivalent width λ_m·d/(2√π·σ_c·|m|). Order 0's lobe is
     /// seen where k·σ_c·√(u² + v²) < 6 at the band's longest wavelength.
-    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        if !(both_above(wi.z, wo.z) && wi.is_finite() && wo.is_finite()) {
+    fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
+        if !both_above(wo, wi) {
             return PeakSummary::default();
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let d = self.equation.period_nm();
         let sigma = self.coherence_nm;
-        let geometry = self.geometry(wi, wo);
+        // The response carries cos θi (a BRDF).
+        let geometry = self.geometry(wi, wo) * wi.z.min(1.0);
         let mut orders = 0;
         for p in self.equation.orders(u, band).take(MAX_ORDERS as usize) {
             let l = p.wavelength_nm;
@@ -431,8 +438,55 @@ impl DiffractionBrdf for Stam {
             specular: u * u + v * v < reach * reach,
         }
     }
+}
 
-    fn cosine_included(&self) -> bool {
-        false
+/// Stam's model has no sampler of its own: it uses the crate's documented default, a
+/// **cosine-weighted hemisphere** ([`sample_cosine_hemisphere`], density cos θi/π), exact and
+/// positive wherever the value is, so every generic test (furnace, reciprocity, χ², finite
+/// values) runs on it as on [`GratingBsdf`](crate::GratingBsdf); its weight f·cos θi/pdf = π·f.
+/// It finds narrow lobes only by chance: for those, a renderer should prefer light sampling
+/// (MIS does this automatically). GLOSSY; [`regularize`](Bsdf::regularize) leaves it
+/// unchanged (its lobe widths are parameters of the published model).
+///
+/// ```
+/// use diffraction::{Bsdf, DiffractionBrdf, Profile, Stam};
+/// use glam::{DVec2, DVec3};
+/// let s = Stam::new(Profile::Sine, 1600.0, 80.0, 8000.0)?;
+/// let wo = DVec3::new(0.3, 0.0, 0.91f64.sqrt());
+/// let sample = s.sample(wo, 480.0, 0.0, DVec2::new(0.3, 0.8)).unwrap();
+/// assert!((sample.pdf - sample.wi.z / std::f64::consts::PI).abs() < 1e-15);
+/// assert_eq!(sample.f, s.eval(wo, sample.wi, 480.0));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+impl Bsdf for Stam {
+    fn sample(&self, wo: DVec3, lambda_nm: f64, _uc: f64, u2: DVec2) -> Option<BsdfSample> {
+        if !(wo.z >= MIN_COS_THETA && wo.is_finite() && lambda_nm >= MIN_WAVELENGTH_NM) {
+            return None;
+        }
+        let wi = sample_cosine_hemisphere(u2);
+        let pdf = cosine_hemisphere_pdf(wi.z);
+        if !(wi.z >= MIN_COS_THETA && pdf > 0.0) {
+            return None;
+        }
+        Some(BsdfSample::new(
+            wi,
+            self.eval(wo, wi, lambda_nm),
+            pdf,
+            BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
+        ))
     }
+
+    fn pdf(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        if both_above(wo, wi) && lambda_nm >= MIN_WAVELENGTH_NM {
+            cosine_hemisphere_pdf(wi.z)
+        } else {
+            0.0
+        }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::REFLECTION | BsdfFlags::GLOSSY
+    }
+
+    fn regularize(&mut self) {}
 }

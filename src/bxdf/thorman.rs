@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary};
+use crate::bxdf::{both_above, DiffractionBrdf, PeakSummary, SpectralResponse};
 use crate::error::{positive, Error, Requirement};
 use crate::math;
 use crate::{Band, Grating, GratingEquation, Peak, MAX_ORDERS};
@@ -24,7 +24,7 @@ const MAX_TERMS: f64 = 64.0;
 /// same Gaussian lobe in the phase projection u = (wi + wo)·t = `wi.x + wo.x`:
 ///
 /// ```text
-/// eval(wi, wo, λ) = brightness · Σ_m g((u − m·λ/d) / σ),   g(t) = exp(−t²/2),
+/// eval(wo, wi, λ) = brightness · Σ_m g((u − m·λ/d) / σ),   g(t) = exp(−t²/2),
 /// ```
 ///
 /// with σ = [`lobe_width`](Self::lobe_width), in units of u. Each lobe peaks at `brightness`
@@ -36,7 +36,7 @@ const MAX_TERMS: f64 = 64.0;
 /// * **the lobe width is constant in u**, the same for every order and wavelength. Seen at fixed
 ///   directions as a function of λ, the lobe of order m ≠ 0 is an exact Gaussian around
 ///   λ_m = d·u/m with standard deviation σ·d/|m| and **equivalent width** (area over peak)
-///   √(2π)·σ·d/|m|, which is what [`peaks`](DiffractionBrdf::peaks) reports;
+///   √(2π)·σ·d/|m|, which is what [`peaks`](SpectralResponse::peaks) reports;
 /// * the value depends on u only, like the paper's model: nothing confines the light to the
 ///   plane of the diffracted cone (compare `Stam`, feature `stam`).
 ///
@@ -44,21 +44,23 @@ const MAX_TERMS: f64 = 64.0;
 /// grating of N slits at one wavelength: the N-slit lobe has equivalent width λ/(N·d) in u, so
 /// σ = λ/(√(2π)·N·d).
 ///
-/// Reciprocal (u is symmetric in wi and wo); [`cosine_included`](DiffractionBrdf::cosine_included)
-/// is `true`, as for [`AguHill`](crate::AguHill): the value is the diffraction term itself.
+/// Reciprocal (u is symmetric in wi and wo). Like the paper's [`AguHill`](crate::AguHill) the
+/// value is a unitless diffraction term that the light multiplies with no cosine (its
+/// [`response`](SpectralResponse::response) is its value), not a BRDF in 1/sr: Thorman's model
+/// has no radiometric normalisation, so it is not a [`Bsdf`](crate::Bsdf).
 ///
 /// ```
-/// use diffraction::{Band, DiffractionBrdf, Thorman};
+/// use diffraction::{Band, DiffractionBrdf, SpectralResponse, Thorman};
 /// use glam::DVec3;
 /// let t = Thorman::new(1600.0, 0.01)?;
 /// let wi = DVec3::Z;
 /// let wo = DVec3::new(0.3, 0.0, (1.0f64 - 0.09).sqrt()); // u = 0.3: order 1 at 480 nm
-/// assert!((t.eval(wi, wo, 480.0) - 1.0).abs() < 1e-12);
+/// assert!((t.eval(wo, wi, 480.0) - 1.0).abs() < 1e-12);
 /// // One lobe width away from the peak in u: exp(−½).
 /// let off = 480.0 + 0.01 * 1600.0; // λ = (u + σ)·d
-/// assert!((t.eval(wi, wo, off) - (-0.5f64).exp()).abs() < 1e-12);
+/// assert!((t.eval(wo, wi, off) - (-0.5f64).exp()).abs() < 1e-12);
 /// let mut widths = vec![];
-/// t.peaks(wi, wo, Band::VISIBLE, &mut |p| widths.push(p.equivalent_width_nm));
+/// t.peaks(wo, wi, Band::VISIBLE, &mut |p| widths.push(p.equivalent_width_nm));
 /// assert!((widths[0] - (2.0 * std::f64::consts::PI).sqrt() * 0.01 * 1600.0).abs() < 1e-9);
 /// # Ok::<(), diffraction::Error>(())
 /// ```
@@ -122,14 +124,14 @@ impl Thorman {
     /// ```
     ///
     /// ```
-    /// use diffraction::{Band, DiffractionBrdf, Grating, Thorman};
+    /// use diffraction::{Band, Grating, SpectralResponse, Thorman};
     /// use glam::DVec3;
     /// let g = Grating::new(1600.0, 800.0, 100)?;
     /// let t = Thorman::matching(&g, 550.0)?;
     /// // Order 1 at 550 nm: the same equivalent width as the N-slit peak, λ/(|m|·N).
     /// let u = 550.0 / 1600.0;
-    /// let (wi, wo) = (DVec3::Z, DVec3::new(u, 0.0, (1.0 - u * u).sqrt()));
-    /// t.peaks(wi, wo, Band::VISIBLE, &mut |p| {
+    /// let (wo, wi) = (DVec3::new(u, 0.0, (1.0 - u * u).sqrt()), DVec3::Z);
+    /// t.peaks(wo, wi, Band::VISIBLE, &mut |p| {
     ///     assert!((p.equivalent_width_nm - 550.0 / 100.0).abs() < 1e-9);
     /// });
     /// # Ok::<(), diffraction::Error>(())
@@ -242,8 +244,8 @@ impl Thorman {
 impl DiffractionBrdf for Thorman {
     /// `brightness · Σ_m exp(−½((u − m·λ/d)/σ)²)`, u = `wi.x + wo.x`; 0 below the surface,
     /// for λ ≤ 0 and for non-finite input.
-    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        if !(both_above(wi.z, wo.z) && lambda_nm > 0.0) {
+    fn eval(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        if !(both_above(wo, wi) && lambda_nm > 0.0) {
             return 0.0;
         }
         let u = wi.x + wo.x;
@@ -258,13 +260,20 @@ impl DiffractionBrdf for Thorman {
             0.0
         }
     }
+}
+
+impl SpectralResponse for Thorman {
+    /// The paper's convention, as for [`AguHill`](crate::AguHill): the value itself, no cosine.
+    fn response(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eval(wo, wi, lambda_nm)
+    }
 
     /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with intensity `brightness` (its
     /// own lobe's peak; `eval` there also holds the far tails of the other lobes) and equivalent
     /// width √(2π)·σ·d/|m|, at most [`MAX_ORDERS`] of them (the lowest |m|).
     /// Order 0's lobe is seen where |u| < 8.5·σ.
-    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        if !both_above(wi.z, wo.z) {
+    fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
+        if !both_above(wo, wi) {
             return PeakSummary::default();
         }
         let u = wi.x + wo.x;
@@ -283,9 +292,5 @@ impl DiffractionBrdf for Thorman {
             orders,
             specular: u.abs() < CUTOFF * self.lobe_width,
         }
-    }
-
-    fn cosine_included(&self) -> bool {
-        true
     }
 }

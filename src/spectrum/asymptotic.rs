@@ -1,4 +1,4 @@
-//! `Strategy::Asymptotic`: the peak search with its leading correction (the derivation, the
+//! `Strategy::ASYMPTOTIC`: the peak search with its leading correction (the derivation, the
 //! treatment of the kinks, the band ends and order 0, and the measured bound are in the
 //! `spectrum` module docs).
 //!
@@ -14,8 +14,9 @@
 
 use glam::DVec3;
 
+use super::bounds;
 use super::lobes::Lobes;
-use super::rules::{gl4, gl8};
+use super::rules::{gl2, gl4, gl8};
 use super::{Spectral, BAND};
 use crate::cie::Illuminant;
 use crate::kernel::sinpi;
@@ -38,14 +39,6 @@ const SPAN_NM: f64 = 16.0;
 /// An order treated by the plain peak search contributes less than this, relative to the
 /// brightest order's floor, to the error.
 const FAINT: f64 = 1e-7;
-/// The bound `Spectral::choose` relies on, relative to the brightest order's XYZ where only
-/// orders m ≠ 0 reach the band (measured: 1.4e-4 over `tests/asymptotic.rs`, N = 5…10⁶).
-pub(super) const ORDERS_BOUND: f64 = 5e-4;
-/// The bound relative to order 0's own light where its half period reaches into the band
-/// (measured: 5.7e-4).
-pub(super) const ORDER0_BOUND: f64 = 1e-3;
-/// Below this many slits the strategy is `Exact`.
-pub(super) const MIN_SLITS: f64 = 5.0;
 
 /// The spacing of the illuminant's own rows, nm, where its linear interpolation has large kinks
 /// (D65 is tabulated at 5 nm and interpolated linearly to the 1 nm table, see `cie`); 0 when it
@@ -70,7 +63,7 @@ impl Spectral {
             Slits::Finite(n) => n as f64,
             Slits::Infinite => return DVec3::ZERO,
         };
-        if n < MIN_SLITS {
+        if n < bounds::ASYMPTOTIC_MIN_SLITS as f64 {
             return self.exact(grating, u);
         }
         let q = grating.period_nm() * u;
@@ -108,8 +101,8 @@ impl Spectral {
         let right = (ceil(x_hi * n) - 1.0 - END_LOBES) / n;
         // An order whose whole period lies between the end windows and whose peak value is
         // below this gets the plain peak-search weight h(m)/N (its error, under 8/N of it, is
-        // below FAINT of the brightest order's floor 5.19/N).
-        let faint = FAINT * 5.19 / 8.0 * n;
+        // below FAINT of the accuracy unit's floor).
+        let faint = FAINT * bounds::accuracy_floor(n) * n * n / bounds::PEAK_SEARCH_PER_SLIT;
         let mut right_done = false;
         // Every integer whose window reaches into the band, order 0 (x = 0) included.
         let mut m = ceil(x_lo - t).max(0.0);
@@ -336,14 +329,6 @@ fn lobe_rule(n: f64, q: f64) -> impl Fn(f64, f64, &mut DVec3, &dyn Fn(f64) -> DV
             gl2(a, b, acc, f);
         }
     }
-}
-
-/// 2-point Gauss-Legendre over [a, b].
-#[inline]
-fn gl2(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
-    const X: f64 = 0.5773502691896257; // 1/√3
-    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    *acc += (f(mid - half * X) + f(mid + half * X)) * half;
 }
 
 /// 4-point Gauss-Legendre over [a, b] (in x) split where λ = q/x crosses a node of the

@@ -27,11 +27,11 @@
 use glam::DVec3;
 
 use super::lobes::Lobes;
-use super::rules::{GL_W, GL_X};
 use super::{Spectral, BAND};
 use crate::cie;
 use crate::kernel::{n_slit_cycles, single_slit_cycles, sinpi};
 use crate::math::{ceil, floor, rint};
+use crate::quadrature::GL8;
 use crate::Grating;
 
 /// Above this many orders in the band (d·|u|·(1/360 − 1/830) > 4096, so d·|u| > 2.6 mm), the
@@ -153,7 +153,7 @@ fn k_n(a: f64, n: u32) -> f64 {
         while lo < 0.5 {
             let hi = (k / nf).min(0.5);
             let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-            for (x, w) in GL_X.iter().zip(GL_W) {
+            for (x, w) in GL8.nodes.iter().zip(GL8.weights) {
                 let r = mid + half * x;
                 sum += w * half * cos_pi(2.0 * a * r) * n_slit_cycles(r, n);
             }
@@ -167,7 +167,7 @@ fn k_n(a: f64, n: u32) -> f64 {
     for piece in 0..4 {
         let (lo, hi) = (piece as f64 * 0.125, (piece + 1) as f64 * 0.125);
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-        for (x, w) in GL_X.iter().zip(GL_W) {
+        for (x, w) in GL8.nodes.iter().zip(GL8.weights) {
             let r = mid + half * x;
             let q = sinpi(a * r) / sinpi(r);
             j += w * half * q * q;

@@ -15,9 +15,9 @@
 use glam::DVec3;
 
 use super::lobes::Lobes;
-use super::rules::{GL_W, GL_X};
 use super::{Spectral, BAND};
 use crate::math::{ceil, floor};
+use crate::quadrature::{GL4, GL8};
 use crate::{Grating, Slits};
 
 /// Lobes integrated exactly around every integer x and band end by the former hybrid mode
@@ -65,20 +65,6 @@ const FILON_MIN_LOBES: f64 = 3.0;
 const FILON4_OF_DISTANCE: f64 = 0.05;
 /// See FILON4_OF_DISTANCE.
 const FILON4_SLIT_SPAN: f64 = 0.0067;
-/// 4-point Gauss-Legendre nodes and weights on [−1, 1] (numpy.polynomial.legendre.leggauss(4)).
-const GL4_X: [f64; 4] = [
-    -0.8611363115940526,
-    -0.33998104358485626,
-    0.33998104358485626,
-    0.8611363115940526,
-];
-const GL4_W: [f64; 4] = [
-    0.34785484513745385,
-    0.6521451548625461,
-    0.6521451548625461,
-    0.34785484513745385,
-];
-
 /// Relative tolerance on the window edges.
 const EDGE: f64 = 1e-9;
 /// A Filon piece spans at most this many periods of the single-slit factor, 1/duty in x.
@@ -136,9 +122,9 @@ pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
             let eps = if r_lo < 0.5 { r_lo } else { m + 1.0 - until };
             let w = until - cursor;
             if w <= FILON4_OF_DISTANCE * eps && w * l.duty <= FILON4_SLIT_SPAN {
-                filon(l, cursor, until, &GL4_X, &GL4_W, &mut acc);
+                filon(l, cursor, until, &GL4.nodes, &GL4.weights, &mut acc);
             } else {
-                filon(l, cursor, until, &GL_X, &GL_W, &mut acc);
+                filon(l, cursor, until, &GL8.nodes, &GL8.weights, &mut acc);
             }
         }
         cursor = until;

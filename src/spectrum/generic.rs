@@ -1,23 +1,23 @@
-//! The reference colour of any [`DiffractionBrdf`]: the path for models that are not a multiple
-//! of a grating's intensity.
+//! The reference colour of a model of any shape through its [`SpectralResponse`]: the generic
+//! path's own rules ([`GenericStrategy`]), and the paper's peak colours for any model.
 
 use glam::DVec3;
 
+use super::bounds;
 use super::rules::{gauss_legendre_rule, gl8, midpoint_rule};
-use super::{Spectral, Strategy, BAND, MAX_WAVELENGTHS};
+use super::strategy::GenericStrategyKind;
+use super::{saturate, GenericStrategy, Spectral, BAND, MAX_WAVELENGTHS};
 use crate::cie;
 use crate::color::Xyz;
 use crate::math::{ceil, floor};
-use crate::{DiffractionBrdf, Peak, MAX_ORDERS};
+use crate::{Peak, SpectralResponse, MAX_ORDERS};
 
-/// Where a model's order-0 lobe is seen, the peak search integrates the whole band with 8-point
-/// Gauss-Legendre on this many equal intervals (29.4 nm each): order 0's light is broad in
-/// wavelength (its lobe spans the band near the mirror direction), and 128 evaluations resolve
-/// the tables' variation to the peak search's accuracy.
+/// Where a model's order-0 lobe is seen, the paper's peak colours take the model's mean
+/// response over this many equal intervals of the band (29.4 nm each) as the white's weight.
 const ORDER0_INTERVALS: u32 = 16;
 
-/// `Exact` resolves a peak over ±`PEAK_WINDOW_WIDTHS` equivalent widths around it: the mass of an
-/// F_N-shaped lobe beyond k widths is about 1/(π²k) of the order, and the 1 nm rule outside
+/// `WINDOWS` resolves a peak over ±`PEAK_WINDOW_WIDTHS` equivalent widths around it: the mass of
+/// an F_N-shaped lobe beyond k widths is about 1/(π²k) of the order, and the 1 nm rule outside
 /// integrates that smooth tail.
 const PEAK_WINDOW_WIDTHS: f64 = 64.0;
 
@@ -31,147 +31,180 @@ const PEAK_WINDOW_PIECES: u32 = 128;
 const RESOLVED_WIDTH_NM: f64 = 2.0;
 
 impl Spectral {
-    /// The reference colour of any [`DiffractionBrdf`] at (wi, wo): ∫E·f·cmf/∫E·ȳ with f the
-    /// model's `eval`, multiplied by cos θi when the model does not include it.
+    /// The reference colour of any model with a [`SpectralResponse`] at (wo, wi):
+    /// ∫E·response·cmf/∫E·ȳ, through the model's `response` and `peaks`, by a rule of the
+    /// generic path ([`GenericStrategy`], with its bounds for models that keep the contract of
+    /// [`SpectralResponse::peaks`]):
     ///
-    /// A model that says it is a multiple of a grating's intensity
-    /// ([`DiffractionBrdf::grating_response`]) is integrated by the grating paths of
-    /// [`Spectral::xyz`], times its scale. Any other model is integrated through `eval` and
-    /// `peaks` with the same algorithm each [`Strategy`] names and the same bound (see
-    /// [`Strategy`]): `Uniform` and `GaussLegendre` apply their rule to the integrand;
-    /// `PeakSearch` (both modes) gives each visited peak its value times its equivalent width,
-    /// plus 8-point Gauss-Legendre on 16 intervals where the order-0 lobe is seen (and, where
-    /// the model reports [`MAX_ORDERS`] orders, the most it visits, the rule
-    /// of `GaussLegendre` with its largest count instead); `PaperPeaks`
-    /// the peak values at their wavelengths, and the white scaled by the band-averaged value
-    /// where the order-0 lobe is seen; `Exact` and `Auto` 8-point Gauss-Legendre on every 1 nm
-    /// step of the tables, refined to 128 pieces over ±64 equivalent widths around every
-    /// visited peak narrower than 2 nm. The bounds hold for models that keep the contract of
-    /// [`DiffractionBrdf::peaks`]. The windows never overlap, so at most one per
-    /// nanometre of the band does work; where a model reports [`MAX_ORDERS`] peaks
-    /// (a comb finer than any table row) the peak search is `GaussLegendre` with the finest
-    /// rule. `PaperPeaks` sums the visited peaks only.
+    /// * `uniform(K)`, `gauss_legendre(K)`: the rule applied to the response;
+    /// * `PEAK_SEARCH`: each reported peak its value times its equivalent width (a peak whose
+    ///   window of ±64 widths reaches a band end by quadrature of the part inside); `WINDOWS`
+    ///   where order 0's lobe is seen, and the finest Gauss-Legendre rule where the model
+    ///   reports [`MAX_ORDERS`] orders (a comb finer than any table row);
+    /// * `WINDOWS`: 8-point Gauss-Legendre on every 1 nm row of the tables, refined to 128
+    ///   pieces over ±64 equivalent widths around every reported peak narrower than 2 nm (the
+    ///   windows never overlap, so at most one per nanometre of the band does work);
+    /// * `auto(a)`: `PEAK_SEARCH` where its bound 8/N_eff (N_eff from the sharpest reported peak)
+    ///   meets a and order 0's lobe is not seen, else `WINDOWS`.
+    ///
+    /// A model that is a multiple of a grating's intensity has better paths:
+    /// [`SpectralResponse::grating_response`] and [`Spectral::xyz_response`].
     ///
     /// ```
-    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
-    /// use diffraction::{AguHill, Grating, Thorman};
+    /// use diffraction::spectrum::{GenericStrategy, Illuminant, Spectral, Strategy};
+    /// use diffraction::{AguHill, Grating, SpectralResponse, Thorman};
     /// use glam::DVec3;
     /// let g = Grating::new(1600.0, 800.0, 300)?;
     /// let s = Spectral::new(Illuminant::D65);
-    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.35, 0.0, (1.0f64 - 0.35 * 0.35).sqrt()));
-    /// // The paper's model is its grating's intensity: the same colour as `xyz` at u = 0.35.
-    /// let model = s.xyz_brdf(&AguHill::new(g), wi, wo, Strategy::Exact);
-    /// assert_eq!(model, s.xyz(&g, 0.35, Strategy::Exact));
-    /// // Thorman's lobes are not: the generic path.
-    /// let t = s.xyz_brdf(&Thorman::matching(&g, 560.0)?, wi, wo, Strategy::Exact);
-    /// assert!(t.y > 0.0);
+    /// let (wo, wi) = (DVec3::new(0.35, 0.0, (1.0f64 - 0.35 * 0.35).sqrt()), DVec3::Z);
+    /// // Thorman's lobes are not a grating's intensity: the generic path.
+    /// let t = Thorman::matching(&g, 560.0)?;
+    /// let windows = s.xyz_brdf(&t, wo, wi, GenericStrategy::WINDOWS);
+    /// let peaks = s.xyz_brdf(&t, wo, wi, GenericStrategy::PEAK_SEARCH);
+    /// assert!((peaks.y - windows.y).abs() < 8.0 / 300.0 * windows.y);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
-    pub fn xyz_brdf<B: DiffractionBrdf + ?Sized>(
+    pub fn xyz_brdf<M: SpectralResponse + ?Sized>(
         &self,
-        brdf: &B,
-        wi: DVec3,
+        model: &M,
         wo: DVec3,
-        strategy: Strategy,
+        wi: DVec3,
+        strategy: GenericStrategy,
     ) -> Xyz {
         if !(wi.is_finite() && wo.is_finite()) {
             return Xyz::default();
         }
-        if let Some(r) = brdf.grating_response(wi, wo) {
-            let spectral = if r.envelope.is_one() {
-                *self
-            } else {
-                self.with_envelope(r.envelope)
-            };
-            return spectral.xyz(&r.grating, r.u, strategy) * r.scale;
-        }
-        let cos = if brdf.cosine_included() {
-            1.0
-        } else {
-            wi.z.max(0.0)
-        };
-        let f = |l: f64| -> DVec3 {
-            let v = brdf.eval(wi, wo, l) * cos;
-            let w = self.weight(l);
-            w * v
-        };
-        let mut acc = DVec3::ZERO;
-        match strategy {
-            Strategy::Uniform { samples } => acc = midpoint_rule(samples, &f),
-            Strategy::GaussLegendre { intervals } => acc = gauss_legendre_rule(intervals, &f),
-            Strategy::PeakSearch { .. } => {
-                // Each peak its value times its equivalent width; a peak whose window reaches a
-                // band end by quadrature of the part inside, the window cut halfway to the
-                // neighbouring peaks. Peaks come in order of decreasing wavelength, so each is
-                // handled when the next arrives (its neighbours then known).
-                let mut pending: Option<(Peak, f64)> = None; // the peak, the previous λ
-                let handle = |p: Peak, longer: f64, shorter: f64, acc: &mut DVec3| {
-                    let w = p.equivalent_width_nm;
-                    let (l0, l1) = (
-                        p.wavelength_nm - PEAK_WINDOW_WIDTHS * w,
-                        p.wavelength_nm + PEAK_WINDOW_WIDTHS * w,
-                    );
-                    if l0 < BAND.min_nm() || l1 > BAND.max_nm() {
-                        let a = l0.max(0.5 * (p.wavelength_nm + shorter)).max(BAND.min_nm());
-                        let b = l1.min(0.5 * (p.wavelength_nm + longer)).min(BAND.max_nm());
-                        *acc += window(a, b, w, &f);
-                    } else {
-                        *acc += self.weight(p.wavelength_nm) * (p.intensity * cos * w);
-                    }
-                };
-                let summary = brdf.peaks(wi, wo, BAND, &mut |p| {
-                    if let Some((q, longer)) = pending.take() {
-                        handle(q, longer, p.wavelength_nm, &mut acc);
-                        pending = Some((p, q.wavelength_nm));
-                    } else {
-                        pending = Some((p, f64::INFINITY));
+        let f = |l: f64| -> DVec3 { self.weight(l) * model.response(wo, wi, l) };
+        let acc = match strategy.kind() {
+            GenericStrategyKind::Uniform { samples } => midpoint_rule(samples, &f),
+            GenericStrategyKind::GaussLegendre { intervals } => gauss_legendre_rule(intervals, &f),
+            GenericStrategyKind::PeakSearch => self.peak_search_generic(model, wo, wi, &f),
+            GenericStrategyKind::Windows => self.windows(model, wo, wi, &f),
+            GenericStrategyKind::Auto { accuracy } => {
+                // The sharpest reported peak sets N_eff = λ_m/(|m|·Δλ_m).
+                let mut n_eff = f64::INFINITY;
+                let summary = model.peaks(wo, wi, BAND, &mut |p| {
+                    let m = p.order.unsigned_abs() as f64;
+                    let n = p.wavelength_nm / (m * p.equivalent_width_nm);
+                    if n.is_finite() && n > 0.0 {
+                        n_eff = n_eff.min(n);
                     }
                 });
-                if let Some((q, longer)) = pending {
-                    handle(q, longer, f64::NEG_INFINITY, &mut acc);
-                }
-                if summary.orders >= MAX_ORDERS {
-                    // Too many orders to visit (at most MAX_ORDERS were): a comb far finer
-                    // than any table row, integrated by the finest Gauss-Legendre rule instead.
-                    acc = gauss_legendre_rule(MAX_WAVELENGTHS / 8, &f);
-                } else if summary.specular {
-                    // Order 0's light is broad and may lie under the peaks: where it is seen,
-                    // the peak search is `Exact` (no peak counted twice).
-                    acc = self.exact_generic(brdf, wi, wo, &f);
+                let fits = bounds::GENERIC_PEAK_SEARCH_PER_SLIT / n_eff <= accuracy;
+                if summary.orders > 0 && !summary.specular && fits {
+                    self.peak_search_generic(model, wo, wi, &f)
+                } else {
+                    self.windows(model, wo, wi, &f)
                 }
             }
-            Strategy::PaperPeaks => {
-                let scale = 1.0 / self.mean_power;
-                let summary = brdf.peaks(wi, wo, BAND, &mut |p| {
-                    let e = self.illuminant.power(p.wavelength_nm) * scale * p.intensity * cos;
-                    acc += DVec3::from(cie::cmf(p.wavelength_nm)) * e;
-                });
-                if summary.specular {
-                    let mut mean = 0.0;
-                    let step = BAND.width_nm() / ORDER0_INTERVALS as f64;
-                    for j in 0..ORDER0_INTERVALS {
-                        mean += brdf.eval(wi, wo, BAND.min_nm() + (j as f64 + 0.5) * step);
-                    }
-                    let k = mean / ORDER0_INTERVALS as f64 * cos;
-                    acc += self.flat_dvec3() * k;
-                }
-            }
-            Strategy::Exact | Strategy::Asymptotic | Strategy::Auto { .. } => {
-                acc = self.exact_generic(brdf, wi, wo, &f)
-            }
-        }
-        Xyz::new(acc.x.max(0.0), acc.y.max(0.0), acc.z.max(0.0))
+        };
+        saturate(Xyz::new(acc.x, acc.y, acc.z))
     }
 
-    /// `Exact` on the generic path: 8-point Gauss-Legendre on every 1 nm row of the tables, and
-    /// over ±`PEAK_WINDOW_WIDTHS` equivalent widths around every visited peak narrower than
-    /// `RESOLVED_WIDTH_NM`, `PEAK_WINDOW_PIECES` pieces instead.
-    fn exact_generic<B: DiffractionBrdf + ?Sized>(
+    /// The paper's own colours (its rendering steps 6-8) for any model: every reported peak's
+    /// response at its wavelength, converted to colour as in [`Spectral::paper_peaks`]; where
+    /// order 0's lobe is seen, the white times the model's mean response over the band (16
+    /// equal intervals). Not an integral: see [`Spectral::paper_peaks`].
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{AguHill, Grating};
+    /// use glam::DVec3;
+    /// let g = Grating::new(1600.0, 800.0, 300)?;
+    /// let s = Spectral::new(Illuminant::D65);
+    /// let (wo, wi) = (DVec3::new(0.35, 0.0, (1.0f64 - 0.35 * 0.35).sqrt()), DVec3::Z);
+    /// let generic = s.paper_peaks_brdf(&AguHill::new(g), wo, wi);
+    /// assert!((generic.y - s.paper_peaks(&g, 0.35).y).abs() < 1e-12);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn paper_peaks_brdf<M: SpectralResponse + ?Sized>(
         &self,
-        brdf: &B,
-        wi: DVec3,
+        model: &M,
         wo: DVec3,
+        wi: DVec3,
+    ) -> Xyz {
+        if !(wi.is_finite() && wo.is_finite()) {
+            return Xyz::default();
+        }
+        let mut acc = DVec3::ZERO;
+        let scale = 1.0 / self.mean_power;
+        let summary = model.peaks(wo, wi, BAND, &mut |p| {
+            let e = self.illuminant.power(p.wavelength_nm) * scale * p.intensity;
+            acc += DVec3::from(cie::cmf(p.wavelength_nm)) * e;
+        });
+        if summary.specular {
+            let mut mean = 0.0;
+            let step = BAND.width_nm() / ORDER0_INTERVALS as f64;
+            for j in 0..ORDER0_INTERVALS {
+                mean += model.response(wo, wi, BAND.min_nm() + (j as f64 + 0.5) * step);
+            }
+            acc += self.flat_dvec3() * (mean / ORDER0_INTERVALS as f64);
+        }
+        saturate(Xyz::new(acc.x, acc.y, acc.z))
+    }
+
+    /// The generic peak search (see [`Spectral::xyz_brdf`]).
+    fn peak_search_generic<M: SpectralResponse + ?Sized>(
+        &self,
+        model: &M,
+        wo: DVec3,
+        wi: DVec3,
+        f: &dyn Fn(f64) -> DVec3,
+    ) -> DVec3 {
+        let mut acc = DVec3::ZERO;
+        // Each peak its value times its equivalent width; a peak whose window reaches a band
+        // end by quadrature of the part inside, the window cut halfway to the neighbouring
+        // peaks. Peaks come in order of decreasing wavelength, so each is handled when the next
+        // arrives (its neighbours then known).
+        let mut pending: Option<(Peak, f64)> = None; // the peak, the previous λ
+        let handle = |p: Peak, longer: f64, shorter: f64, acc: &mut DVec3| {
+            let w = p.equivalent_width_nm;
+            let (l0, l1) = (
+                p.wavelength_nm - PEAK_WINDOW_WIDTHS * w,
+                p.wavelength_nm + PEAK_WINDOW_WIDTHS * w,
+            );
+            if l0 < BAND.min_nm() || l1 > BAND.max_nm() {
+                let a = l0.max(0.5 * (p.wavelength_nm + shorter)).max(BAND.min_nm());
+                let b = l1.min(0.5 * (p.wavelength_nm + longer)).min(BAND.max_nm());
+                *acc += window(a, b, w, f);
+            } else {
+                *acc += self.weight(p.wavelength_nm) * (p.intensity * w);
+            }
+        };
+        let summary = model.peaks(wo, wi, BAND, &mut |p| {
+            if let Some((q, longer)) = pending.take() {
+                handle(q, longer, p.wavelength_nm, &mut acc);
+                pending = Some((p, q.wavelength_nm));
+            } else {
+                pending = Some((p, f64::INFINITY));
+            }
+        });
+        if let Some((q, longer)) = pending {
+            handle(q, longer, f64::NEG_INFINITY, &mut acc);
+        }
+        if summary.orders >= MAX_ORDERS {
+            // Too many orders to visit (at most MAX_ORDERS were): a comb far finer than any
+            // table row, integrated by the finest Gauss-Legendre rule instead.
+            gauss_legendre_rule(MAX_WAVELENGTHS / 8, f)
+        } else if summary.specular {
+            // Order 0's light is broad and may lie under the peaks: where it is seen, the peak
+            // search is `WINDOWS` (no peak counted twice).
+            self.windows(model, wo, wi, f)
+        } else {
+            acc
+        }
+    }
+
+    /// `WINDOWS`: 8-point Gauss-Legendre on every 1 nm row of the tables, and over
+    /// ±`PEAK_WINDOW_WIDTHS` equivalent widths around every visited peak narrower than
+    /// `RESOLVED_WIDTH_NM`, `PEAK_WINDOW_PIECES` pieces instead.
+    fn windows<M: SpectralResponse + ?Sized>(
+        &self,
+        model: &M,
+        wo: DVec3,
+        wi: DVec3,
         f: &dyn Fn(f64) -> DVec3,
     ) -> DVec3 {
         let mut acc = DVec3::ZERO;
@@ -186,7 +219,7 @@ impl Spectral {
         // rows). Peaks come in order of decreasing wavelength; each window stops where the
         // previous began, so windows never overlap.
         let mut previous_start = hi;
-        brdf.peaks(wi, wo, BAND, &mut |p| {
+        model.peaks(wo, wi, BAND, &mut |p| {
             let w = p.equivalent_width_nm;
             if !(w > 0.0 && w < RESOLVED_WIDTH_NM) {
                 return;

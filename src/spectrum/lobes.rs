@@ -4,10 +4,11 @@
 
 use glam::DVec3;
 
-use super::rules::{gl4, gl8, GL_W, GL_X};
+use super::rules::{gl3, gl4, gl8};
 use super::Spectral;
 use crate::kernel::{single_slit_cycles, sinpi};
 use crate::math::{ceil, floor, rint};
+use crate::quadrature::GL8;
 use crate::Grating;
 
 /// Largest wavelength span of one 4-point Gauss-Legendre piece in the peak searches' treatment
@@ -105,7 +106,7 @@ impl<'a> Lobes<'a> {
         let width = 1.0 / self.n;
         for j in 0..lobes {
             let (mid, half) = ((j as f64 + 0.5) * width, 0.5 * width);
-            for (xi, wi) in GL_X.iter().zip(GL_W) {
+            for (xi, wi) in GL8.nodes.iter().zip(GL8.weights) {
                 sum += wi * half * crate::kernel::n_slit_cycles(mid + half * xi, self.n_int);
             }
         }
@@ -200,14 +201,4 @@ pub(super) fn graded_rule(lobes: f64, a: f64, b: f64, acc: &mut DVec3, f: &dyn F
     } else {
         gl3(a, b, acc, f);
     }
-}
-
-/// 3-point Gauss-Legendre over [a, b].
-#[inline]
-fn gl3(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
-    const X: f64 = 0.7745966692414834; // √(3/5)
-    const W0: f64 = 8.0 / 9.0;
-    const W1: f64 = 5.0 / 9.0;
-    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    *acc += (f(mid) * W0 + (f(mid - half * X) + f(mid + half * X)) * W1) * half;
 }

@@ -21,7 +21,7 @@ impl Spectral {
     /// let g = Grating::new(1600.0, 800.0, 3)?;
     /// let s = Spectral::new(Illuminant::E);
     /// let est = s.xyz_stratified(&g, 0.4, &[0.5; 64]); // midpoints: the uniform rule
-    /// assert_eq!(est, s.xyz(&g, 0.4, Strategy::Uniform { samples: 64 }));
+    /// assert_eq!(est, s.xyz(&g, 0.4, Strategy::uniform(64)?));
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
@@ -57,7 +57,7 @@ impl Spectral {
     /// let s = Spectral::new(Illuminant::E);
     /// // xi = 0.5/count puts the wavelengths at the strata midpoints: the uniform rule.
     /// let hero = s.xyz_hero(&g, 0.4, 0.5 / 8.0, 8);
-    /// let uniform = s.xyz(&g, 0.4, Strategy::Uniform { samples: 8 });
+    /// let uniform = s.xyz(&g, 0.4, Strategy::uniform(8)?);
     /// assert!((hero.y - uniform.y).abs() < 1e-12 * uniform.y); // same wavelengths, rounded apart
     /// assert_eq!(s.xyz_hero(&g, 0.4, 0.5, 0), Xyz::default()); // no wavelength: black
     /// # Ok::<(), diffraction::Error>(())

@@ -1,31 +1,11 @@
-//! Quadrature rules over wavelength or phase: the midpoint rule, Gauss-Legendre with 4 and 8
-//! points, on XYZ-valued integrands.
+//! Quadrature rules over wavelength or phase on XYZ-valued integrands: the midpoint rule and the
+//! crate's Gauss-Legendre rules ([`crate::quadrature`]) in the accumulating form the spectral
+//! integrators use.
 
 use glam::DVec3;
 
 use super::{BAND, MAX_WAVELENGTHS};
-
-/// Gauss-Legendre 8-point nodes and weights on [−1, 1] (numpy.polynomial.legendre.leggauss(8)).
-pub(super) const GL_X: [f64; 8] = [
-    -0.9602898564975362,
-    -0.7966664774136267,
-    -0.525532409916329,
-    -0.18343464249564978,
-    0.18343464249564978,
-    0.525532409916329,
-    0.7966664774136267,
-    0.9602898564975362,
-];
-pub(super) const GL_W: [f64; 8] = [
-    0.10122853629037706,
-    0.22238103445337443,
-    0.3137066458778869,
-    0.36268378337836166,
-    0.36268378337836166,
-    0.3137066458778869,
-    0.22238103445337443,
-    0.10122853629037706,
-];
+use crate::quadrature;
 
 /// The midpoint rule with `k` (at least 1) wavelengths over the band.
 pub(super) fn midpoint_rule(k: u32, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
@@ -50,22 +30,27 @@ pub(super) fn gauss_legendre_rule(k: u32, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
     acc
 }
 
-/// 4-point Gauss-Legendre over [a, b] (numpy.polynomial.legendre.leggauss(4)).
-#[inline]
-pub(super) fn gl4(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
-    const X: [f64; 2] = [0.33998104358485626, 0.8611363115940526];
-    const W: [f64; 2] = [0.6521451548625464, 0.34785484513745357];
-    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    for (x, w) in X.iter().zip(W) {
-        *acc += f(mid - half * x) * w * half;
-        *acc += f(mid + half * x) * w * half;
-    }
-}
-
+/// The crate's Gauss-Legendre rules ([`crate::quadrature`]) accumulating into `acc`, the form
+/// the spectral integrators pass around as piece rules.
 #[inline]
 pub(super) fn gl8(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
-    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-    for (xi, wi) in GL_X.iter().zip(GL_W) {
-        *acc += f(mid + half * xi) * wi * half;
-    }
+    *acc += quadrature::gl8(a, b, f);
+}
+
+/// See [`gl8`].
+#[inline]
+pub(super) fn gl4(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    *acc += quadrature::gl4(a, b, f);
+}
+
+/// See [`gl8`].
+#[inline]
+pub(super) fn gl3(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    *acc += quadrature::gl3(a, b, f);
+}
+
+/// See [`gl8`].
+#[inline]
+pub(super) fn gl2(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    *acc += quadrature::gl2(a, b, f);
 }

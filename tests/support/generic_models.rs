@@ -1,29 +1,18 @@
-//! Models that take the generic colour path of `Spectral::xyz_brdf`, and the directions that
-//! put a given phase projection u in front of them.
+//! What the tests of the generic colour path share: a model trait object with both the value
+//! and the colour capability, the directions that put a given phase projection u in front of a
+//! model, and the sharpest visited peak.
 //!
 //! Each test binary that includes this file uses part of it.
 #![allow(dead_code)]
 
-use diffraction::{Band, DiffractionBrdf, Peak, PeakSummary};
+use diffraction::{Band, DiffractionBrdf, SpectralResponse};
 use glam::DVec3;
 
-/// A model that hides that it is a grating's intensity (no `grating_response`), so that the
-/// colour integrator takes its generic path through `eval` and `peaks`.
-pub struct Opaque<B>(pub B);
+/// A model with its value and its colour (`dyn` needs one trait for both).
+pub trait Model: DiffractionBrdf + SpectralResponse {}
+impl<M: DiffractionBrdf + SpectralResponse> Model for M {}
 
-impl<B: DiffractionBrdf> DiffractionBrdf for Opaque<B> {
-    fn eval(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
-        self.0.eval(wi, wo, lambda_nm)
-    }
-    fn peaks(&self, wi: DVec3, wo: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
-        self.0.peaks(wi, wo, band, visit)
-    }
-    fn cosine_included(&self) -> bool {
-        self.0.cosine_included()
-    }
-}
-
-/// wi = wo = (u/2, 0, √(1 − u²/4)): the retro-reflecting pair whose phase projection
+/// wo = wi = (u/2, 0, √(1 − u²/4)): the retro-reflecting pair whose phase projection
 /// wi.x + wo.x is exactly u (halving and doubling are exact), for |u| < 2.
 pub fn retro(u: f64) -> (DVec3, DVec3) {
     let h = 0.5 * u;
@@ -41,10 +30,10 @@ pub fn unit_upper(theta: f64, phi: f64) -> DVec3 {
 }
 
 /// The sharpest visited peak's N_eff = λ_m/(|m|·Δλ_m) (Δλ_m its equivalent width): the
-/// `N_eff` of the `Strategy` bounds. `None` where no peak is visited.
-pub fn sharpest(model: &dyn DiffractionBrdf, wi: DVec3, wo: DVec3) -> Option<f64> {
+/// `N_eff` of the `GenericStrategy` bounds. `None` where no peak is visited.
+pub fn sharpest(model: &dyn SpectralResponse, wo: DVec3, wi: DVec3) -> Option<f64> {
     let mut n_eff: Option<f64> = None;
-    model.peaks(wi, wo, Band::VISIBLE, &mut |p| {
+    model.peaks(wo, wi, Band::VISIBLE, &mut |p| {
         let n = p.wavelength_nm / (p.order.unsigned_abs() as f64 * p.equivalent_width_nm);
         n_eff = Some(n_eff.map_or(n, |m| m.min(n)));
     });

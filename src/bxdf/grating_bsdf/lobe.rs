@@ -1,0 +1,103 @@
+//! The shape of the grating's lobes: the value f(u, v) of the finite-N lobes (the single-slit
+//! factor, the N-slit factor and the groove spread, fused into one division) and the Lorentzian
+//! proxy of F_N that the sampler draws u from.
+//!
+//! F_N(π·r) ≤ 2/(1 + 4N²r²) on |r| ≤ ½, so the Lorentzian density
+//! q(r) = N/((1 + 4N²r²)·atan N) on |r| < ½ (inverse CDF r = tan((2ξ − 1)·atan N)/(2N)) bounds
+//! N·F_N/q by 2·atan N < π for every N.
+
+use crate::groove::{GrooveKind, GrooveSpread};
+use crate::kernel::{intensity_ratio_flat, sinc_ratio_flat};
+use crate::special::tan;
+
+/// The Lorentzian proxy's inverse CDF: r = tan((2t − 1)·atan N)/(2N), |r| ≤ ½ (a = atan N).
+#[inline]
+pub(super) fn lorentz_r(n: f64, atan_n: f64, t: f64) -> f64 {
+    let r = tan((2.0 * t - 1.0) * atan_n) / (2.0 * n);
+    r.clamp(-0.5, 0.5)
+}
+
+/// The Lorentzian proxy's density on |r| < ½: N/((1 + 4N²r²)·atan N).
+#[inline]
+pub(super) fn lorentz_q(n: f64, atan_n: f64, r: f64) -> f64 {
+    if r.abs() > 0.5 {
+        return 0.0;
+    }
+    let t = 2.0 * n * r;
+    n / ((1.0 + t * t) * atan_n)
+}
+
+/// The value of a finite-N lobe with a non-ideal groove spread, for one grating: everything that
+/// does not depend on the directions or λ, precomputed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Lobe {
+    /// d, w (nm), N.
+    pub d: f64,
+    pub w: f64,
+    pub n: u32,
+    /// ρ²·N·d.
+    pub scale: f64,
+    pub groove: GrooveSpread,
+}
+
+/// The groove's factor at one wavelength in the fused form of [`Lobe::ratio`]: G, and whether
+/// G·(a/b)² must also carry the sinc² of a coherence length.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct GrooveFactor {
+    /// L/λ for a coherence length; g(v) otherwise.
+    pub big: f64,
+    pub coherent: bool,
+}
+
+impl Lobe {
+    /// The groove's factor at (v, λ): L/λ (coherence length; its sinc² goes into the ratio) or
+    /// g(v) (Gaussian, the same at every λ).
+    #[inline]
+    pub(super) fn groove_factor(&self, v: f64, lambda_nm: f64) -> GrooveFactor {
+        match self.groove.kind() {
+            GrooveKind::CoherenceLength { length_nm } => GrooveFactor {
+                big: length_nm / lambda_nm,
+                coherent: true,
+            },
+            _ => GrooveFactor {
+                big: self.groove.value_unchecked(v, lambda_nm),
+                coherent: false,
+            },
+        }
+    }
+
+    /// f = ρ²·(N·d/λ)·G·(a/b)² as a numerator and a denominator (one division), without
+    /// branches on the phase, from q = u/λ: (a/b)² = S(π·w·q)·F_N(π·d·q) (the crate's fused
+    /// kernel); for a coherence length G = L/λ and a/b also carries sinc(π·t), t = (L/λ)·v, so
+    /// that G·(a/b)² holds g = (L/λ)·sinc²(π·t); otherwise G = g(v). `eval`, `eval4` and
+    /// `sample` all go through here, so they agree to the last bit.
+    #[inline(always)]
+    pub(super) fn ratio(&self, q: f64, g: GrooveFactor, v: f64, lambda_nm: f64) -> (f64, f64) {
+        let (mut a, mut b) = intensity_ratio_flat(self.d * q, self.w * q, self.n);
+        let mut big = g.big;
+        if g.coherent {
+            let t = big * v;
+            let (sa, sb) = sinc_ratio_flat(t);
+            a *= sa;
+            b *= sb;
+            // g = 0 where t overflows, as `GrooveSpread::value`.
+            if !t.is_finite() {
+                big = 0.0;
+            }
+        }
+        (self.scale * big * (a * a), (b * b) * lambda_nm)
+    }
+
+    /// f at (u, v), finite and ≥ 0 (0 where the phase or the value is not finite).
+    #[inline]
+    pub(super) fn value(&self, u: f64, v: f64, lambda_nm: f64) -> f64 {
+        let q = u / lambda_nm;
+        let (num, den) = self.ratio(q, self.groove_factor(v, lambda_nm), v, lambda_nm);
+        let f = num / den;
+        if (self.d * q).is_finite() && f.is_finite() {
+            f
+        } else {
+            0.0
+        }
+    }
+}

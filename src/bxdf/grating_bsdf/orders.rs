@@ -1,0 +1,277 @@
+//! The order distribution of the grating's sampler (the counterpart of pbrt's microfacet
+//! distribution): which orders a direction `wo` can reach at λ, their weights, the choice of one
+//! order and its probability.
+//!
+//! Order m's period in the phase x = u/(λ/d) is [m − ½, m + ½) for finite N (its lobe spreads
+//! over the whole period), and the point x = m for N = ∞. The **candidates** for `wo` are the
+//! orders whose period (or point) meets the u-range (wo.x − 1, wo.x + 1) of the disk D. Order m
+//! is chosen with probability P(m) = w_m/Σ w over the candidates, with
+//! w_m = η_m/ρ² + ε·U_m for finite N (ε = [`DEFENSIVE_ORDER_SHARE`], η_m the order's efficiency,
+//! U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²) an upper bound of S(π·ρ·x)/1 over the period, since
+//! S(β) ≤ 3/(3 + β²)), and w_m = η_m/ρ² for N = ∞. The defensive term keeps P(m) > 0 for
+//! missing orders (η_m = 0), where the finite-N value is small but not 0. Above
+//! [`MAX_WEIGHTED_ORDERS`] candidates (d/λ above about 127) the choice is uniform instead
+//! (bounded work).
+
+use core::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::efficiency::OrderEfficiency;
+use crate::math;
+use crate::{Grating, Slits};
+
+/// The share ε of the envelope bound U_m in the order weights w_m = η_m/ρ² + ε·U_m.
+pub const DEFENSIVE_ORDER_SHARE: f64 = 0.125;
+/// Above this many candidate orders the order is chosen uniformly (bounded work per call).
+pub const MAX_WEIGHTED_ORDERS: i64 = 256;
+/// x = d·u/λ beyond this magnitude is not sampled (orders would not fit an `i64` exactly).
+const MAX_PHASE: f64 = 4.0e15;
+/// Orders |m| ≤ this have their weights w_m summed in a table, so that the order choice and its
+/// probability cost O(log K) and O(1) instead of O(K).
+const TABLE_ORDERS: usize = 64;
+
+/// The candidate orders for one (wo, λ) and the normaliser of their weights.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Candidates {
+    pub lo: i64,
+    pub hi: i64,
+    /// Σ w over the candidates (their count for the uniform choice).
+    pub total: f64,
+    /// The choice is uniform (more than [`MAX_WEIGHTED_ORDERS`] candidates).
+    pub uniform: bool,
+}
+
+/// The order weights of one grating: w_m for |m| ≤ 64 and their prefix sums, so that the order
+/// choice and its probability cost O(log K) and O(1); other orders are weighed on the fly.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct OrderDistribution {
+    slits: Slits,
+    rho: f64,
+    efficiency: OrderEfficiency,
+    /// w_0.
+    w0: f64,
+    /// prefix\[k\] = Σ_{j=1}^{k} w_j (w is even in m).
+    prefix: [f64; TABLE_ORDERS + 1],
+    /// weight\[k\] = w_k = w_{−k}, exactly as [`OrderDistribution::weight_of`] computes it.
+    weight: [f64; TABLE_ORDERS + 1],
+}
+
+impl OrderDistribution {
+    pub(super) fn new(grating: &Grating, efficiency: OrderEfficiency) -> OrderDistribution {
+        let mut d = OrderDistribution {
+            slits: grating.slits(),
+            rho: grating.open_fraction(),
+            efficiency,
+            w0: 0.0,
+            prefix: [0.0; TABLE_ORDERS + 1],
+            weight: [0.0; TABLE_ORDERS + 1],
+        };
+        d.w0 = d.weight_of(0);
+        d.weight[0] = d.w0;
+        for k in 1..=TABLE_ORDERS {
+            d.weight[k] = d.weight_of(k as i64);
+            d.prefix[k] = d.prefix[k - 1] + d.weight[k];
+        }
+        d
+    }
+
+    /// The weight w_m of order m, computed.
+    #[inline]
+    fn weight_of(&self, m: i64) -> f64 {
+        let s = self.efficiency.relative(self.rho, m);
+        match self.slits {
+            Slits::Infinite => s,
+            Slits::Finite(_) => s + DEFENSIVE_ORDER_SHARE * envelope_bound(self.rho, m),
+        }
+    }
+
+    /// The weight w_m of order m.
+    #[inline]
+    pub(super) fn weight(&self, m: i64) -> f64 {
+        let k = m.unsigned_abs();
+        if k <= TABLE_ORDERS as u64 {
+            self.weight[k as usize]
+        } else {
+            self.weight_of(m)
+        }
+    }
+
+    /// Σ_{k=a}^{b} w_k for −64 ≤ a ≤ b ≤ 64.
+    #[inline]
+    fn sum(&self, a: i64, b: i64) -> f64 {
+        let p = |k: i64| self.prefix[k as usize];
+        if a >= 1 {
+            p(b) - p(a - 1)
+        } else if b <= -1 {
+            p(-a) - p(-b - 1)
+        } else {
+            p(-a) + self.w0 + p(b)
+        }
+    }
+
+    /// Whether [lo, hi] lies inside the table.
+    #[inline]
+    fn tabled(lo: i64, hi: i64) -> bool {
+        lo >= -(TABLE_ORDERS as i64) && hi <= TABLE_ORDERS as i64
+    }
+
+    /// The candidate orders for wo at step λ/d (u per order), or `None` when there are none.
+    #[inline]
+    pub(super) fn candidates(&self, wo: DVec3, step: f64) -> Option<Candidates> {
+        let x_lo = (wo.x - 1.0) / step;
+        let x_hi = (wo.x + 1.0) / step;
+        if !(x_lo.abs() < MAX_PHASE && x_hi.abs() < MAX_PHASE) {
+            return None;
+        }
+        let (lo, hi) = match self.slits {
+            Slits::Finite(_) => (
+                floor_exact(x_lo - 0.5) as i64 + 1,
+                ceil_exact(x_hi + 0.5) as i64 - 1,
+            ),
+            Slits::Infinite => (floor_exact(x_lo) as i64 + 1, ceil_exact(x_hi) as i64 - 1),
+        };
+        if hi < lo {
+            return None;
+        }
+        let count = hi - lo + 1;
+        if count > MAX_WEIGHTED_ORDERS {
+            return Some(Candidates {
+                lo,
+                hi,
+                total: count as f64,
+                uniform: true,
+            });
+        }
+        let total = if Self::tabled(lo, hi) {
+            self.sum(lo, hi)
+        } else {
+            (lo..=hi).map(|m| self.weight(m)).sum()
+        };
+        (total > 0.0).then_some(Candidates {
+            lo,
+            hi,
+            total,
+            uniform: false,
+        })
+    }
+
+    /// The weight of order m among the candidates `c` (1 for the uniform choice).
+    #[inline]
+    pub(super) fn candidate_weight(&self, c: &Candidates, m: i64) -> f64 {
+        if c.uniform {
+            1.0
+        } else {
+            self.weight(m)
+        }
+    }
+
+    /// Chooses an order from `uc` in [0, 1); returns it with its probability.
+    pub(super) fn choose(&self, c: &Candidates, uc: f64) -> (i64, f64) {
+        if c.uniform {
+            let k = ((uc * c.total) as i64).clamp(0, c.hi - c.lo);
+            return (c.lo + k, 1.0 / c.total);
+        }
+        let target = uc * c.total;
+        if Self::tabled(c.lo, c.hi) {
+            // The first m with Σ_{lo}^{m} w > target, by bisection on the table's sums.
+            let (mut a, mut b) = (c.lo, c.hi);
+            while a < b {
+                let mid = a + (b - a) / 2;
+                if self.sum(c.lo, mid) > target {
+                    b = mid;
+                } else {
+                    a = mid + 1;
+                }
+            }
+            let mut m = a;
+            while m > c.lo && self.weight(m) == 0.0 {
+                m -= 1;
+            }
+            return (m, self.weight(m) / c.total);
+        }
+        let mut acc = 0.0;
+        let mut last = c.lo;
+        for m in c.lo..=c.hi {
+            let w = self.weight(m);
+            if w > 0.0 {
+                last = m;
+                acc += w;
+                if target < acc {
+                    return (m, w / c.total);
+                }
+            }
+        }
+        (last, self.weight(last) / c.total)
+    }
+
+    /// max over the candidates of U_m/w_m (the order part of the weight bound); U_m/1 for the
+    /// uniform choice's worst order.
+    pub(super) fn worst_envelope_ratio(&self, c: &Candidates) -> f64 {
+        if c.uniform {
+            return 1.0;
+        }
+        (c.lo..=c.hi).fold(0.0, |w, m| {
+            w.max(envelope_bound(self.rho, m) / self.weight(m))
+        })
+    }
+}
+
+/// U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²) ≥ S(π·ρ·x) on the period of m, since S(β) ≤ 3/(3 + β²).
+#[inline]
+fn envelope_bound(rho: f64, m: i64) -> f64 {
+    let a = ((m.unsigned_abs() as f64) - 0.5).max(0.0) * rho * PI;
+    3.0 / (3.0 + a * a)
+}
+
+/// ⌊a⌋ for finite a through `rint` (no library call where `floor` is not an instruction).
+#[inline(always)]
+pub(super) fn floor_exact(a: f64) -> f64 {
+    let r = math::rint(a);
+    if r > a {
+        r - 1.0
+    } else {
+        r
+    }
+}
+
+/// ⌈a⌉ for finite a through `rint`.
+#[inline(always)]
+pub(super) fn ceil_exact(a: f64) -> f64 {
+    let r = math::rint(a);
+    if r < a {
+        r + 1.0
+    } else {
+        r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ceil_exact, floor_exact};
+
+    /// `floor_exact` and `ceil_exact` agree with `floor` and `ceil` on the ties, the signed
+    /// zeros, the largest exact integers and a dense grid of fractions.
+    #[test]
+    fn floor_and_ceil_through_rint() {
+        let mut cases = vec![
+            -2.5,
+            -2.0,
+            -1.5,
+            -0.5,
+            -0.0,
+            0.0,
+            0.3,
+            0.5,
+            1.5,
+            2.5,
+            1e15 + 0.5,
+            -4e15,
+        ];
+        cases.extend((-4000..=4000).map(|k| k as f64 * 0.125 + 0.0625 * (k % 3) as f64));
+        for a in cases {
+            assert_eq!(floor_exact(a), a.floor(), "{a}");
+            assert_eq!(ceil_exact(a), a.ceil(), "{a}");
+        }
+    }
+}

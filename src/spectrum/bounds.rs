@@ -1,0 +1,133 @@
+//! The error bounds of the colour strategies: one table, read by `Auto`
+//! ([`Spectral::choose`](super::Spectral::choose)), by the colour table
+//! ([`ColorTable`](crate::ColorTable)) and by the docs of [`Strategy`](super::Strategy) and
+//! [`GenericStrategy`](super::GenericStrategy). Each number is the bound the crate promises,
+//! kept above the worst error measured by the tests named beside it.
+//!
+//! Bounds on the grating paths are relative to the **accuracy unit** ([`accuracy_unit`]): the
+//! Y of the grating's brightest diffracted order, floored at [`accuracy_floor`]`(N)` =
+//! 555/(N·∫ȳ dλ), the Y of an ideal first-order peak at 555 nm under a flat illuminant (the
+//! floor keeps a grating whose orders are all faint from being held to its own darkness).
+//!
+//! ```
+//! use diffraction::spectrum::bounds;
+//! // The floor for N = 1000 slits: 555 nm / (1000 · 106.857 nm).
+//! let floor = bounds::accuracy_floor(1000.0);
+//! assert!((floor * 1000.0 * 106.857 / 555.0 - 1.0).abs() < 1e-5); // ∫ȳ ≈ 106.857 nm
+//! assert!(bounds::ASYMPTOTIC_ORDERS < bounds::PEAK_SEARCH_PER_SLIT / 1000.0);
+//! ```
+
+use crate::cie;
+
+/// The peak search's bound is `PEAK_SEARCH_PER_SLIT / N` of the accuracy unit. Its leading
+/// error is the far tails of each order (F_N's mass spread over the period, with E·S·cmf not
+/// constant there), which falls as 1/N; the worst measured over the grid of
+/// `tests/spectral_reference.rs` (d = 400-100 000 nm, N = 1-10⁶, E and D65) is 3.5/N.
+pub const PEAK_SEARCH_PER_SLIT: f64 = 8.0;
+
+/// The peak search integrates order 0's light coarsely (4-point Gauss-Legendre over pieces of
+/// at most 16 nm, sin²(Nα) → ½ over narrow lobes): its error is below this fraction of order
+/// 0's own colour where order 0's lobe reaches the band (measured over the same grid).
+pub const PEAK_SEARCH_ORDER0: f64 = 2e-3;
+
+/// `Asymptotic`'s bound where only orders m ≠ 0 reach the band, of the accuracy unit, for
+/// N ≥ [`ASYMPTOTIC_MIN_SLITS`] (worst measured 1.4·10⁻⁴, `tests/asymptotic.rs`).
+pub const ASYMPTOTIC_ORDERS: f64 = 5e-4;
+
+/// `Asymptotic`'s bound relative to order 0's own light where its half period reaches the band
+/// (worst measured 5.7·10⁻⁴, `tests/asymptotic.rs`).
+pub const ASYMPTOTIC_ORDER0: f64 = 1e-3;
+
+/// Below this many slits `Asymptotic` is `Exact` (the expansion needs a few lobes per period).
+pub const ASYMPTOTIC_MIN_SLITS: u32 = 5;
+
+/// `Exact`'s bound relative to the colour itself (floored at [`DARK_FLOOR`] of the accuracy
+/// unit): worst measured 8.9·10⁻⁹ against the Python oracle (`tests/spectral_reference.rs`).
+pub const EXACT: f64 = 1e-7;
+
+/// Relative bounds of the colour itself (`Exact`, `WINDOWS`) apply to colours down to this
+/// fraction of the unit; darker colours are held to this fraction of the unit instead.
+pub const DARK_FLOOR: f64 = 1e-3;
+
+/// The generic peak search's bound is `GENERIC_PEAK_SEARCH_PER_SLIT / N_eff` of the model's
+/// brightest order (worst measured 3.5/N_eff, `tests/spectral.rs`).
+pub const GENERIC_PEAK_SEARCH_PER_SLIT: f64 = 8.0;
+
+/// The generic `WINDOWS` rule's bound relative to the colour itself (floored at
+/// [`DARK_FLOOR`] of the brightest order), for models that keep the contract of
+/// [`SpectralResponse::peaks`](crate::SpectralResponse::peaks): within 1·10⁻¹⁰ of a 0.01 nm
+/// quadrature in `tests/spectral.rs`, which is itself good to 2·10⁻⁶; the bound is what that
+/// reference can confirm.
+pub const WINDOWS: f64 = 1e-6;
+
+/// The wavelength of the ideal first-order peak that floors the accuracy unit, nm (the peak of
+/// ȳ).
+pub const FLOOR_PEAK_NM: f64 = 555.0;
+
+/// The floor of the accuracy unit for N slits: 555/(N·∫ȳ dλ), the Y of an ideal first-order
+/// peak (S = 1) at 555 nm under a flat illuminant: the peak value 1 times its equivalent width
+/// λ/(|m|·N), over ∫ȳ. `f64::MIN_POSITIVE` for N = ∞ (or N ≤ 0).
+///
+/// ```
+/// use diffraction::spectrum::bounds::accuracy_floor;
+/// assert!(accuracy_floor(1.0) > 5.19 && accuracy_floor(1.0) < 5.2);
+/// assert_eq!(accuracy_floor(f64::INFINITY), f64::MIN_POSITIVE);
+/// ```
+#[must_use]
+pub fn accuracy_floor(slits: f64) -> f64 {
+    let y = FLOOR_PEAK_NM / (slits * cie::cmf_areas()[1]);
+    if y.is_finite() && y > 0.0 {
+        y.max(f64::MIN_POSITIVE)
+    } else {
+        f64::MIN_POSITIVE
+    }
+}
+
+/// The accuracy unit of a grating: `brightest_y` (the Y of its brightest diffracted order,
+/// as the caller measured it) floored at [`accuracy_floor`]`(N)`.
+///
+/// ```
+/// use diffraction::spectrum::bounds::{accuracy_floor, accuracy_unit};
+/// assert_eq!(accuracy_unit(0.0, 100.0), accuracy_floor(100.0));
+/// assert_eq!(accuracy_unit(1.0, 100.0), 1.0);
+/// ```
+#[must_use]
+pub fn accuracy_unit(brightest_y: f64, slits: f64) -> f64 {
+    let floor = accuracy_floor(slits);
+    if brightest_y > floor {
+        brightest_y
+    } else {
+        floor
+    }
+}
+
+/// A strategy's error bound ([`Strategy::bound`](super::Strategy::bound)): the error of every
+/// XYZ channel is at most `orders·unit + order0·Y₀ + of_colour·max(|colour|, DARK_FLOOR·unit)`,
+/// with `unit` the accuracy unit and Y₀ the Y of order 0's own light where it reaches the band.
+///
+/// ```
+/// use diffraction::spectrum::{bounds, Strategy};
+/// let b = Strategy::EXACT.bound(100).unwrap();
+/// assert_eq!((b.orders, b.of_colour), (0.0, bounds::EXACT));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct Bound {
+    /// The part relative to the accuracy unit.
+    pub orders: f64,
+    /// The part relative to order 0's own light.
+    pub order0: f64,
+    /// The part relative to the colour itself.
+    pub of_colour: f64,
+}
+
+impl Bound {
+    /// A bound relative to the colour itself only.
+    pub(crate) const fn of_colour(of_colour: f64) -> Bound {
+        Bound {
+            orders: 0.0,
+            order0: 0.0,
+            of_colour,
+        }
+    }
+}
