@@ -5,7 +5,7 @@
 //! Lookups and means take a batch of 1024 phase projections u (half uniform on (−2, 2), half
 //! log-uniform in |u| down to 10⁻⁹), so the figure per element is ns per colour averaged over
 //! directions; `Spectral::xyz` takes the first 16 of them. Means are over intervals of width
-//! 10⁻³ centred there. Tables are built with `ColorTable::DEFAULT_ACCURACY` under D65, slit width
+//! 10⁻³ centred there. Tables are built with `diffraction::spectrum::DEFAULT_ACCURACY` under D65, slit width
 //! d/2.
 //!
 //! `cargo bench --bench color_table -- --warm-up-time 1 --measurement-time 2`
@@ -15,7 +15,7 @@ use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{ColorTable, Grating};
 use std::time::Duration;
 
-const ACCURACY: f64 = ColorTable::DEFAULT_ACCURACY;
+const ACCURACY: f64 = diffraction::spectrum::DEFAULT_ACCURACY;
 /// (period nm, N) of the lookup benchmarks.
 const LOOKUP_GRATINGS: [(f64, u32); 3] = [(1600.0, 1000), (740.0, 1_000_000), (10_000.0, 30)];
 /// (period nm, N) of the build benchmarks.

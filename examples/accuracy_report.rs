@@ -99,8 +99,8 @@ fn methods() -> Vec<Method> {
     }
     push(
         "table",
-        format!("{:e}", ColorTable::DEFAULT_ACCURACY),
-        Kind::Table(ColorTable::DEFAULT_ACCURACY),
+        format!("{:e}", diffraction::spectrum::DEFAULT_ACCURACY),
+        Kind::Table(diffraction::spectrum::DEFAULT_ACCURACY),
     );
     push("stratified", "8".into(), Kind::Stratified(8));
     push("hero", "4".into(), Kind::Hero(4));

@@ -164,16 +164,6 @@ impl core::fmt::Display for Illuminant {
     }
 }
 
-/// The error of parsing an [`Illuminant`]: the crate's shared [`ParseError`], under the name it
-/// had before all parsers shared one error type.
-///
-/// ```
-/// use diffraction::cie::{Illuminant, ParseIlluminantError};
-/// let err: ParseIlluminantError = "D50".parse::<Illuminant>().unwrap_err();
-/// assert_eq!(err.to_string(), "unknown illuminant: expected one of E, D65, A");
-/// ```
-pub type ParseIlluminantError = ParseError;
-
 impl core::str::FromStr for Illuminant {
     type Err = ParseError;
 

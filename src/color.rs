@@ -99,7 +99,7 @@ mod srgb;
 mod tests;
 mod xyz;
 
-pub use clip::{Clip, ParseClipError};
+pub use clip::Clip;
 pub use lab::{delta_e2000, Lab, WhitePoint};
 pub use srgb::{srgb_decode, srgb_encode, LinearSrgb, Srgb};
 pub use xyz::Xyz;

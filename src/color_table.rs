@@ -3,11 +3,14 @@
 
 use alloc::vec::Vec;
 
-use crate::cie;
 use crate::color::Xyz;
 use crate::error::{Error, Requirement};
 use crate::math::cbrt;
+use crate::spectrum::bounds::{self, accuracy_floor};
+#[cfg(doc)]
+use crate::spectrum::DEFAULT_ACCURACY;
 use crate::spectrum::{Illuminant, Spectral, Strategy};
+use crate::spectrum::{MAX_ACCURACY, MIN_ACCURACY};
 use crate::{Grating, Slits};
 
 /// Blocks per octave of u, as a power of two: the lookup reads the block from the exponent and the
@@ -26,21 +29,10 @@ const LOBE_FRACTION: f64 = 20.0;
 /// 1041 initial nodes) whatever N·d is; a lobe narrower than that (N·d > 10¹⁹ nm) is resolved
 /// inside the first block, up to its 1024 intervals.
 const MIN_U_LO: f64 = 1.0 / 18_446_744_073_709_551_616.0;
-/// Wavelength of the ideal first-order peak that floors the error scale, nm.
-const FLOOR_PEAK_NM: f64 = 555.0;
-/// Below this many slits the nodes are all [`Strategy::EXACT`] (which `Asymptotic` is there too).
-const ASYMPTOTIC_MIN_SLITS: f64 = 5.0;
 /// Where d·|u| is below this (nm), order 0's half period (x = d·|u|/λ < ½) reaches into the band
 /// (λ ≤ 830 nm): `Asymptotic`'s bound there is relative to order 0's own light, so a node there
 /// is [`Strategy::EXACT`] unless the colour is dark enough (see `ColorTable::new`).
 const ORDER0_HALF_PERIOD_NM: f64 = 415.0;
-/// `Strategy::ASYMPTOTIC`'s bound relative to order 0's own light where order 0's half period
-/// reaches the band (measured 5.7·10⁻⁴, `tests/asymptotic.rs`).
-const ASYMPTOTIC_ORDER0_BOUND: f64 = 1e-3;
-/// Smallest accuracy accepted: ten times the error of [`Strategy::EXACT`] (10⁻⁷).
-const MIN_ACCURACY: f64 = 1e-6;
-/// Largest accuracy accepted (relative).
-const MAX_ACCURACY: f64 = 1.0;
 /// Most intervals in one block (1/8 octave): a spacing of u/8192, fine enough for the band-end
 /// steps of N ≤ 1000 (relative width 1/(m·N)); narrower steps cannot be resolved and must not
 /// take the whole node budget.
@@ -109,7 +101,7 @@ struct Node {
 /// # Accuracy
 ///
 /// Errors are relative to the scale Y_b of the grating's brightest diffracted colour, the scale of
-/// [`Strategy::Auto`]: the largest Y at the table's u with d·|u| ≥ 360 nm (where an order m ≠ 0
+/// [`Strategy::auto`]: the largest Y at the table's u with d·|u| ≥ 360 nm (where an order m ≠ 0
 /// can reach the band), at least 555/(N·∫ȳ dλ), the Y of an ideal first-order peak at 555 nm
 /// ([`scale`](Self::scale)); where the colour is brighter (order 0 near u = 0) to its own Y. With
 /// Y' = max(Y_b, Y) the exposure and t_c = XYZ_c/(white_c·Y'), every checked channel is within
@@ -119,7 +111,7 @@ struct Node {
 /// of the nodes: the change that moves CIELAB's f(t) = t^(1/3) by accuracy/3. That is at most
 /// `accuracy · white_c · Y'` (relative to the brightest order) for channels up to the white, and
 /// 23 times less where the colour is dark (t < 0.0089), where CIELAB is most sensitive. Measured
-/// at [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) (10⁻⁴) over a representative 20 of the 90
+/// at 10⁻⁴ over a representative 20 of the 90
 /// gratings of `tests/color_table.rs` (every N, 2000 random u each): within 1.9·10⁻⁴ of Y_b and
 /// 0.027 ΔE2000 of `Exact` at the brightest order's exposure (docs/color_table.md); at 3·10⁻⁴
 /// the full sweep reached 0.097. [`error_estimate`](Self::error_estimate) reports the worst
@@ -146,7 +138,7 @@ struct Node {
 ///
 /// * N = ∞ ([`Slits::Infinite`]) is rejected: with the paper's normalisation the integral is 0
 ///   except at u = 0, nothing to tabulate.
-/// * The paper's peak colours ([`Strategy::PaperPeaks`]) are not the integral and are not
+/// * The paper's peak colours ([`Spectral::paper_peaks`]) are not the integral and are not
 ///   tabulated; they cost O(visible orders) per call already.
 /// * |u| > 2 (no pair of unit directions gives it) is taken as 2; NaN and ±∞ give black, as in
 ///   [`Spectral::xyz`].
@@ -204,25 +196,11 @@ impl ColorTable {
     /// 0.027 ΔE2000 of `Exact` (docs/color_table.md).
     ///
     /// ```
+    /// use diffraction::spectrum::DEFAULT_ACCURACY;
     /// use diffraction::ColorTable;
-    /// assert!(ColorTable::ASYMPTOTIC_ACCURACY <= ColorTable::DEFAULT_ACCURACY);
+    /// assert!(ColorTable::ASYMPTOTIC_ACCURACY <= DEFAULT_ACCURACY);
     /// ```
     pub const ASYMPTOTIC_ACCURACY: f64 = 1e-4;
-
-    /// The accuracy to build with when nothing else is asked for: measured within 0.05 ΔE2000
-    /// of [`Strategy::EXACT`] at every u, at the brightest order's exposure (docs/color_table.md).
-    ///
-    /// ```
-    /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
-    /// use diffraction::{ColorTable, Grating};
-    /// let g = Grating::new(1600.0, 800.0, 21)?;
-    /// let s = Spectral::new(Illuminant::D65);
-    /// let t = ColorTable::new(&s, &g, ColorTable::DEFAULT_ACCURACY)?;
-    /// let exact = s.xyz(&g, 0.3, Strategy::EXACT);
-    /// assert!((t.lookup(0.3).y - exact.y).abs() < 1e-3 * t.scale());
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    pub const DEFAULT_ACCURACY: f64 = 1e-4;
 
     /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
     /// first, and [`error_estimate`](Self::error_estimate) says what was reached.
@@ -242,9 +220,10 @@ impl ColorTable {
     /// (relative to [`scale`](Self::scale) per channel, tighter in the dark) or the node budget
     /// [`MAX_NODES`](Self::MAX_NODES) is reached.
     ///
-    /// `accuracy` must lie in [10⁻⁶, 1]. Measured (docs/color_table.md):
-    /// [`DEFAULT_ACCURACY`](Self::DEFAULT_ACCURACY) = 10⁻⁴ keeps lookups within 0.03 ΔE2000 of
-    /// [`Strategy::EXACT`] at the brightest order's exposure over 20 representative gratings.
+    /// `accuracy` must lie in [[`MIN_ACCURACY`], [`MAX_ACCURACY`]] (those of `Strategy::auto`;
+    /// [`DEFAULT_ACCURACY`] when nothing else is asked for). Measured (docs/color_table.md): 10⁻⁴
+    /// keeps lookups within 0.03 ΔE2000 of [`Strategy::EXACT`] at the brightest order's exposure
+    /// over 20 representative gratings.
     ///
     /// # Errors
     ///
@@ -283,13 +262,14 @@ impl ColorTable {
         let d = grating.period_nm();
         let white = spectral.white();
         let white = [white.x, white.y, white.z];
-        let fast = n >= ASYMPTOTIC_MIN_SLITS && accuracy >= Self::ASYMPTOTIC_ACCURACY;
+        let fast =
+            n >= bounds::ASYMPTOTIC_MIN_SLITS as f64 && accuracy >= Self::ASYMPTOTIC_ACCURACY;
         let order0_from = ORDER0_HALF_PERIOD_NM / d;
         // Where order 0's light reaches the band, `Asymptotic` is within ORDER0_BOUND of that
         // light: a relative error δ moves CIELAB's f(t) by δ·t^(1/3)/3, within the tolerance
         // (accuracy/3) while t ≤ (accuracy/ORDER0_BOUND)³; brighter nodes are recomputed by `Exact`.
         let dark_t = {
-            let r = accuracy / ASYMPTOTIC_ORDER0_BOUND;
+            let r = accuracy / bounds::ASYMPTOTIC_ORDER0;
             r * r * r
         };
         let eval = |u: f64, scale: f64| {
@@ -307,8 +287,7 @@ impl ColorTable {
             let c = spectral.xyz(grating, u, Strategy::EXACT);
             [c.x, c.y, c.z]
         };
-        let ybar = cie::integrate_product_of_rows(|_| 1.0, |i| cie::cmf_row(i, 1));
-        let mut scale = FLOOR_PEAK_NM / (n * ybar);
+        let mut scale = accuracy_floor(n);
         let diffracted_from = LAMBDA_MIN_NM / d;
 
         // Blocks: [0, u_lo), then 2^SUB_BITS per octave up to U_MAX.

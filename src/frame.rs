@@ -246,7 +246,11 @@ impl Tile {
             Tile::Constant { angle } => Some(DVec2::new(math::cos(angle), math::sin(angle))),
             Tile::Radial { center, twist } => {
                 let r = (p - DVec2::from(center)).try_normalize()?;
-                Some(rotate(r, twist))
+                Some(if twist == 0.0 {
+                    r
+                } else {
+                    DVec2::from_angle(twist).rotate(r)
+                })
             }
         }
     }
@@ -273,14 +277,6 @@ impl Tile {
     }
 }
 
-fn rotate(v: DVec2, angle: f64) -> DVec2 {
-    if angle == 0.0 {
-        return v;
-    }
-    let (s, c) = (math::sin(angle), math::cos(angle));
-    DVec2::new(c * v.x - s * v.y, s * v.x + c * v.y)
-}
-
 /// The grating vector as a function of position on a surface (see the [module docs](self)).
 ///
 /// ```
@@ -299,17 +295,21 @@ fn rotate(v: DVec2, angle: f64) -> DVec2 {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
-pub enum GratingField {
+#[cfg_attr(feature = "serde", serde(transparent))]
+pub struct GratingField(Field);
+
+/// The two kinds of field, private so that every field is built by a constructor that
+/// validates it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+enum Field {
     /// One tile everywhere.
     Uniform(Tile),
-    /// Squares of side `cell_size` alternating `even` (the square containing the origin's
-    /// positive quadrant corner) and `odd`.
+    /// Squares of side `cell_size` (finite, > 0) alternating `even` (the square containing the
+    /// origin's positive quadrant corner) and `odd`.
     Checkerboard {
-        /// Side of a square, in tangent units; finite and > 0.
         cell_size: f64,
-        /// Tile of squares whose integer coordinates sum to an even number.
         even: Tile,
-        /// Tile of the other squares.
         odd: Tile,
     },
 }
@@ -327,7 +327,7 @@ impl<'de> serde::Deserialize<'de> for GratingField {
             },
         }
         match Raw::deserialize(d)? {
-            Raw::Uniform(t) => Ok(GratingField::Uniform(t)),
+            Raw::Uniform(t) => Ok(GratingField::uniform(t)),
             Raw::Checkerboard {
                 cell_size,
                 even,
@@ -351,7 +351,7 @@ impl GratingField {
     /// ```
     #[must_use]
     pub fn constant(angle: f64) -> GratingField {
-        GratingField::Uniform(Tile::Constant { angle })
+        GratingField::uniform(Tile::Constant { angle })
     }
 
     /// Concentric circular grooves about `center` (the grating vector is radial).
@@ -366,10 +366,23 @@ impl GratingField {
     /// ```
     #[must_use]
     pub fn radial(center: DVec2) -> GratingField {
-        GratingField::Uniform(Tile::Radial {
+        GratingField::uniform(Tile::Radial {
             center: center.to_array(),
             twist: 0.0,
         })
+    }
+
+    /// One tile everywhere (a twisted radial field, say).
+    ///
+    /// ```
+    /// use diffraction::frame::{GratingField, Tile};
+    /// use glam::DVec2;
+    /// let f = GratingField::uniform(Tile::Radial { center: [0.0, 0.0], twist: 0.5 });
+    /// assert_eq!(f.tile_at(DVec2::new(3.0, 4.0)), Tile::Radial { center: [0.0, 0.0], twist: 0.5 });
+    /// ```
+    #[must_use]
+    pub fn uniform(tile: Tile) -> GratingField {
+        GratingField(Field::Uniform(tile))
     }
 
     /// A checkerboard of two tiles; rejects a non-positive or non-finite `cell_size`.
@@ -386,11 +399,11 @@ impl GratingField {
     /// ```
     pub fn checkerboard(cell_size: f64, even: Tile, odd: Tile) -> Result<GratingField, Error> {
         let cell_size = positive("cell_size", cell_size)?;
-        Ok(GratingField::Checkerboard {
+        Ok(GratingField(Field::Checkerboard {
             cell_size,
             even,
             odd,
-        })
+        }))
     }
 
     /// The whole field rotated by `twist` radians about the normal.
@@ -404,18 +417,18 @@ impl GratingField {
     /// ```
     pub fn twisted(self, twist: f64) -> Result<GratingField, Error> {
         let twist = finite("twist", twist)?;
-        Ok(match self {
-            GratingField::Uniform(t) => GratingField::Uniform(t.twisted(twist)),
-            GratingField::Checkerboard {
+        Ok(GratingField(match self.0 {
+            Field::Uniform(t) => Field::Uniform(t.twisted(twist)),
+            Field::Checkerboard {
                 cell_size,
                 even,
                 odd,
-            } => GratingField::Checkerboard {
+            } => Field::Checkerboard {
                 cell_size,
                 even: even.twisted(twist),
                 odd: odd.twisted(twist),
             },
-        })
+        }))
     }
 
     /// The tile that applies at `p`.
@@ -432,9 +445,9 @@ impl GratingField {
     /// ```
     #[must_use]
     pub fn tile_at(&self, p: DVec2) -> Tile {
-        match *self {
-            GratingField::Uniform(t) => t,
-            GratingField::Checkerboard {
+        match self.0 {
+            Field::Uniform(t) => t,
+            Field::Checkerboard {
                 cell_size,
                 even,
                 odd,

@@ -313,7 +313,7 @@ impl GrooveSpread {
     }
 
     /// Samples v from the proxy: v = s·tan(π·(ξ − ½)), ξ by the crate's rule for random
-    /// numbers ([`unit_random`](crate::unit_random)). The ideal lobe gives v = 0. Its density is
+    /// numbers ([`unit_random`]). The ideal lobe gives v = 0. Its density is
     /// [`pdf`](Self::pdf).
     ///
     /// ```

@@ -36,6 +36,25 @@
 //! # Ok::<(), diffraction::Error>(())
 //! ```
 //!
+//! ## What to use for what
+//!
+//! * **The paper's pictures** (unitless intensity, the paper's eq. 12): [`AguHill`] with
+//!   [`Illumination`], colours by [`Spectral::xyz`](spectrum::Spectral::xyz) with a
+//!   [`Strategy`](spectrum::Strategy) (or the paper's own peak colours,
+//!   [`Spectral::paper_peaks`](spectrum::Spectral::paper_peaks)). The reference ray tracer
+//!   `examples/raytrace` does exactly this.
+//! * **A spectral path tracer** (physical units): [`GratingBsdf`], a [`Bsdf`] with an exact
+//!   sampling density: `eval(wo, wi, λ)`, `sample`, `pdf`, four wavelengths at once (`eval4`,
+//!   `pdf4`) with [`SampledWavelengths`], and a wavelength sampler from the grating's own response
+//!   (`docs/radiometry.md`; `examples/pathtrace`).
+//! * **An RGB renderer**: a [`ColorTable`] per grating material (feature `alloc`, on with `std`):
+//!   the colour XYZ(u) in nanoseconds a lookup, with the footprint mean for antialiasing, then
+//!   [`color`]'s conversion and Hall's clipping.
+//! * **Real time**: the same table, or the slit kernels ([`kernel`], `f32` and `f64`) evaluated at
+//!   a few wavelengths.
+//! * **Your own model**: implement [`DiffractionBrdf`] (and [`SpectralResponse`] to get its
+//!   colour, [`Bsdf`] to sample it); `ARCHITECTURE.md` in the repository says how.
+//!
 //! ## Modules
 //!
 //! One concept per file; `ARCHITECTURE.md` in the repository says what flows where.
@@ -47,20 +66,22 @@
 //! * [`Grating`], [`Peak`]: the paper's grating, its intensity I(u, λ) and its peaks.
 //! * [`frame`]: the phase projection and grating-direction fields (constant, twisted, radial
 //!   tracks of a CD, checkerboards).
-//! * [`DiffractionBrdf`]: the interface every model implements; the models [`AguHill`] (the
-//!   paper's), [`Thorman`] (peak directions only, every order equally bright) and, with the
-//!   feature `stam`, `Stam` (Fourier optics for sinusoidal and binary profiles, in [`stam`]).
-//! * [`Bsdf`], [`GratingBsdf`], [`GrooveSpread`]: the radiometric, samplable interface for path
-//!   tracers (pbrt-v4's BxDF shape: `f`, `sample`, `pdf`, four wavelengths at once) and the
-//!   energy-normalised Agu-Hill grating with an exact sampling density and wavelength sampling
-//!   (`docs/radiometry.md`); [`Thorman`] and `Stam` implement it with a cosine sampler.
+//! * [`DiffractionBrdf`]: the value interface every model implements, `eval(wo, wi, λ)`; the
+//!   models [`AguHill`] (the paper's), [`GratingBsdf`] (energy-normalised, for path tracers),
+//!   [`Thorman`] (peak directions only, every order equally bright) and, with the feature
+//!   `stam`, `Stam` (Fourier optics for sinusoidal and binary profiles, in `stam`).
+//! * [`Bsdf`], [`BsdfSample`], [`BsdfFlags`], [`SampledWavelengths`]: the samplable interface
+//!   for path tracers (pbrt-v4's BxDF shape), with [`GrooveSpread`] (the lobes along the
+//!   grooves) and [`grating_bsdf`] (the grating BSDF's parts: order efficiencies, sampling,
+//!   albedo, wavelength sampling, regularisation).
+//! * [`SpectralResponse`], [`GratingResponse`], [`Envelope`], [`PeakSummary`]: what the colour
+//!   integrator needs of a model.
 //! * [`Illumination`]: the paper's illumination model (eq. 12), ambient + diffuse + diffraction
 //!   around any model.
 //! * [`cie`]: the CIE 1931 2° observer and illuminants E, D65, A at 1 nm (from colour-science).
 //! * [`spectrum`]: the reference colour XYZ of a grating or of any model, by named strategies
-//!   with stated cost and error (uniform, Gauss-Legendre, stratified and hero wavelengths, peak
-//!   search, the paper's peak colours, lobe-exact quadrature, and `Auto` for a requested
-//!   accuracy).
+//!   with stated cost and bound (`spectrum::bounds`).
+//! * [`ColorTable`]: a grating's colour tabulated once, O(1) lookups and footprint means.
 //! * [`color`]: XYZ, linear and encoded sRGB, Hall's clipping schemes, CIELAB and ΔE2000.
 //!
 //! ## From a hit point to a pixel
@@ -92,9 +113,10 @@
 //!
 //! ## Feature flags
 //!
-//! * `std` (default): maths from the standard library.
+//! * `std` (default): maths from the standard library; implies `alloc`.
+//! * `alloc`: heap storage for [`ColorTable`], for `no_std` targets with an allocator.
 //! * `libm`: maths from the `libm` crate, for `no_std` (disable default features).
-//! * `serde`: `Serialize`/`Deserialize` for the parameter types.
+//! * `serde`: `Serialize`/`Deserialize` for the parameter types, validated on the way in.
 //! * `stam`: the `stam` module with Stam's model (adds the `num-complex` dependency, without its
 //!   default features: it works with `std` and with `libm`).
 //!

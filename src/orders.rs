@@ -14,7 +14,8 @@ use crate::math;
 use crate::Band;
 
 /// The most orders a library call visits one by one: the `peaks` of the crate's models
-/// ([`DiffractionBrdf::peaks`](crate::DiffractionBrdf::peaks) of `AguHill`, `Thorman`, `Stam`)
+/// ([`SpectralResponse::peaks`](crate::SpectralResponse::peaks) of `AguHill`, `Thorman`, `Stam`,
+/// `GratingBsdf`)
 /// visit at most this many, those of lowest |m| (the longest wavelengths, and for the paper's
 /// model the brightest: S(β_m) ≤ 1/(π·m·w/d)²), so that a call does bounded work whatever the
 /// period. The band holds more orders only where d·|u| exceeds about 4·10⁷ nm (4 cm) for the

@@ -359,7 +359,6 @@ mod formulas {
     use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
     use diffraction::SampledWavelengths;
 
-
     /// `eval` against the separate factors of the formula (kernel functions tested against
     /// mpmath) and `eval4` against four `eval` calls: the fused, branch-free path rounds
     /// differently from the product of the factors by a few ulp of each factor (measured: at

@@ -195,16 +195,3 @@ impl FromStr for Clip {
             ))
     }
 }
-
-/// The error of parsing a [`Clip`]: the crate's shared [`ParseError`], under the name it had
-/// before all parsers shared one error type.
-///
-/// ```
-/// use diffraction::color::{Clip, ParseClipError};
-/// let err: ParseClipError = "hard".parse::<Clip>().unwrap_err();
-/// assert_eq!(
-///     err.to_string(),
-///     "unknown clipping scheme: expected one of \"clamp\", \"intensity\", \"constant\""
-/// );
-/// ```
-pub type ParseClipError = ParseError;

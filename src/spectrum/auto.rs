@@ -15,7 +15,7 @@ const EXACT_BELOW_LOBES: f64 = 64.0;
 impl Spectral {
     /// The strategy `strategy` resolves to for this grating at u: itself, unless it is
     /// [`Strategy::auto`]`(a)`, which becomes the cheapest strategy whose bound
-    /// ([`Strategy::bound`], read from the table in [`bounds`](super::bounds)) meets `a`,
+    /// ([`Strategy::bound`], read from the table in [`bounds`]) meets `a`,
     /// relative to the accuracy unit. The order-0 terms of the bounds are scaled by the largest
     /// Y that order 0's half period can bring into the band, in units of the unit's floor. The
     /// peak search is taken only where the band holds more than 64 lobes, then `Asymptotic`,

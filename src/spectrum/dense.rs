@@ -397,15 +397,11 @@ mod tests {
             assert!(close(dense, walk), "{d} {w} {n}: {dense} vs {walk}");
             let dp = s.dense_paper_peaks(&g, q);
             assert!(close(dp, paper), "{d} {w} {n}: {dp} vs {paper}");
-            // Exact: the hybrid lobe walk over the whole band.
-            let nf = n as f64;
-            let lobes = Lobes::new(&s, &g, q, nf);
+            // Exact: its own order-by-order walk (Filon pieces between the rows, lobes near
+            // every integer) over the whole band.
+            let lobes = Lobes::new(&s, &g, q, n as f64);
             let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
-            let walk = if nf * (x_hi - x_lo) <= super::super::exact::MAX_LOBES {
-                lobes.lobes(x_lo, x_hi)
-            } else {
-                super::super::exact::hybrid(&lobes, nf, x_lo, x_hi)
-            };
+            let walk = super::super::exact::filon_walk(&lobes, x_lo, x_hi);
             let dense = s.exact(&g, u);
             assert!(close(dense, walk), "exact {d} {w} {n}: {dense} vs {walk}");
         }

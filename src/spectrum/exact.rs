@@ -20,14 +20,6 @@ use crate::math::{ceil, floor};
 use crate::quadrature::{GL4, GL8};
 use crate::{Grating, Slits};
 
-/// Lobes integrated exactly around every integer x and band end by the former hybrid mode
-/// (`hybrid`, the dense comb's reference in its tests).
-#[cfg(test)]
-pub(super) const NEAR_LOBES: f64 = 64.0;
-/// Above this many lobes in the band, the former `Exact` switched to its hybrid mode.
-#[cfg(test)]
-pub(super) const MAX_LOBES: f64 = 4096.0;
-
 impl Spectral {
     pub(super) fn exact(&self, grating: &Grating, u: f64) -> DVec3 {
         let n = match grating.slits() {
@@ -180,44 +172,6 @@ fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3)
         sum += r * (wi * (1.0 - o));
     }
     *acc += sum * (0.5 * h);
-}
-
-/// The former hybrid mode (a reference for the dense comb's tests): lobe-exact within NEAR_LOBES lobes of every integer x and of the ends of [x_lo, x_hi]
-/// (aligned to lobe boundaries), the envelope with sin² → ½ elsewhere. At most a few pieces per
-/// integer x in the range (fewer than `dense::DENSE_ORDERS` + 2 of them).
-#[cfg(test)]
-pub(super) fn hybrid(lobes: &Lobes<'_>, n: f64, x_lo: f64, x_hi: f64) -> DVec3 {
-    let k = NEAR_LOBES / n;
-    let start_end = (ceil((x_lo + k) * n) / n).min(x_hi);
-    let end_start = (floor((x_hi - k) * n) / n).max(x_lo);
-    let mut acc = DVec3::ZERO;
-    let mut cursor = x_lo;
-    while cursor < x_hi {
-        let m_prev = floor(cursor);
-        let m_next = m_prev + 1.0;
-        let (near, until) = if cursor < start_end {
-            (true, start_end)
-        } else if cursor >= end_start {
-            (true, x_hi)
-        } else if cursor < m_prev + k {
-            (true, m_prev + k)
-        } else if cursor >= m_next - k {
-            (true, m_next + k)
-        } else {
-            (false, (m_next - k).min(end_start))
-        };
-        // Progress is guaranteed: a piece that would not advance (rounding at huge x) takes
-        // the rest of the range.
-        let until = until.min(x_hi);
-        let until = if until > cursor { until } else { x_hi };
-        if near {
-            acc += lobes.lobes(cursor, until);
-        } else {
-            acc += lobes.envelope(cursor, until, true);
-        }
-        cursor = until;
-    }
-    acc
 }
 
 #[cfg(test)]

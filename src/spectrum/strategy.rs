@@ -12,7 +12,7 @@ use crate::ParseError;
 
 /// The default accuracy of [`Strategy::auto`] and [`GenericStrategy::auto`] (and of
 /// [`ColorTable`](crate::ColorTable)), relative to the accuracy unit
-/// ([`accuracy_unit`](super::accuracy_unit)): 10⁻³.
+/// ([`accuracy_unit`](super::bounds::accuracy_unit)): 10⁻³.
 ///
 /// ```
 /// use diffraction::spectrum::{Strategy, DEFAULT_ACCURACY};
@@ -84,7 +84,7 @@ pub enum StrategyKind {
 /// intensity: each strategy is one algorithm with one stated error bound (see the
 /// [module docs](super) for the algorithms).
 ///
-/// Bounds are relative to the **accuracy unit** ([`accuracy_unit`](super::accuracy_unit)): the
+/// Bounds are relative to the **accuracy unit** ([`accuracy_unit`](super::bounds::accuracy_unit)): the
 /// Y of the grating's brightest diffracted order, floored at 555/(N·∫ȳ dλ), the Y of an ideal
 /// first-order peak at 555 nm. Each is one number of the table in
 /// [`bounds`](super::bounds), which `Auto`, the colour table and these docs read:

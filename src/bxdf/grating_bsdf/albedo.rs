@@ -15,11 +15,11 @@ pub const MAX_ALBEDO_ORDERS: i64 = 512;
 
 impl GratingBsdf {
     /// The albedo ∫ f·cos θi dωi for light leaving toward `wo` at λ: the part of every lobe
-    /// inside the disk D (see the [module docs](self)); at most ρ = w/d. `None` when more than
+    /// inside the disk D (see the [module docs](super)); at most ρ = w/d. `None` when more than
     /// [`MAX_ALBEDO_ORDERS`] orders are candidates; 0 below the surface.
     ///
     /// N = ∞: the closed form Σ_m η_m·∫ g over the chord of D at u = m·λ/d (by
-    /// [`GrooveSpread::mass`]). Finite N: per period, Gauss-Legendre (8 points) on every side
+    /// [`GrooveSpread::mass`](crate::GrooveSpread::mass)). Finite N: per period, Gauss-Legendre (8 points) on every side
     /// lobe of F_N out to 64 lobes from the peak (all of them for N ≤ 128), and beyond them
     /// F_N replaced by its local mean 1/(2N²·sin²(π·r)) on 24 geometric pieces (the error of
     /// that average is below 1/(2π²·64³) of the lobe's area); the pieces are split where the

@@ -45,7 +45,7 @@ impl GratingBsdf {
     /// At fixed directions f is a sum of peaks at λ_m = d·|u|/|m| of width about λ_m/(|m|·N).
     /// The sampler is a mixture: with probability [`DEFENSIVE_WAVELENGTH_SHARE`] uniform over
     /// the band; otherwise peak m (the first [`MAX_WAVELENGTH_PEAKS`] orders m ≠ 0 with λ_m in
-    /// the band, [`Grating::peaks`]) with probability ∝ its area η_m·(d/|m|)·g(v; λ_m), or
+    /// the band, [`Grating::peaks`](crate::Grating::peaks)) with probability ∝ its area η_m·(d/|m|)·g(v; λ_m), or
     /// order 0 (when its period, λ > 2·d·|u|, reaches the band) with probability ∝ f at the
     /// middle of that range times its length. Inside peak m the phase x = d·|u|/λ is drawn
     /// from the Lorentzian proxy of its period (x = |m| + r as in `sample`) and λ = d·|u|/x, so
