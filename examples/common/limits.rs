@@ -56,15 +56,19 @@ pub const AUTO_ACCURACY: Range = Range::new(1e-6, 1.0);
 /// A closed range of accepted values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Range {
+    /// The smallest accepted value.
     pub min: f64,
+    /// The largest accepted value.
     pub max: f64,
 }
 
 impl Range {
+    /// The range [min, max].
     pub const fn new(min: f64, max: f64) -> Range {
         Range { min, max }
     }
 
+    /// Whether `v` lies in the range (false for NaN).
     pub fn contains(&self, v: f64) -> bool {
         v >= self.min && v <= self.max // false for NaN
     }
@@ -231,5 +235,5 @@ pub fn work(width: u32, height: u32, spp: u32, frames: u32) -> Result<u64, Strin
 }
 
 // The stratification handles every count the limits let through.
-const _: () = assert!(MAX_SPP <= crate::render::MAX_STRATA_SAMPLES);
-const _: () = assert!(MAX_LIGHT_SAMPLES <= crate::render::MAX_STRATA_SAMPLES);
+const _: () = assert!(MAX_SPP <= crate::sampling::MAX_STRATA_SAMPLES);
+const _: () = assert!(MAX_LIGHT_SAMPLES <= crate::sampling::MAX_STRATA_SAMPLES);

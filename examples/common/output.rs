@@ -9,7 +9,18 @@ use diffraction::color::{Clip, LinearSrgb};
 use image::{ImageEncoder, Rgb, RgbImage};
 
 use crate::font;
-use crate::render::Image;
+
+/// A rendered image in linear sRGB (unclipped: spectral colours have negative components and
+/// highlights exceed 1), rows from the top.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// width × height colours, row by row.
+    pub pixels: Vec<glam::DVec3>,
+}
 
 /// Clips every pixel with `clip` and encodes it to 8-bit sRGB.
 pub fn to_rgb8(image: &Image, clip: Clip) -> RgbImage {
@@ -24,12 +35,16 @@ pub fn to_rgb8(image: &Image, clip: Clip) -> RgbImage {
 /// The kinds of output file, by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
+    /// An 8-bit sRGB picture.
     Png,
+    /// The linear image in 32-bit floats.
     Pfm,
+    /// An animation.
     Gif,
 }
 
 impl Kind {
+    /// The file name's extension.
     pub fn extension(self) -> &'static str {
         match self {
             Kind::Png => "png",
@@ -47,7 +62,9 @@ impl Kind {
 pub struct Target {
     /// The name the user gave.
     pub shown: PathBuf,
+    /// Where it is written (normalised).
     pub path: PathBuf,
+    /// What it holds.
     pub kind: Kind,
 }
 
@@ -200,6 +217,7 @@ impl AtomicFile {
         })
     }
 
+    /// Where the content goes.
     pub fn writer(&mut self) -> &mut BufWriter<File> {
         self.writer.as_mut().expect("written before commit")
     }
@@ -252,6 +270,7 @@ fn png_to(w: &mut dyn Write, img: &RgbImage) -> Result<(), String> {
     w.flush().map_err(|e| e.to_string())
 }
 
+/// Writes an 8-bit sRGB picture as a PNG, atomically.
 pub fn write_png(path: &Path, img: &RgbImage) -> Result<(), String> {
     write_atomic(path, |w| png_to(w, img))
 }
@@ -286,6 +305,7 @@ pub fn pfm_bytes(image: &Image) -> Vec<u8> {
     out
 }
 
+/// Writes the linear image as a PFM, atomically.
 pub fn write_pfm(path: &Path, image: &Image) -> Result<(), String> {
     write_atomic(path, |w| pfm_to(w, image).map_err(|e| e.to_string()))
 }
@@ -300,6 +320,7 @@ pub struct Gif {
 }
 
 impl Gif {
+    /// A GIF at `path` (written under a temporary name), `delay_ms` between frames.
     pub fn create(path: &Path, delay_ms: u32) -> Result<Gif, String> {
         use image::codecs::gif::{GifEncoder, Repeat};
         let fail = |e: &dyn std::fmt::Display| format!("cannot write {}: {e}", path.display());
@@ -321,6 +342,7 @@ impl Gif {
         })
     }
 
+    /// Appends a frame.
     pub fn add(&mut self, frame: &RgbImage) -> Result<(), String> {
         let rgba = image::DynamicImage::ImageRgb8(frame.clone()).to_rgba8();
         let delay = image::Delay::from_numer_denom_ms(self.delay_ms, 1);

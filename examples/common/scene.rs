@@ -1,144 +1,133 @@
 //! Scene files (TOML) and the scene they describe.
 //!
-//! A scene file has the tables `[render]`, `[camera]`, `[environment]`, an array `[[lights]]`
-//! and an array `[[objects]]`, each object with a `[objects.material]` (and, for gratings, a
-//! `[objects.material.field]`). See `examples/scenes/fig4a.toml` for a commented example, and
-//! `examples/scenes/baselines/compare.toml` for the grating `model` key (Agu-Hill, Thorman, Stam).
+//! A scene file has the tables `[render]`, `[camera]`, `[environment]` (or, for the path tracer,
+//! `[radiometry]`), an array `[[lights]]` and an array `[[objects]]`, each object with a
+//! `[objects.material]` (and, for gratings, a `[objects.material.field]`). See
+//! `examples/scenes/fig4a.toml` for a commented example, `examples/scenes/baselines/compare.toml`
+//! for the grating `model` key (Agu-Hill, Thorman, Stam) and `examples/scenes/cd_area_light.toml`
+//! for physical units.
 //!
 //! Loading has two stages: serde checks the keys and types ([`crate::schema`]; unknown keys are
 //! errors), then [`build`] checks every value against the documented ranges of
 //! [`crate::limits`] and builds the scene. Either stage's error names the file, the line and
 //! the field path, and says what is expected. The file's size and its numbers of objects and
 //! lights are checked before it is deserialised, a texture's size before it is decoded.
+//!
+//! The format is one; what a grating is and what the light units mean is the renderer's
+//! [`Physics`]: the paper's models and eq. 12 for `raytrace`, the energy-normalised grating in
+//! physical units for `pathtrace`.
 
-use std::collections::HashMap;
 use std::io::Read;
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::path::Path;
 
 use diffraction::cie::Illuminant;
 use diffraction::color::Clip;
-use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
-use diffraction::{AguHill, Grating, Illumination, Thorman};
 use glam::DVec3;
 use toml::de::{DeTable, DeValue};
 
+use crate::camera::Camera;
 use crate::diagnostics::{
-    line_of, locate, path_at, plain_message, value_at, FieldError, SceneError,
+    line_of, locate, path_at, plain_message, value_at, Check, FieldError, SceneError,
 };
 use crate::geometry::{Primitive, Shape, Transform};
 use crate::limits::{self, check, count, zero_or, Range};
-use crate::material::{model_exposure, Albedo, GratingMaterial, Material, Model};
-use crate::schema::{
-    culprit, RawField, RawGrating, RawKind, RawMaterial, RawScene, RawTile, Scale, COMMON_KEYS,
-};
-use crate::texture::{ImageTexture, Wood};
+use crate::material::{Loader, Material};
+use crate::schema::{culprit, RawGrating, RawScene, Scale, COMMON_KEYS};
 
 /// Render settings (the scene's `[render]` table, overridable from the command line).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
+    /// The picture's width in pixels.
     pub width: u32,
+    /// The picture's height in pixels.
     pub height: u32,
+    /// Camera samples per pixel.
     pub spp: u32,
+    /// Bounces: mirror recursion (Whitted) or path length (path tracing).
     pub max_depth: u32,
+    /// The seed of the random numbers (the same seed gives the same bytes).
     pub seed: u64,
+    /// The gamut clipping of the PNG.
     pub clip: Clip,
+    /// The default spectral strategy of the gratings.
     pub strategy: Strategy,
-}
-
-/// A pinhole camera.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Camera {
-    pub position: DVec3,
-    pub look_at: DVec3,
-    pub up: DVec3,
-    pub fov_deg: f64,
 }
 
 /// A point light, or with `radius` > 0 a spherical light sampled `samples` times for shadows.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Light {
+    /// The light's centre.
     pub position: DVec3,
     /// Colour times intensity, linear sRGB.
     pub color: DVec3,
+    /// 0 for a point light.
     pub radius: f64,
+    /// Shadow rays per hit (1 for a point light).
     pub samples: u32,
+}
+
+/// What a renderer makes of a scene file: its model of a grating and its light units.
+pub trait Physics {
+    /// A grating material's model.
+    type Grating: std::fmt::Debug + Clone + Send + Sync;
+    /// The scene's light units (the paper's environment, or radiometry).
+    type Units: std::fmt::Debug + Clone + Send + Sync;
+    /// Checked first: `Err` at the field that makes the scene another renderer's, saying which.
+    fn accepts(raw: &RawScene) -> Check<()>;
+    /// The grating model `name` of the material at `path` (its keys are those the model takes,
+    /// `period` in nm is checked).
+    fn grating(name: &str, raw: &RawGrating, period: f64, path: &str) -> Check<Self::Grating>;
+    /// The light units, once the lights and the materials are built.
+    fn units(
+        raw: &RawScene,
+        lights: &[Light],
+        materials: &[Material<Self::Grating>],
+        spectral: &Spectral,
+    ) -> Check<Self::Units>;
 }
 
 /// A loaded scene.
 #[derive(Debug, Clone)]
-pub struct Scene {
+pub struct Scene<P: Physics> {
+    /// The file name without `.toml`.
     pub name: String,
+    /// The file's `description` (may be empty).
     pub description: String,
+    /// `[render]`, after the command line's overrides.
     pub settings: Settings,
+    /// `[camera]`.
     pub camera: Camera,
-    /// Sky colour at the horizon and straight up (linear sRGB).
-    pub background: DVec3,
-    pub zenith: DVec3,
-    /// Ambient light (linear sRGB).
-    pub ambient: DVec3,
+    /// `[[lights]]`.
     pub lights: Vec<Light>,
+    /// `[[objects]]`.
     pub objects: Vec<Primitive>,
-    pub materials: Vec<Material>,
+    /// One material per object (`objects[i].material` is an index into it).
+    pub materials: Vec<Material<P::Grating>>,
+    /// The colour integrator of the scene's illuminant (`render.illuminant`).
     pub spectral: Spectral,
-    /// Which materials' strategy came from the scene's `[render]` default (and follows
-    /// [`Scene::set_strategy`]).
-    follows_default: Vec<bool>,
-    /// The physical units of a radiometric scene (its `[radiometry]` table).
-    pub radiometry: Option<crate::radiometric::Radiometry>,
-    /// How the diffraction colour is filtered (`--filter`, [`crate::footprint::prepare`]).
-    pub filter: crate::footprint::Filter,
-    /// The colour table of each material, where [`filter`](Self::filter) uses one (empty or
-    /// `None` otherwise).
-    pub tables: Vec<Option<std::sync::Arc<diffraction::ColorTable>>>,
+    /// What the renderer's [`Physics`] makes of the light units.
+    pub units: P::Units,
 }
 
-impl Scene {
-    /// Switches every grating that uses the default strategy to `strategy` (and recomputes its
-    /// exposure).
+impl<P: Physics> Scene<P> {
+    /// Switches every grating that uses the default strategy to `strategy`.
     pub fn set_strategy(&mut self, strategy: Strategy) {
         self.settings.strategy = strategy;
-        let mut exposures = Exposures::default();
-        for (m, follows) in self.materials.iter_mut().zip(&self.follows_default) {
-            if let (Some(g), true) = (&mut m.grating, *follows) {
+        for g in self.materials.iter_mut().filter_map(|m| m.grating.as_mut()) {
+            if g.follows_default {
                 g.strategy = strategy;
-                g.exposure = exposures.get(&self.spectral, &g.model, strategy);
             }
         }
     }
 }
 
-/// The exposures of the distinct (model, strategy) pairs of a scene, each scanned once.
-#[derive(Debug, Default)]
-struct Exposures(HashMap<String, f64>);
-
-impl Exposures {
-    fn get(&mut self, spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
-        // Debug prints every parameter exactly (shortest round-trip floats).
-        let key = format!("{model:?} {strategy:?}");
-        *self
-            .0
-            .entry(key)
-            .or_insert_with(|| model_exposure(spectral, model, strategy))
-    }
-
-    fn len(&self) -> usize {
-        self.0.len()
-    }
-}
-
 fn file_error(file: &str, message: String) -> SceneError {
-    SceneError {
-        file: file.to_string(),
-        line: None,
-        field: None,
-        message,
-    }
+    SceneError::new(file, None, None, message)
 }
 
 /// Loads and checks a scene file of at most [`limits::MAX_SCENE_BYTES`].
-pub fn load(path: &Path) -> Result<Scene, SceneError> {
+pub fn load<P: Physics>(path: &Path) -> Result<Scene<P>, SceneError> {
     let file = path.display().to_string();
     let cannot = |e: std::io::Error| file_error(&file, format!("cannot read the scene file: {e}"));
     let too_big = || {
@@ -171,17 +160,17 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
     let base = path.parent().unwrap_or(Path::new("."));
-    parse(&src, &file, &name, base)
+    parse::<P>(&src, &file, &name, base)
 }
 
 /// Parses and checks scene text; `file` names it in errors, `base` resolves image paths.
-pub fn parse(src: &str, file: &str, name: &str, base: &Path) -> Result<Scene, SceneError> {
-    let err = |line, field, message| SceneError {
-        file: file.to_string(),
-        line,
-        field,
-        message,
-    };
+pub fn parse<P: Physics>(
+    src: &str,
+    file: &str,
+    name: &str,
+    base: &Path,
+) -> Result<Scene<P>, SceneError> {
+    let err = |line, field, message| SceneError::new(file, line, field, message);
     if src.len() as u64 > limits::MAX_SCENE_BYTES {
         return Err(err(
             None,
@@ -248,13 +237,20 @@ pub fn parse(src: &str, file: &str, name: &str, base: &Path) -> Result<Scene, Sc
         err(offset.map(|o| line_of(src, o)), field, message)
     })?;
     // Values.
-    build(raw, name, base).map_err(|e| {
+    let other_renderer = P::accepts(&raw).err();
+    let built = match other_renderer.clone() {
+        Some(e) => Err(e),
+        None => build::<P>(raw, name, base),
+    };
+    built.map_err(|e| {
+        // A field not in the file at all (a missing table) has no line.
         let span = locate(&doc, &e.path);
-        err(Some(line_of(src, span.start)), Some(e.path), e.message)
+        let line = (span != doc.span()).then(|| line_of(src, span.start));
+        let mut error = err(line, Some(e.path), e.message);
+        error.other_renderer = other_renderer.is_some();
+        error
     })
 }
-
-type Check<T> = Result<T, FieldError>;
 
 fn expect(path: &str, ok: bool, what: &str, got: impl std::fmt::Display) -> Check<()> {
     if ok {
@@ -265,18 +261,19 @@ fn expect(path: &str, ok: bool, what: &str, got: impl std::fmt::Display) -> Chec
 }
 
 /// Three numbers, each in `range`.
-fn vec3(path: &str, v: [f64; 3], range: Range) -> Check<DVec3> {
+pub fn vec3(path: &str, v: [f64; 3], range: Range) -> Check<DVec3> {
     for (i, c) in v.iter().enumerate() {
         check(&format!("{path}[{i}]"), *c, range)?;
     }
     Ok(DVec3::from_array(v))
 }
 
-fn parse_strategy(path: &str, s: &str) -> Check<Strategy> {
+/// The strategy named `s` at `path`, within the work limits.
+pub fn parse_strategy(path: &str, s: &str) -> Check<Strategy> {
     limits::parse_strategy(s).map_err(|e| FieldError::new(path, format!("{e}, got \"{s}\"")))
 }
 
-fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
+fn build<P: Physics>(raw: RawScene, name: &str, base: &Path) -> Check<Scene<P>> {
     let r = &raw.render;
     let illuminant = match r.illuminant.as_deref() {
         None => Illuminant::D65,
@@ -344,21 +341,7 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         format!("{up:?}"),
     )?;
 
-    let env = &raw.environment;
     let color = |path: &str, v: [f64; 3]| vec3(path, v, limits::COLOR);
-    let background = color(
-        "environment.background",
-        env.background.unwrap_or([0.05, 0.05, 0.06]),
-    )?;
-    let zenith = match env.zenith {
-        Some(z) => color("environment.zenith", z)?,
-        None => background,
-    };
-    let ambient = color(
-        "environment.ambient",
-        env.ambient.unwrap_or([0.1, 0.1, 0.1]),
-    )?;
-
     let mut lights = Vec::new();
     let mut shadow_rays = 0u64;
     for (i, l) in raw.lights.iter().enumerate() {
@@ -405,17 +388,10 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         });
     }
 
-    let mut loader = Loader {
-        settings: &settings,
-        spectral: Spectral::new(illuminant),
-        base,
-        images: HashMap::new(),
-        texels: 0,
-        exposures: Exposures::default(),
-    };
+    let spectral = Spectral::new(illuminant);
+    let mut loader = Loader::new(settings.strategy, base);
     let mut objects = Vec::new();
     let mut materials = Vec::new();
-    let mut follows_default = Vec::new();
     for (i, o) in raw.objects.iter().enumerate() {
         let p = format!("objects[{i}]");
         let shape = match o.shape.as_str() {
@@ -467,441 +443,25 @@ fn build(raw: RawScene, name: &str, base: &Path) -> Check<Scene> {
         let transform = Transform::new(translate, rotate, scale).ok_or_else(|| {
             FieldError::new(format!("{p}.scale"), "expected an invertible transform")
         })?;
-        let (material, follows) = loader.material(&o.material, &format!("{p}.material"))?;
+        let material = loader.material::<P>(&o.material, &format!("{p}.material"))?;
         objects.push(Primitive {
             shape,
             transform,
             material: materials.len(),
         });
         materials.push(material);
-        follows_default.push(follows);
     }
 
-    let radiometry = crate::radiometric::build(
-        raw.radiometry.as_ref(),
-        (&lights, raw.lights.iter().map(|l| (l.color, l.intensity))),
-        &materials,
-        illuminant,
-    )?;
+    let units = P::units(&raw, &lights, &materials, &spectral)?;
     Ok(Scene {
         name: name.to_string(),
         description: raw.description.unwrap_or_default(),
         settings,
         camera,
-        background,
-        zenith,
-        ambient,
         lights,
         objects,
         materials,
-        spectral: loader.spectral,
-        follows_default,
-        radiometry,
-        filter: crate::footprint::Filter::None,
-        tables: Vec::new(),
+        spectral,
+        units,
     })
-}
-
-/// What building the materials shares: the settings, the colour integrator, the textures
-/// loaded so far (and their texels, against [`limits::MAX_TEXTURE_PIXELS`]) and the exposures
-/// measured so far.
-struct Loader<'a> {
-    settings: &'a Settings,
-    spectral: Spectral,
-    base: &'a Path,
-    images: HashMap<PathBuf, Arc<ImageTexture>>,
-    texels: u64,
-    exposures: Exposures,
-}
-
-impl Loader<'_> {
-    /// The material at `path`, and whether its strategy follows the scene default.
-    fn material(&mut self, m: &RawMaterial, path: &str) -> Check<(Material, bool)> {
-        let f = |name: &str| format!("{path}.{name}");
-        let color = |name: &str, v: Option<[f64; 3]>, default: [f64; 3]| {
-            vec3(&f(name), v.unwrap_or(default), limits::COLOR)
-        };
-        let is_mirror = matches!(m.kind, RawKind::Mirror { .. });
-        let ka = check(&f("ambient"), m.ambient.unwrap_or(1.0), limits::COEFFICIENT)?;
-        let kd = check(
-            &f("diffuse"),
-            m.diffuse.unwrap_or(if is_mirror { 0.1 } else { 1.0 }),
-            limits::COEFFICIENT,
-        )?;
-        let mirror = check(
-            &f("mirror"),
-            m.mirror.unwrap_or(if is_mirror { 0.9 } else { 0.0 }),
-            limits::FRACTION,
-        )?;
-        let mirror_tint = color("mirror_color", m.mirror_color, [1.0; 3])?;
-        let (albedo, grating) = match &m.kind {
-            RawKind::Diffuse { color: c } => (Albedo::Solid(color("color", *c, [0.7; 3])?), None),
-            RawKind::Mirror { color: c } => (Albedo::Solid(color("color", *c, [0.05; 3])?), None),
-            RawKind::Wood {
-                light,
-                dark,
-                ring_spacing,
-                turbulence,
-                plank_width,
-                plank_length,
-            } => {
-                let wood = Wood {
-                    light: color("light", *light, [0.62, 0.40, 0.20])?,
-                    dark: color("dark", *dark, [0.30, 0.16, 0.07])?,
-                    ring_spacing: check(
-                        &f("ring_spacing"),
-                        ring_spacing.unwrap_or(0.05),
-                        limits::LENGTH,
-                    )?,
-                    turbulence: check(
-                        &f("turbulence"),
-                        turbulence.unwrap_or(1.5),
-                        limits::COEFFICIENT,
-                    )?,
-                    plank_width: zero_or(
-                        &f("plank_width"),
-                        plank_width.unwrap_or(0.0),
-                        limits::LENGTH,
-                    )?,
-                    plank_length: zero_or(
-                        &f("plank_length"),
-                        plank_length.unwrap_or(0.0),
-                        limits::LENGTH,
-                    )?,
-                };
-                (Albedo::Wood(wood), None)
-            }
-            RawKind::Image { image, color: c } => {
-                let texture = self.texture(image.as_deref(), &f("image"))?;
-                let other = color("color", *c, [0.7; 3])?;
-                (Albedo::Image { texture, other }, None)
-            }
-            RawKind::Grating(g) => {
-                let base_color = color("color", g.color, [0.7; 3])?;
-                let (grating, shading, follows) = self.grating(g, path, (ka, kd), base_color)?;
-                return Ok((
-                    Material {
-                        albedo: Albedo::Solid(base_color),
-                        shading,
-                        mirror,
-                        mirror_tint,
-                        grating: Some(grating),
-                    },
-                    follows,
-                ));
-            }
-        };
-        Ok((
-            Material {
-                albedo,
-                shading: Illumination::new(ka, kd, 0.0)
-                    .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?,
-                mirror,
-                mirror_tint,
-                grating,
-            },
-            true,
-        ))
-    }
-
-    /// The image texture named `name` (relative to the scene file), loaded once per file.
-    fn texture(&mut self, name: Option<&str>, path: &str) -> Check<Arc<ImageTexture>> {
-        let Some(name) = name else {
-            return Err(FieldError::new(
-                path,
-                "expected the path of a PNG image (relative to the scene file)",
-            ));
-        };
-        let file = self.base.join(name);
-        if let Some(t) = self.images.get(&file) {
-            return Ok(t.clone());
-        }
-        let budget = limits::MAX_TEXTURE_PIXELS - self.texels;
-        let t = Arc::new(ImageTexture::load(&file, budget).map_err(|e| {
-            FieldError::new(
-                path,
-                format!("{e} (the can label is made by `raytrace make-label`)"),
-            )
-        })?);
-        self.texels += t.texels();
-        self.images.insert(file, t.clone());
-        Ok(t)
-    }
-
-    /// The grating of a grating material, and whether its strategy follows the scene default.
-    fn grating(
-        &mut self,
-        g: &RawGrating,
-        path: &str,
-        (ka, kd): (f64, f64),
-        base_color: DVec3,
-    ) -> Check<(GratingMaterial, Illumination, bool)> {
-        let f = |name: &str| format!("{path}.{name}");
-        let period = match (g.period_nm, g.lines_per_mm) {
-            (Some(_), Some(_)) => {
-                return Err(FieldError::new(
-                    f("lines_per_mm"),
-                    "give either period_nm or lines_per_mm, not both",
-                ))
-            }
-            (Some(d), None) => check(&f("period_nm"), d, limits::PERIOD_NM)?,
-            (None, Some(l)) => 1.0e6 / check(&f("lines_per_mm"), l, limits::LINES_PER_MM)?,
-            (None, None) => {
-                return Err(FieldError::new(
-                    f("period_nm"),
-                    "missing: a grating needs period_nm (or lines_per_mm)",
-                ))
-            }
-        };
-        let kdiff = check(
-            &f("diffraction"),
-            g.diffraction.unwrap_or(1.0),
-            limits::COEFFICIENT,
-        )?;
-        let shading = Illumination::new(ka, kd, kdiff)
-            .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?;
-        let model = build_model(g, path, period)?;
-        let (strategy, follows) = match &g.strategy {
-            Some(s) => (parse_strategy(&f("strategy"), s)?, false),
-            None => (self.settings.strategy, true),
-        };
-        let (field, plain_albedo) = match &g.field {
-            None => (GratingField::constant(0.0), base_color),
-            Some(field) => build_field(field, &f("field"), base_color)?,
-        };
-        let exposure = self.exposures.get(&self.spectral, &model, strategy);
-        if self.exposures.len() > limits::MAX_GRATINGS {
-            return Err(FieldError::new(
-                path,
-                format!(
-                    "more than {} distinct gratings (each needs an exposure scan)",
-                    limits::MAX_GRATINGS
-                ),
-            ));
-        }
-        Ok((
-            GratingMaterial {
-                exposure,
-                model,
-                field,
-                strategy,
-                plain_albedo,
-            },
-            shading,
-            follows,
-        ))
-    }
-}
-
-/// The grating's diffraction model (`model`, default "agu-hill") and its parameters; a
-/// parameter of another model is an error, and so is a Stam model in a build without the
-/// `stam` feature.
-fn build_model(g: &RawGrating, path: &str, period: f64) -> Check<Model> {
-    let f = |name: &str| format!("{path}.{name}");
-    let name = g.model.as_deref().unwrap_or("agu-hill");
-    let takes: &[&str] = match name {
-        "agu-hill" => &["slit_width_nm", "slits"],
-        "thorman" => &["lobe_width"],
-        "stam-sine" => &["depth_nm", "coherence_nm", "reflectance"],
-        "stam-binary" => &["depth_nm", "fraction", "coherence_nm", "reflectance"],
-        "radiometric" => &["slit_width_nm", "slits", "coherence_nm", "groove_sigma"],
-        other => {
-            return Err(FieldError::new(
-                f("model"),
-                format!("expected one of \"agu-hill\", \"thorman\", \"stam-sine\", \"stam-binary\", \"radiometric\", got \"{other}\""),
-            ))
-        }
-    };
-    for (key, is_set) in g.parameters() {
-        if is_set && !takes.contains(&key) {
-            return Err(FieldError::new(
-                f(key),
-                format!(
-                    "not used by model \"{name}\" (it takes {})",
-                    takes.join(", ")
-                ),
-            ));
-        }
-    }
-    let crate_error = |e: diffraction::Error| {
-        let field = match e.parameter() {
-            "period_nm" if g.period_nm.is_none() => "lines_per_mm",
-            p => p,
-        };
-        FieldError::new(f(field), e.to_string())
-    };
-    match name {
-        "agu-hill" => {
-            let width = check(
-                &f("slit_width_nm"),
-                g.slit_width_nm.unwrap_or(period / 2.0),
-                limits::SLIT_WIDTH_NM,
-            )?;
-            let slits = g.slits.unwrap_or(1000);
-            count(&f("slits"), slits, 1, limits::SLITS.max as u64)?;
-            let grating = Grating::new(period, width, slits as u32).map_err(crate_error)?;
-            Ok(Model::AguHill(AguHill::new(grating)))
-        }
-        "thorman" => {
-            let lobe = check(
-                &f("lobe_width"),
-                g.lobe_width.unwrap_or(0.005),
-                limits::LOBE_WIDTH,
-            )?;
-            Ok(Model::Thorman(
-                Thorman::new(period, lobe).map_err(crate_error)?,
-            ))
-        }
-        "radiometric" => crate::radiometric::grating_model(
-            period,
-            g.slit_width_nm,
-            g.slits,
-            g.coherence_nm,
-            g.groove_sigma,
-            path,
-        ),
-        _ => {
-            for (key, v, range) in [
-                ("depth_nm", g.depth_nm, limits::DEPTH_NM),
-                ("fraction", g.fraction, limits::FRACTION),
-                ("coherence_nm", g.coherence_nm, limits::COHERENCE_NM),
-                ("reflectance", g.reflectance, limits::FRACTION),
-            ] {
-                if let Some(v) = v {
-                    check(&f(key), v, range)?;
-                }
-            }
-            stam_model(g, path, name, period, &crate_error)
-        }
-    }
-}
-
-/// `stam-sine` or `stam-binary`: depth_nm (default 100), coherence_nm (default 10 periods),
-/// fraction (binary, default 0.5), reflectance (default 1).
-#[cfg(feature = "stam")]
-fn stam_model(
-    g: &RawGrating,
-    _: &str,
-    name: &str,
-    period: f64,
-    crate_error: &dyn Fn(diffraction::Error) -> FieldError,
-) -> Check<Model> {
-    use diffraction::{Profile, Stam};
-    let profile = match name {
-        "stam-sine" => Profile::Sine,
-        _ => Profile::Binary {
-            fraction: g.fraction.unwrap_or(0.5),
-        },
-    };
-    let stam = Stam::new(
-        profile,
-        period,
-        g.depth_nm.unwrap_or(100.0),
-        g.coherence_nm.unwrap_or(10.0 * period),
-    )
-    .and_then(|s| s.with_reflectance(g.reflectance.unwrap_or(1.0)))
-    .map_err(crate_error)?;
-    Ok(Model::Stam(stam))
-}
-
-#[cfg(not(feature = "stam"))]
-fn stam_model(
-    _: &RawGrating,
-    path: &str,
-    name: &str,
-    _: f64,
-    _: &dyn Fn(diffraction::Error) -> FieldError,
-) -> Check<Model> {
-    Err(FieldError::new(
-        format!("{path}.model"),
-        format!(
-            "model \"{name}\" needs the crate feature `stam`: build with `--features stam` \
-             (e.g. cargo run --release --features stam --example raytrace -- ...)"
-        ),
-    ))
-}
-
-fn degrees(path: &str, v: Option<f64>) -> Check<f64> {
-    Ok(check(path, v.unwrap_or(0.0), limits::ANGLE_DEG)?.to_radians())
-}
-
-fn center(path: &str, v: Option<[f64; 2]>) -> Check<[f64; 2]> {
-    let c = v.unwrap_or([0.0, 0.0]);
-    check(&format!("{path}[0]"), c[0], limits::COORDINATE)?;
-    check(&format!("{path}[1]"), c[1], limits::COORDINATE)?;
-    Ok(c)
-}
-
-fn build_tile(t: &RawTile, path: &str) -> Check<Tile> {
-    let f = |name: &str| format!("{path}.{name}");
-    Ok(match t {
-        RawTile::Plain {} => Tile::Plain,
-        RawTile::Constant {
-            angle_deg,
-            twist_deg,
-        } => Tile::Constant {
-            angle: degrees(&f("angle_deg"), *angle_deg)? + degrees(&f("twist_deg"), *twist_deg)?,
-        },
-        RawTile::Radial {
-            center: c,
-            twist_deg,
-        } => Tile::Radial {
-            center: center(&f("center"), *c)?,
-            twist: degrees(&f("twist_deg"), *twist_deg)?,
-        },
-    })
-}
-
-/// The field and the albedo of its plain squares.
-fn build_field(fd: &RawField, path: &str, base_color: DVec3) -> Check<(GratingField, DVec3)> {
-    let f = |name: &str| format!("{path}.{name}");
-    let (field, twist, plain) = match fd {
-        RawField::Constant {
-            angle_deg,
-            twist_deg,
-        } => (
-            GratingField::constant(degrees(&f("angle_deg"), *angle_deg)?),
-            twist_deg,
-            None,
-        ),
-        RawField::Radial {
-            center: c,
-            twist_deg,
-        } => (
-            GratingField::Uniform(Tile::Radial {
-                center: center(&f("center"), *c)?,
-                twist: 0.0,
-            }),
-            twist_deg,
-            None,
-        ),
-        RawField::Checkerboard {
-            cell_size,
-            even,
-            odd,
-            plain_color,
-            twist_deg,
-        } => {
-            let cell = check(&f("cell_size"), cell_size.unwrap_or(0.25), limits::LENGTH)?;
-            let even = match even {
-                Some(t) => build_tile(t, &f("even"))?,
-                None => Tile::Constant { angle: 0.0 },
-            };
-            let odd = match odd {
-                Some(t) => build_tile(t, &f("odd"))?,
-                None => Tile::Plain,
-            };
-            let field = GratingField::checkerboard(cell, even, odd)
-                .map_err(|e| FieldError::new(f(e.parameter()), e.to_string()))?;
-            (field, twist_deg, plain_color.as_ref())
-        }
-    };
-    let field = field
-        .twisted(degrees(&f("twist_deg"), *twist)?)
-        .map_err(|e| FieldError::new(f("twist_deg"), e.to_string()))?;
-    let plain = match plain {
-        Some(c) => vec3(&f("plain_color"), *c, limits::COLOR)?,
-        None => base_color,
-    };
-    Ok((field, plain))
 }

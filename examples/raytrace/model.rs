@@ -1,59 +1,21 @@
-//! Materials: a diffuse colour source (solid, wood, image), optional mirror reflection, and for
-//! diffraction gratings one of the crate's models (the paper's Agu-Hill model, or the baselines
-//! Thorman and, with the `stam` feature, Stam) with a grating-direction field.
+//! The paper's renderer's reading of a scene: its grating models (the paper's Agu-Hill model,
+//! and the baselines Thorman and, with the `stam` feature, Stam), the `[environment]`, and each
+//! grating's exposure.
 
-use std::sync::Arc;
+use std::collections::HashMap;
 
 use diffraction::color::Xyz;
-use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{Spectral, Strategy};
 #[cfg(feature = "stam")]
 use diffraction::Stam;
-use diffraction::{AguHill, DiffractionBrdf, Grating, Illumination, Thorman};
+use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
 use glam::DVec3;
 
-use crate::geometry::{Hit, Part};
-use crate::texture::{ImageTexture, Wood};
-
-/// Where the diffuse colour of a surface comes from.
-#[derive(Debug, Clone)]
-pub enum Albedo {
-    Solid(DVec3),
-    Wood(Wood),
-    /// An image on the side of a cylinder (a can's label); `other` colours the caps and any
-    /// other part.
-    Image {
-        texture: Arc<ImageTexture>,
-        other: DVec3,
-    },
-}
-
-impl Albedo {
-    pub fn at(&self, hit: &Hit) -> DVec3 {
-        match self {
-            Albedo::Solid(c) => *c,
-            Albedo::Wood(w) => w.albedo(hit.object_point),
-            Albedo::Image { texture, other } => match hit.part {
-                Part::Side | Part::Face => texture.sample(hit.uv),
-                Part::Cap => *other,
-            },
-        }
-    }
-}
-
-/// A surface material.
-#[derive(Debug, Clone)]
-pub struct Material {
-    pub albedo: Albedo,
-    /// The coefficients of the paper's eq. 12 (k_a, k_d, k_diffraction), validated by the
-    /// crate: the only place they are kept.
-    pub shading: Illumination,
-    /// Fraction of perfect mirror reflection (0: none), tinted by `mirror_tint`.
-    pub mirror: f64,
-    pub mirror_tint: DVec3,
-    /// The diffraction grating, for diffractive materials; `None` costs nothing spectral.
-    pub grating: Option<GratingMaterial>,
-}
+use crate::diagnostics::{Check, FieldError};
+use crate::limits::{self, check, count};
+use crate::material::{model_error, Material};
+use crate::scene::{vec3, Light, Physics};
+use crate::schema::{RawGrating, RawScene};
 
 /// The diffraction model of a grating material (the scene's `model` key).
 #[derive(Debug, Clone)]
@@ -65,8 +27,6 @@ pub enum Model {
     /// Stam's Fourier optics (sinusoidal or binary profile).
     #[cfg(feature = "stam")]
     Stam(Stam),
-    /// The energy-normalised grating in physical units (scenes with `[radiometry]`).
-    Radiometric(Box<diffraction::GratingBsdf>),
 }
 
 impl Model {
@@ -77,45 +37,192 @@ impl Model {
             Model::Thorman(m) => m,
             #[cfg(feature = "stam")]
             Model::Stam(m) => m,
-            Model::Radiometric(m) => m.as_ref(),
         }
     }
-}
 
-/// A diffraction grating material: the paper's illumination model (eq. 12) with one of the
-/// crate's diffraction models, over a field of grating directions.
-#[derive(Debug, Clone)]
-pub struct GratingMaterial {
-    /// The diffraction model.
-    pub model: Model,
-    /// The grating vector across the surface (constant, twisted, radial, checkerboard).
-    pub field: GratingField,
-    /// How the spectral integral is evaluated.
-    pub strategy: Strategy,
-    /// Scale of the diffraction XYZ, see [`exposure`].
-    pub exposure: f64,
-    /// The diffuse colour of the plain (non-grating) squares of a checkerboard.
-    pub plain_albedo: DVec3,
-}
-
-impl GratingMaterial {
     /// The diffraction term's colour for local directions `wi`, `wo` (z the normal, x the
-    /// grating vector): k_diffraction · exposure · XYZ, with `k_diffraction` from the material's
-    /// [`Illumination`]. Agu-Hill depends on u = wi.x + wo.x only
-    /// and takes the lobe-exact paths of `Spectral::xyz`; the other models go through
-    /// `Spectral::xyz_brdf` (with cos θi for Stam, a BRDF).
-    pub fn xyz(&self, spectral: &Spectral, wi: DVec3, wo: DVec3, k_diffraction: f64) -> Xyz {
-        let xyz = match &self.model {
-            Model::AguHill(m) => spectral.xyz(m.grating(), wi.x + wo.x, self.strategy),
-            other => spectral.xyz_brdf(other.brdf(), wi, wo, self.strategy),
-        };
-        xyz.scale(k_diffraction * self.exposure)
+    /// grating vector) with `strategy`, times `exposure`: the crate's `Spectral::xyz_brdf`,
+    /// which takes the lobe-exact grating paths for Agu-Hill (a function of u = wi.x + wo.x
+    /// alone) and the generic path with cos θi for the others.
+    pub fn xyz(
+        &self,
+        spectral: &Spectral,
+        wi: DVec3,
+        wo: DVec3,
+        strategy: Strategy,
+        exposure: f64,
+    ) -> Xyz {
+        spectral
+            .xyz_brdf(self.brdf(), wi, wo, strategy)
+            .scale(exposure)
+    }
+}
+
+/// The paper's light: the sky and the ambient light of eq. 12 (linear sRGB), from
+/// `[environment]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Environment {
+    /// Sky colour at the horizon and straight up.
+    pub background: DVec3,
+    pub zenith: DVec3,
+    /// Ambient light.
+    pub ambient: DVec3,
+}
+
+/// The scenes of the paper's renderer: no physical units, gratings of the paper's model or
+/// its baselines.
+#[derive(Debug, Clone, Copy)]
+pub struct Paper;
+
+impl Physics for Paper {
+    type Grating = Model;
+    type Units = Environment;
+
+    fn accepts(raw: &RawScene) -> Check<()> {
+        match raw.radiometry {
+            Some(_) => Err(FieldError::new(
+                "radiometry",
+                "a scene in physical units (a [radiometry] table) is the path tracer's",
+            )),
+            None => Ok(()),
+        }
     }
 
-    /// Whether the field has a grating at the tangent point `p` (not a plain square).
-    pub fn is_plain_at(&self, p: glam::DVec2) -> bool {
-        matches!(self.field.tile_at(p), Tile::Plain)
+    fn grating(name: &str, g: &RawGrating, period: f64, path: &str) -> Check<Model> {
+        let f = |name: &str| format!("{path}.{name}");
+        let crate_error = |e| model_error(g, path, e);
+        match name {
+            "agu-hill" => {
+                let width = check(
+                    &f("slit_width_nm"),
+                    g.slit_width_nm.unwrap_or(period / 2.0),
+                    limits::SLIT_WIDTH_NM,
+                )?;
+                let slits = g.slits.unwrap_or(1000);
+                count(&f("slits"), slits, 1, limits::SLITS.max as u64)?;
+                let grating = Grating::new(period, width, slits as u32).map_err(crate_error)?;
+                Ok(Model::AguHill(AguHill::new(grating)))
+            }
+            "thorman" => {
+                let lobe = check(
+                    &f("lobe_width"),
+                    g.lobe_width.unwrap_or(0.005),
+                    limits::LOBE_WIDTH,
+                )?;
+                Ok(Model::Thorman(
+                    Thorman::new(period, lobe).map_err(crate_error)?,
+                ))
+            }
+            "radiometric" => Err(FieldError::new(
+                f("model"),
+                "model \"radiometric\" needs a [radiometry] table (the camera's exposure)",
+            )),
+            _ => {
+                for (key, v, range) in [
+                    ("depth_nm", g.depth_nm, limits::DEPTH_NM),
+                    ("fraction", g.fraction, limits::FRACTION),
+                    ("coherence_nm", g.coherence_nm, limits::COHERENCE_NM),
+                    ("reflectance", g.reflectance, limits::FRACTION),
+                ] {
+                    if let Some(v) = v {
+                        check(&f(key), v, range)?;
+                    }
+                }
+                stam_model(g, path, name, period, &crate_error)
+            }
+        }
     }
+
+    fn units(
+        raw: &RawScene,
+        _: &[Light],
+        _: &[Material<Model>],
+        _: &Spectral,
+    ) -> Check<Environment> {
+        let env = &raw.environment;
+        let color = |path: &str, v: [f64; 3]| vec3(path, v, limits::COLOR);
+        let background = color(
+            "environment.background",
+            env.background.unwrap_or([0.05, 0.05, 0.06]),
+        )?;
+        let zenith = match env.zenith {
+            Some(z) => color("environment.zenith", z)?,
+            None => background,
+        };
+        let ambient = color(
+            "environment.ambient",
+            env.ambient.unwrap_or([0.1, 0.1, 0.1]),
+        )?;
+        Ok(Environment {
+            background,
+            zenith,
+            ambient,
+        })
+    }
+}
+
+/// `stam-sine` or `stam-binary`: depth_nm (default 100), coherence_nm (default 10 periods),
+/// fraction (binary, default 0.5), reflectance (default 1).
+#[cfg(feature = "stam")]
+fn stam_model(
+    g: &RawGrating,
+    _: &str,
+    name: &str,
+    period: f64,
+    crate_error: &dyn Fn(diffraction::Error) -> FieldError,
+) -> Check<Model> {
+    use diffraction::Profile;
+    let profile = match name {
+        "stam-sine" => Profile::Sine,
+        _ => Profile::Binary {
+            fraction: g.fraction.unwrap_or(0.5),
+        },
+    };
+    let stam = Stam::new(
+        profile,
+        period,
+        g.depth_nm.unwrap_or(100.0),
+        g.coherence_nm.unwrap_or(10.0 * period),
+    )
+    .and_then(|s| s.with_reflectance(g.reflectance.unwrap_or(1.0)))
+    .map_err(crate_error)?;
+    Ok(Model::Stam(stam))
+}
+
+#[cfg(not(feature = "stam"))]
+fn stam_model(
+    _: &RawGrating,
+    path: &str,
+    name: &str,
+    _: f64,
+    _: &dyn Fn(diffraction::Error) -> FieldError,
+) -> Check<Model> {
+    Err(FieldError::new(
+        format!("{path}.model"),
+        format!(
+            "model \"{name}\" needs the crate feature `stam`: build with `--features stam` \
+             (e.g. cargo run --release --features stam --example raytrace -- ...)"
+        ),
+    ))
+}
+
+/// The exposures of the distinct (model, strategy) pairs of a scene's materials, each scanned
+/// once: per material, its grating's exposure (1 without a grating).
+pub fn exposures(spectral: &Spectral, materials: &[Material<Model>]) -> Vec<f64> {
+    let mut seen: HashMap<String, f64> = HashMap::new();
+    materials
+        .iter()
+        .map(|m| match &m.grating {
+            None => 1.0,
+            Some(g) => {
+                // Debug prints every parameter exactly (shortest round-trip floats).
+                let key = format!("{:?} {:?}", g.model, g.strategy);
+                *seen
+                    .entry(key)
+                    .or_insert_with(|| model_exposure(spectral, &g.model, g.strategy))
+            }
+        })
+        .collect()
 }
 
 /// The strategy used to measure a grating's exposure when rendering with `strategy`.
@@ -135,7 +242,7 @@ fn exposure_strategy(strategy: Strategy) -> Strategy {
 pub const EXPOSURE_SCAN: usize = 4000;
 
 /// The exposure of a grating's diffraction term: `1 / max Y(u)` over the diffracted orders,
-/// computed once per material when the scene is loaded.
+/// computed once per distinct grating before rendering.
 ///
 /// With the paper's 1/N² normalisation the peak of every order is 1 but its width is about
 /// λ/(|m|·N), so the colour an order integrates to, XYZ(u) = ∫ E·I(u, λ)·cmf dλ / ∫ E·ȳ dλ, is
@@ -179,8 +286,6 @@ fn exposure_of(max_y: f64) -> f64 {
 pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
     let (brdf, period) = match model {
         Model::AguHill(m) => return exposure(spectral, m.grating(), strategy),
-        // Physical units: the light and the camera set the brightness.
-        Model::Radiometric(_) => return 1.0,
         Model::Thorman(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
         #[cfg(feature = "stam")]
         Model::Stam(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
