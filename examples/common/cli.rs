@@ -34,9 +34,15 @@ OPTIONS:
 
 /// What both renderers promise about their outputs, for the end of their `--help`.
 pub const OUTPUTS: &str = "
-Every output path is checked before rendering (extension, directory, writable, no two
-outputs on one file). Each file is written under a temporary name beside it and renamed into
-place when complete, so a failed run leaves existing files as they were.
+OUTPUTS:
+    Every output is checked before anything is rendered: its extension, its directory, no
+    two outputs on one file (whatever the spelling), none on an input of the run (a scene
+    file, a texture). An existing output is replaced only if it is a regular file with write
+    permission and one hard link (like cp without -f; the new file keeps its permissions);
+    a symbolic link is followed (the file it names is replaced, the link stays), and a link
+    to a missing file is refused. Every file is written under a temporary name and all are
+    renamed into place together once all are complete, missing directories made then: a
+    run that fails, at any step, leaves every existing file as it was and creates nothing.
 ";
 
 /// The options of a render that both renderers take.

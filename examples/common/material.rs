@@ -15,6 +15,7 @@ use diffraction::Illumination;
 use glam::DVec3;
 
 use crate::diagnostics::{Check, FieldError};
+use crate::files::Input;
 use crate::geometry::{Hit, Part};
 use crate::limits::{self, check, zero_or};
 use crate::scene::{parse_strategy, vec3, Physics};
@@ -101,28 +102,34 @@ impl<G> GratingMaterial<G> {
     }
 }
 
-/// What building the materials shares: the default strategy, the textures loaded so far (and
-/// their texels, against [`limits::MAX_TEXTURE_PIXELS`]) and the distinct gratings so far
-/// (against [`limits::MAX_GRATINGS`]).
+/// What building the materials shares: the default strategy, the textures loaded so far (one
+/// per file, whatever its spelling, and their texels, against [`limits::MAX_TEXTURE_PIXELS`])
+/// and the distinct gratings so far (against [`limits::MAX_GRATINGS`]).
 pub struct Loader<'a> {
     /// The scene's default strategy.
     pub strategy: Strategy,
     /// The directory that texture paths are relative to.
     pub base: &'a Path,
+    /// The scene's name, for the inputs' descriptions.
+    pub scene: &'a str,
     images: HashMap<PathBuf, Arc<ImageTexture>>,
     texels: u64,
     gratings: std::collections::HashSet<String>,
+    /// The texture files read (inputs of the run, never written over).
+    pub inputs: Vec<Input>,
 }
 
 impl<'a> Loader<'a> {
     /// A loader with the scene's default strategy, resolving textures in `base`.
-    pub fn new(strategy: Strategy, base: &'a Path) -> Loader<'a> {
+    pub fn new(strategy: Strategy, base: &'a Path, scene: &'a str) -> Loader<'a> {
         Loader {
             strategy,
             base,
+            scene,
             images: HashMap::new(),
             texels: 0,
             gratings: Default::default(),
+            inputs: Vec::new(),
         }
     }
 
@@ -218,18 +225,24 @@ impl<'a> Loader<'a> {
             ));
         };
         let file = self.base.join(name);
-        if let Some(t) = self.images.get(&file) {
+        // One file under two spellings (`a.png`, `./a.png`, links) is loaded and counted once.
+        let key = file.canonicalize().unwrap_or_else(|_| file.clone());
+        if let Some(t) = self.images.get(&key) {
             return Ok(t.clone());
         }
         let budget = limits::MAX_TEXTURE_PIXELS - self.texels;
         let t = Arc::new(ImageTexture::load(&file, budget).map_err(|e| {
-            FieldError::new(
-                path,
-                format!("{e} (the can label is made by `raytrace make-label`)"),
-            )
+            let hint = if is_the_label(&file) {
+                " (the can label is made by `raytrace make-label`)"
+            } else {
+                ""
+            };
+            FieldError::new(path, format!("{e}{hint}"))
         })?);
         self.texels += t.texels();
-        self.images.insert(file, t.clone());
+        self.images.insert(key, t.clone());
+        self.inputs
+            .push(Input::new(format!("a texture of {}", self.scene), &file));
         Ok(t)
     }
 
@@ -312,6 +325,27 @@ impl<'a> Loader<'a> {
         };
         Ok((grating, kdiff))
     }
+}
+
+/// Whether `file` is the shipped can label (`examples/assets/label.png`), compared after
+/// removing `.` and `..`.
+pub fn is_the_label(file: &Path) -> bool {
+    let clean = |p: &Path| -> PathBuf {
+        let p = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let mut out = PathBuf::new();
+        for c in p.components() {
+            match c {
+                std::path::Component::CurDir => {}
+                std::path::Component::ParentDir => {
+                    out.pop();
+                }
+                c => out.push(c),
+            }
+        }
+        out
+    };
+    let label = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/assets/label.png");
+    clean(file) == clean(&label)
 }
 
 /// The crate's error building a grating model at `path`, at the field the user wrote (the

@@ -1,14 +1,17 @@
 //! One run of a renderer: the scenes named on the command line (or every shipped scene the
-//! renderer takes), loaded and checked with their outputs before anything is rendered, then
-//! rendered and written.
+//! renderer takes) are loaded and their outputs checked, then prepared, then rendered into
+//! temporary files that are renamed into place together when every one is complete
+//! ([`crate::files`]): an error found at any step leaves every existing file as it was, and
+//! one that can be known before rendering is reported before anything is rendered.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::camera::{progress_wanted, Camera};
 use crate::cli::Options;
+use crate::files::{self, Kind, Target, Transaction};
 use crate::limits;
-use crate::output::{self, Image, Kind, Target};
+use crate::output::{self, Image};
 use crate::scene::{self, Physics, Scene};
 
 /// A renderer: what it makes of a scene at load, and how it renders it.
@@ -133,23 +136,35 @@ fn note(opts: &Options, msg: &str) {
     }
 }
 
+/// Whether the file name of `p` ends in `.ext` (any case; also the bare `.png`, which is an
+/// error later, not a directory).
 fn has_extension(p: &Path, ext: &str) -> bool {
-    p.extension().is_some_and(|x| x.eq_ignore_ascii_case(ext))
+    p.file_name().is_some_and(|n| {
+        n.to_string_lossy()
+            .to_lowercase()
+            .ends_with(&format!(".{ext}"))
+    })
 }
 
-/// One scene's work, its outputs checked.
-enum Job<P> {
+/// The outputs of one scene, checked.
+enum Outputs {
     Still {
-        scene: P,
         png: Option<Target>,
         pfm: Vec<Target>,
     },
     Animation {
-        scene: P,
         frames: Vec<Target>,
         gif: Target,
-        dir: PathBuf,
     },
+}
+
+impl Outputs {
+    fn targets(&self) -> Vec<&Target> {
+        match self {
+            Outputs::Still { png, pfm } => png.iter().chain(pfm).collect(),
+            Outputs::Animation { frames, gif } => frames.iter().chain([gif]).collect(),
+        }
+    }
 }
 
 /// The progress bar's label, when one is wanted.
@@ -157,12 +172,12 @@ fn bar<'a>(opts: &Options, label: &'a str) -> Option<&'a str> {
     progress_wanted(opts.quiet).then_some(label)
 }
 
-/// Renders one still; writes a PNG and/or a PFM.
+/// Renders one still into staged PNG and/or PFM files.
 fn still<R: Renderer>(
     r: &R,
     prepared: &R::Prepared,
-    png: Option<&Target>,
-    pfm: &[Target],
+    (png, pfm): (Option<&Target>, &[Target]),
+    files: &mut Transaction,
     opts: &Options,
 ) -> Result<(), String> {
     let scene = r.scene(prepared);
@@ -177,10 +192,10 @@ fn still<R: Renderer>(
         } else {
             output::to_rgb8(&image, scene.settings.clip)
         };
-        output::write_png(&t.path, &picture)?;
+        files.write(t, |w| output::png_to(w, &picture))?;
     }
     for t in pfm {
-        output::write_pfm(&t.path, &image)?;
+        files.write(t, |w| output::pfm_to(w, &image).map_err(|e| e.to_string()))?;
     }
     let s = &scene.settings;
     let written: Vec<String> = png
@@ -210,30 +225,33 @@ fn still<R: Renderer>(
     Ok(())
 }
 
-/// Renders one frame per target orbiting the camera once around its target, as numbered PNGs
-/// and an animated GIF streamed frame by frame.
+/// Renders one frame per target orbiting the camera once around its target, into staged
+/// numbered PNGs and an animated GIF streamed frame by frame.
 fn animation<R: Renderer>(
     r: &R,
     prepared: &R::Prepared,
-    frames: &[Target],
-    gif: &Target,
-    dir: &Path,
+    (frames, gif): (&[Target], &Target),
+    files: &mut Transaction,
     opts: &Options,
 ) -> Result<(), String> {
     let scene = r.scene(prepared);
     let start = Instant::now();
     let n = frames.len();
-    let mut encoder = output::Gif::create(&gif.path, 80)?;
+    let mut staged_gif = files.create(gif)?;
+    let fail = |e: String| format!("cannot write {}: {e}", gif.shown.display());
+    let mut encoder = output::Gif::new(&mut staged_gif, 80).map_err(fail)?;
     for (i, frame) in frames.iter().enumerate() {
         let angle = std::f64::consts::TAU * i as f64 / n as f64;
         let camera = scene.camera.orbit(angle);
         let label = format!("{} {}/{}", scene.name, i + 1, n);
         let image = r.render(prepared, &camera, bar(opts, &label));
         let png = output::to_rgb8(&image, scene.settings.clip);
-        output::write_png(&frame.path, &png)?;
-        encoder.add(&png)?;
+        files.write(frame, |w| output::png_to(w, &png))?;
+        encoder.add(&png).map_err(fail)?;
     }
-    encoder.finish()?;
+    encoder.finish().map_err(fail)?;
+    files.close(staged_gif)?;
+    let dir = frames[0].shown.parent().unwrap_or(Path::new("."));
     note(
         opts,
         &format!(
@@ -248,48 +266,30 @@ fn animation<R: Renderer>(
     Ok(())
 }
 
-/// Loads one scene and checks its work and its outputs (`None`: the other renderer's scene,
-/// skipped when rendering every shipped scene).
-fn plan<R: Renderer>(
-    r: &R,
-    name: &str,
-    single: bool,
-    all: bool,
-    opts: &Options,
-) -> Result<Option<Job<R::Prepared>>, String> {
-    let Some(scene) = load::<R>(name, opts, all)? else {
-        return Ok(None);
+/// The outputs of scene `name`: for `--frames`, a directory of frames and a GIF; for one scene
+/// and a file name, exactly that file; otherwise a directory of NAME.png (and NAME.pfm when
+/// rendering everything), and `--pfm`.
+fn outputs(name: &str, single: bool, all: bool, opts: &Options) -> Result<Outputs, String> {
+    let (out, flag) = match &opts.out {
+        Some(out) => (out.clone(), "--out"),
+        None => (PathBuf::from("out"), ""),
     };
-    let s = &scene.settings;
-    limits::work(s.width, s.height, s.spp, opts.frames.unwrap_or(1))
-        .map_err(|e| format!("{}: {e}", scene.name))?;
-    let scene_name = scene.name.clone();
-    let prepared = r.prepare(scene, &|m| note(opts, m))?;
-    let out = opts.out.clone();
     if let Some(n) = opts.frames {
-        let dir = match &out {
-            Some(d) if single => d.clone(),
-            Some(d) => d.join(&scene_name),
-            None => PathBuf::from("out").join(&scene_name),
+        let dir = match &opts.out {
+            Some(d) if single => files::directory(d, flag, "the frames of --frames")?,
+            _ => files::directory(&out, flag, "the frames of --frames")?.join(name),
         };
-        let dir = output::directory(&dir)?;
         let frames = (0..n)
-            .map(|i| output::target(&dir.join(format!("{scene_name}_{i:04}.png")), Kind::Png))
+            .map(|i| files::target(&dir.join(format!("{name}_{i:04}.png")), Kind::Png, ""))
             .collect::<Result<_, _>>()?;
-        let gif = output::target(&dir.join(format!("{scene_name}.gif")), Kind::Gif)?;
-        return Ok(Some(Job::Animation {
-            scene: prepared,
-            frames,
-            gif,
-            dir,
-        }));
+        let gif = files::target(&dir.join(format!("{name}.gif")), Kind::Gif, "")?;
+        return Ok(Outputs::Animation { frames, gif });
     }
-    // One scene and a file name: write exactly that; otherwise a directory of NAME.png
-    // (and NAME.pfm when rendering everything or when asked).
-    let file_out = out
+    let file_out = opts
+        .out
         .as_ref()
         .filter(|p| single && (has_extension(p, "png") || has_extension(p, "pfm")));
-    if let Some(p) = out.as_ref().filter(|_| single && file_out.is_none()) {
+    if let Some(p) = opts.out.as_ref().filter(|_| single && file_out.is_none()) {
         if p.extension().is_some() && !p.is_dir() {
             return Err(format!(
                 "--out {}: expected a file name ending in .png or .pfm, or a directory",
@@ -299,28 +299,32 @@ fn plan<R: Renderer>(
     }
     let suffix = if opts.compare_clip { "-clipping" } else { "" };
     let (png, mut pfm) = match file_out {
-        Some(p) if has_extension(p, "pfm") => (None, vec![p.clone()]),
-        Some(p) => (Some(p.clone()), vec![]),
+        Some(p) if has_extension(p, "pfm") => (None, vec![files::target(p, Kind::Pfm, "--out")?]),
+        Some(p) => (Some(files::target(p, Kind::Png, "--out")?), vec![]),
         None => {
-            let dir = output::directory(&out.unwrap_or_else(|| PathBuf::from("out")))?;
-            let png = dir.join(format!("{scene_name}{suffix}.png"));
+            let why = if single {
+                "the pictures"
+            } else {
+                "the pictures of several scenes"
+            };
+            let dir = files::directory(&out, flag, why)?;
+            let png = files::target(&dir.join(format!("{name}{suffix}.png")), Kind::Png, "")?;
             let pfm = if all && !opts.compare_clip {
-                vec![dir.join(format!("{scene_name}.pfm"))]
+                vec![files::target(
+                    &dir.join(format!("{name}.pfm")),
+                    Kind::Pfm,
+                    "",
+                )?]
             } else {
                 vec![]
             };
             (Some(png), pfm)
         }
     };
-    pfm.extend(opts.pfm.clone());
-    Ok(Some(Job::Still {
-        png: png.map(|p| output::target(&p, Kind::Png)).transpose()?,
-        pfm: pfm
-            .iter()
-            .map(|p| output::target(p, Kind::Pfm))
-            .collect::<Result<_, _>>()?,
-        scene: prepared,
-    }))
+    if let Some(p) = &opts.pfm {
+        pfm.push(files::target(p, Kind::Pfm, "--pfm")?);
+    }
+    Ok(Outputs::Still { png, pfm })
 }
 
 /// Renders the scenes of `opts` (every shipped scene `r` takes when none is named).
@@ -336,12 +340,12 @@ pub fn run<R: Renderer>(r: &R, opts: &Options) -> Result<(), String> {
     }
     let single = names.len() == 1;
     let start = Instant::now();
-    // Every scene is loaded and every output checked before anything is rendered.
-    let mut jobs = Vec::new();
+    // Every scene is loaded, its work bounded and every output checked before anything is
+    // prepared; everything is prepared before anything is rendered.
+    let mut planned = Vec::new();
     for name in &names {
-        match plan(r, name, single, all, opts)? {
-            Some(job) => jobs.push(job),
-            None => note(
+        let Some(scene) = load::<R>(name, opts, all)? else {
+            note(
                 opts,
                 &format!(
                     "{name}: skipped, rendered by the example {} (cargo run --release \
@@ -349,30 +353,41 @@ pub fn run<R: Renderer>(r: &R, opts: &Options) -> Result<(), String> {
                     R::OTHER,
                     R::OTHER
                 ),
-            ),
-        }
+            );
+            continue;
+        };
+        let s = &scene.settings;
+        limits::work(s.width, s.height, s.spp, opts.frames.unwrap_or(1))
+            .map_err(|e| format!("{}: {e}", scene.name))?;
+        let outputs = outputs(&scene.name, single, all, opts)?;
+        planned.push((scene, outputs));
     }
-    let targets: Vec<Target> = jobs
+    let targets: Vec<Target> = planned
         .iter()
-        .flat_map(|job| match job {
-            Job::Still { png, pfm, .. } => png.iter().chain(pfm.iter()).cloned().collect(),
-            Job::Animation { frames, gif, .. } => {
-                frames.iter().chain([gif]).cloned().collect::<Vec<_>>()
-            }
-        })
+        .flat_map(|(_, o)| o.targets())
+        .cloned()
         .collect();
-    output::distinct(&targets)?;
-    for job in &jobs {
-        match job {
-            Job::Still { scene, png, pfm } => still(r, scene, png.as_ref(), pfm, opts)?,
-            Job::Animation {
-                scene,
-                frames,
-                gif,
-                dir,
-            } => animation(r, scene, frames, gif, dir, opts)?,
+    let inputs: Vec<files::Input> = planned
+        .iter()
+        .flat_map(|(s, _)| s.inputs.iter().cloned())
+        .collect();
+    files::check(&targets, &inputs)?;
+    let mut jobs = Vec::new();
+    for (scene, outputs) in planned {
+        jobs.push((r.prepare(scene, &|m| note(opts, m))?, outputs));
+    }
+    let mut staged = Transaction::default();
+    for (prepared, outputs) in &jobs {
+        match outputs {
+            Outputs::Still { png, pfm } => {
+                still(r, prepared, (png.as_ref(), pfm), &mut staged, opts)?
+            }
+            Outputs::Animation { frames, gif } => {
+                animation(r, prepared, (frames, gif), &mut staged, opts)?
+            }
         }
     }
+    staged.commit()?;
     if jobs.len() > 1 {
         note(
             opts,

@@ -30,6 +30,7 @@ use crate::camera::Camera;
 use crate::diagnostics::{
     line_of, locate, path_at, plain_message, value_at, Check, FieldError, SceneError,
 };
+use crate::files::Input;
 use crate::geometry::{Primitive, Shape, Transform};
 use crate::limits::{self, check, count, zero_or, Range};
 use crate::material::{Loader, Material};
@@ -108,6 +109,8 @@ pub struct Scene<P: Physics> {
     pub spectral: Spectral,
     /// What the renderer's [`Physics`] makes of the light units.
     pub units: P::Units,
+    /// The files read: the scene file (when loaded from one) and its textures.
+    pub inputs: Vec<Input>,
 }
 
 impl<P: Physics> Scene<P> {
@@ -160,7 +163,9 @@ pub fn load<P: Physics>(path: &Path) -> Result<Scene<P>, SceneError> {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
     let base = path.parent().unwrap_or(Path::new("."));
-    parse::<P>(&src, &file, &name, base)
+    let mut scene = parse::<P>(&src, &file, &name, base)?;
+    scene.inputs.insert(0, Input::new("the scene file", path));
+    Ok(scene)
 }
 
 /// Parses and checks scene text; `file` names it in errors, `base` resolves image paths.
@@ -389,7 +394,7 @@ fn build<P: Physics>(raw: RawScene, name: &str, base: &Path) -> Check<Scene<P>> 
     }
 
     let spectral = Spectral::new(illuminant);
-    let mut loader = Loader::new(settings.strategy, base);
+    let mut loader = Loader::new(settings.strategy, base, name);
     let mut objects = Vec::new();
     let mut materials = Vec::new();
     for (i, o) in raw.objects.iter().enumerate() {
@@ -463,5 +468,6 @@ fn build<P: Physics>(raw: RawScene, name: &str, base: &Path) -> Check<Scene<P>> 
         materials,
         spectral,
         units,
+        inputs: loader.inputs,
     })
 }

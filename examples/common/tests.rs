@@ -13,14 +13,14 @@ use crate::cli::{self, Command, Options};
 use crate::diagnostics::{Check, SceneError};
 use crate::geometry::nearest;
 use crate::material::Material;
-use crate::output::{self, Image};
-use crate::run::{self, Renderer};
+use crate::output::Image;
+use crate::run::Renderer;
 use crate::scene::{self, Light, Physics, Scene};
 use crate::schema::{RawGrating, RawScene};
 
 /// Every grating model is its name; no units; every scene is taken.
 #[derive(Debug, Clone, Copy)]
-struct Flat;
+pub(crate) struct Flat;
 
 impl Physics for Flat {
     type Grating = String;
@@ -86,7 +86,7 @@ fn error_of(src: &str) -> String {
     parse(src).unwrap_err().to_string()
 }
 
-const GRATING: &str = "type = \"grating\"\nperiod_nm = 1600.0\n";
+pub(crate) const GRATING: &str = "type = \"grating\"\nperiod_nm = 1600.0\n";
 
 #[test]
 fn scene_errors_name_file_line_and_field() {
@@ -232,7 +232,13 @@ fn values_beyond_their_ranges_name_the_field() {
 /// A scene of one lit object, with `extra` lines in `[render]`, `[camera]`, `[[lights]]`, the
 /// object and its material.
 /// A `camera` or `light` that starts with its own `position` replaces the default one.
-fn one_object(render: &str, camera: &str, light: &str, object: &str, material: &str) -> String {
+pub(crate) fn one_object(
+    render: &str,
+    camera: &str,
+    light: &str,
+    object: &str,
+    material: &str,
+) -> String {
     let camera = if camera.starts_with("position") {
         camera.to_string()
     } else {
@@ -263,7 +269,7 @@ fn one_object(render: &str, camera: &str, light: &str, object: &str, material: &
 }
 
 /// A fresh directory under the system's temporary directory.
-fn scratch(name: &str) -> std::path::PathBuf {
+pub(crate) fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("raytrace-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -344,11 +350,17 @@ fn scene_files_and_textures_are_bounded_before_they_are_read() {
         e,
         format!(
             "test.toml: line 8, field objects[0].material.image: {}: 22000 x 22000 = 484000000 \
-             pixels, more than the 16777216 left of the limit on texture pixels (the can label \
-             is made by `raytrace make-label`)",
+             pixels, more than the 16777216 left of the limit on texture pixels",
             dir.join("huge.png").display()
         )
     );
+    // The hint about `raytrace make-label` is for the shipped label's own errors only.
+    let label = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/assets/label.png");
+    assert!(crate::material::is_the_label(&label));
+    assert!(crate::material::is_the_label(
+        &label.join("../../assets/./label.png")
+    ));
+    assert!(!crate::material::is_the_label(&dir.join("huge.png")));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -414,112 +426,6 @@ fn an_unknown_key_is_refused_in_every_variant() {
     );
 }
 
-fn render_args(args: &str) -> Options {
-    let args: Vec<String> = args.split_whitespace().map(String::from).collect();
-    match cli::parse::<()>(&args).unwrap() {
-        Command::Render(o, ()) => o,
-        other => panic!("{other:?}"),
-    }
-}
-
-/// The files of `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
-/// No run destroys a file: two outputs on one file (also by two names) and unwritable paths are
-/// refused before rendering, a failed write leaves the old file and no temporary, and a
-/// successful one replaces it whole.
-#[test]
-fn an_existing_file_survives_a_failed_render() {
-    let dir = scratch("outputs");
-    let tiny = dir.join("tiny.toml");
-    std::fs::write(&tiny, one_object("", "", "", "", GRATING)).unwrap();
-    let old = b"an existing, valid file".to_vec();
-    for name in ["a.png", "a.pfm"] {
-        std::fs::write(dir.join(name), &old).unwrap();
-    }
-    let d = dir.display();
-    let t = tiny.display();
-    for (args, expected) in [
-        (format!("{t} --out {d}/a.png --pfm {d}/a.png"), format!("{d}/a.png: expected a file name ending in .pfm")),
-        (format!("{t} --out {d}/a.pfm --pfm {d}/sub/../a.pfm"), format!("{d}/a.pfm and {d}/sub/../a.pfm are the same file ({}): refusing to write two outputs on it", dir.canonicalize().unwrap().join("a.pfm").display())),
-        (format!("{t} {t} --out {d}"), format!("{d}/tiny.png and {d}/tiny.png are the same file ({}): refusing to write two outputs on it", dir.canonicalize().unwrap().join("tiny.png").display())),
-        (format!("{t} --out {d}/a.jpg"), format!("--out {d}/a.jpg: expected a file name ending in .png or .pfm, or a directory")),
-        (format!("{t} --out {d}/a.png/b.png"), format!("{d}/a.png/b.png: cannot create the directory {d}/a.png: File exists (os error 17)")),
-    ] {
-        assert_eq!(run::run(&Flat, &render_args(&format!("{args} --quiet"))), Err(expected), "{args}");
-    }
-    #[cfg(target_os = "linux")]
-    assert_eq!(
-        run::run(&Flat, &render_args(&format!("{t} --out /dev/full --quiet"))),
-        Err(
-            "/dev/full: not a directory (give a directory, or one scene and a file name ending \
-             in .png or .pfm)"
-                .into()
-        )
-    );
-    // A write that fails half-way keeps the old file and removes its temporary.
-    let target = dir.join("a.png");
-    let e = output::write_atomic(&target, |w| {
-        w.write_all(b"partial").map_err(|e| e.to_string())?;
-        Err("disk full".into())
-    });
-    assert_eq!(
-        e,
-        Err(format!("cannot write {}: disk full", target.display()))
-    );
-    assert_eq!(std::fs::read(&target).unwrap(), old);
-    assert_eq!(listing(&dir), ["a.pfm", "a.png", "sub", "tiny.toml"]);
-    // A run that succeeds replaces both files whole.
-    let args = format!("{t} --out {d}/a.png --pfm {d}/a.pfm --quiet");
-    assert_eq!(run::run(&Flat, &render_args(&args)), Ok(()));
-    assert_eq!(image::open(&target).unwrap().to_rgb8().dimensions(), (8, 6));
-    assert!(std::fs::read(dir.join("a.pfm"))
-        .unwrap()
-        .starts_with(b"PF\n8 6\n"));
-    assert_eq!(listing(&dir), ["a.pfm", "a.png", "sub", "tiny.toml"]);
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// An animation streams its frames into the GIF: every frame is in it, and each is written.
-#[test]
-fn an_animation_writes_every_frame_and_the_gif() {
-    use image::AnimationDecoder;
-    let dir = scratch("frames");
-    let tiny = dir.join("tiny.toml");
-    std::fs::write(&tiny, one_object("", "", "", "", GRATING)).unwrap();
-    let out = dir.join("anim");
-    let args = format!(
-        "{} --frames 3 --out {} --quiet",
-        tiny.display(),
-        out.display()
-    );
-    assert_eq!(run::run(&Flat, &render_args(&args)), Ok(()));
-    assert_eq!(
-        listing(&out),
-        [
-            "tiny.gif",
-            "tiny_0000.png",
-            "tiny_0001.png",
-            "tiny_0002.png"
-        ]
-    );
-    let gif = std::io::BufReader::new(std::fs::File::open(out.join("tiny.gif")).unwrap());
-    let frames = image::codecs::gif::GifDecoder::new(gif)
-        .unwrap()
-        .into_frames()
-        .collect_frames()
-        .unwrap();
-    assert_eq!(frames.len(), 3);
-    assert_eq!(frames[0].buffer().dimensions(), (8, 6));
-    let _ = std::fs::remove_dir_all(&dir);
-}
 #[test]
 fn options_parse() {
     let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };

@@ -18,6 +18,8 @@ pub mod camera;
 pub mod cli;
 #[path = "../common/diagnostics.rs"]
 pub mod diagnostics;
+#[path = "../common/files.rs"]
+pub mod files;
 #[path = "../common/font.rs"]
 pub mod font;
 #[path = "../common/geometry.rs"]

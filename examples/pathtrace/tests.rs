@@ -264,7 +264,11 @@ fn cd_area_light_comparison() {
             .collect()
     };
     let save = |img: &Image, name: &str| {
-        crate::output::write_png(&images.join(name), &crate::output::to_rgb8(img, clip)).unwrap();
+        let png = crate::output::to_rgb8(img, clip);
+        crate::files::write_one(&images.join(name), crate::files::Kind::Png, "", |w| {
+            crate::output::png_to(w, &png)
+        })
+        .unwrap();
     };
     let env = |k: &str, d: u32| {
         std::env::var(k)

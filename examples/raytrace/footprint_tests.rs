@@ -172,8 +172,11 @@ fn footprint_against_a_reference() {
             (&ref_point, "ref"),
         ] {
             let png = crate::output::to_rgb8(img, base.settings.clip);
-            crate::output::write_png(&dir.join(format!("footprint_{name}_{tag}.png")), &png)
-                .unwrap();
+            let path = dir.join(format!("footprint_{name}_{tag}.png"));
+            crate::files::write_one(&path, crate::files::Kind::Png, "", |w| {
+                crate::output::png_to(w, &png)
+            })
+            .unwrap();
         }
     }
 }

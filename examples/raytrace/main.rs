@@ -22,6 +22,8 @@ pub mod camera;
 pub mod cli;
 #[path = "../common/diagnostics.rs"]
 pub mod diagnostics;
+#[path = "../common/files.rs"]
+pub mod files;
 #[path = "../common/font.rs"]
 pub mod font;
 #[path = "../common/geometry.rs"]
@@ -52,6 +54,9 @@ mod whitted;
 #[path = "../common/tests.rs"]
 mod common_tests;
 #[cfg(test)]
+#[path = "../common/files_tests.rs"]
+mod files_tests;
+#[cfg(test)]
 mod footprint_tests;
 #[cfg(test)]
 mod tests;
@@ -60,9 +65,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use cli::{Command, Options};
+use files::Kind;
 use footprint::Filter;
 use model::Paper;
-use output::Kind;
 use scene::Scene;
 use whitted::PaperScene;
 
@@ -206,10 +211,14 @@ fn main() -> ExitCode {
         }
         Ok(Command::Render(opts, extra)) if extra.make_label => {
             if opts.scenes.is_empty() {
-                let out = opts.out.unwrap_or_else(label_path);
-                output::target(&out, Kind::Png)
-                    .and_then(|t| output::write_png(&t.path, &label::make_label()))
-                    .map(|()| eprintln!("wrote {}", out.display()))
+                let (out, flag) = match opts.out {
+                    Some(out) => (out, "--out"),
+                    None => (label_path(), ""),
+                };
+                files::write_one(&out, Kind::Png, flag, |w| {
+                    output::png_to(w, &label::make_label())
+                })
+                .map(|()| eprintln!("wrote {}", out.display()))
             } else {
                 Err("make-label takes no scene".into())
             }
