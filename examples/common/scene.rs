@@ -239,6 +239,19 @@ pub fn parse<P: Physics>(
                 None => missing.to_string(),
             });
         }
+        // An integer field's value that is no integer of its type names the field's range.
+        // (The document may hold no toml::Value of the number: the model is read as written.)
+        let range = field.as_deref().and_then(|f| {
+            let model = f.strip_suffix(".slits").and_then(|m| {
+                let text = src.get(locate(&doc, &format!("{m}.model")))?.trim();
+                text.strip_prefix('"')?.strip_suffix('"')
+            });
+            limits::integer_range(f, model)
+        });
+        if let (Some((min, max)), Some(f)) = (range, &field) {
+            let got = src.get(locate(&doc, f)).unwrap_or("").trim();
+            message = format!("expected an integer in [{min}, {max}], got {got}");
+        }
         err(offset.map(|o| line_of(src, o)), field, message)
     })?;
     // Values.

@@ -111,8 +111,37 @@ fn scene_errors_name_file_line_and_field() {
         ),
         "{e}"
     );
-    let e = error_of(&format!("[render]\nwidth = \"big\"\n{MINIMAL}"));
-    assert!(e.starts_with("test.toml: line 2, field render.width: invalid type: string \"big\", expected a non-negative integer"), "{e}");
+    // An integer field names its range whatever the value: beyond the type, negative, not an
+    // integer.
+    for (key, value, range) in [
+        ("width", "\"big\"", "[1, 16384]"),
+        ("width", "4294967296", "[1, 16384]"),
+        ("height", "-1", "[1, 16384]"),
+        ("spp", "1e3", "[1, 4096]"),
+        ("max_depth", "18446744073709551616", "[0, 64]"),
+        ("seed", "18446744073709551616", "[0, 18446744073709551615]"),
+        ("seed", "-1", "[0, 18446744073709551615]"),
+    ] {
+        assert_eq!(
+            error_of(&format!("[render]\n{key} = {value}\n{MINIMAL}")),
+            format!("test.toml: line 2, field render.{key}: expected an integer in {range}, got {value}")
+        );
+    }
+    assert_eq!(
+        error_of(&format!("{MINIMAL}[[lights]]\nposition = [0.0, 1.0, 0.0]\nsamples = 4294967296\n")),
+        "test.toml: line 6, field lights[0].samples: expected an integer in [1, 1024], got 4294967296"
+    );
+    for slits in [
+        "18446744073709551616",
+        "340282366920938463463374607431768211456",
+        "-5",
+        "2.5",
+    ] {
+        assert_eq!(
+            error_of(&grating(&format!("period_nm = 1600\nslits = {slits}"))),
+            format!("test.toml: line 10, field objects[0].material.slits: expected an integer in [1, 1000000000], got {slits}")
+        );
+    }
     assert_eq!(
         error_of(&format!("[render]\nwidth = 20000\n{MINIMAL}")),
         "test.toml: line 2, field render.width: expected an integer in [1, 16384], got 20000"
@@ -183,7 +212,7 @@ fn scene_errors_name_file_line_and_field() {
 /// Each class of bad value is refused with the file, the line and the field the user wrote.
 #[test]
 fn values_beyond_their_ranges_name_the_field() {
-    let cases: [(&str, &str, &str, &str, &str, &str); 11] = [
+    let cases: [(&str, &str, &str, &str, &str, &str); 12] = [
         // Accepted before and rendered NaN.
         ("", "", "", "", "type = \"wood\"\nring_spacing = 5e-324",
          "line 19, field objects[0].material.ring_spacing: expected a number in [1e-6, 1e6], got 5e-324"),
@@ -204,6 +233,8 @@ fn values_beyond_their_ranges_name_the_field() {
         // Unbounded work.
         ("strategy = \"uniform:4294967295\"", "", "", "", "type = \"diffuse\"",
          "line 5, field render.strategy: uniform:K takes at most 4096 wavelengths, got \"uniform:4294967295\""),
+        ("strategy = \"uniform:99999999999999999999999\"", "", "", "", "type = \"diffuse\"",
+         "line 5, field render.strategy: uniform:K takes at most 4096 wavelengths, got \"uniform:99999999999999999999999\""),
         ("", "", "", "", "type = \"grating\"\nperiod_nm = 1600.0\nstrategy = \"gauss:10000000\"",
          "line 20, field objects[0].material.strategy: gauss:K takes at most 512 intervals, got \"gauss:10000000\""),
         ("", "", "", "", "type = \"grating\"\nperiod_nm = 1600.0\nstrategy = \"auto:1e-12\"",

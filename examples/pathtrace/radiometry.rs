@@ -28,6 +28,7 @@ use diffraction::{Band, Grating, GratingBsdf, GrooveSpread};
 use glam::DVec3;
 
 use crate::diagnostics::{Check, FieldError};
+use crate::limits::{count, RADIOMETRIC_SLITS};
 use crate::material::{model_error, Material};
 use crate::scene::{Light, Physics};
 use crate::schema::{RawGrating, RawRadiometry, RawScene};
@@ -177,25 +178,65 @@ impl Radiometry {
     }
 }
 
+/// `v` in at most six significant digits, or in full where that would hide that it is above 1.
+fn number(v: f64) -> String {
+    let short = format!("{}", format!("{v:.6}").parse::<f64>().unwrap_or(v));
+    if v > 1.0 && short.parse::<f64>().is_ok_and(|s| s <= 1.0) {
+        format!("{v}")
+    } else {
+        short
+    }
+}
+
 /// Checks that every material is passive: mirror·mirror_color + (1 − mirror)·(diffuse·colour +
-/// slit_width/period) ≤ 1.
+/// slit_width/period) ≤ 1. The error names the field of the largest term and prints every
+/// number.
 pub fn check_materials(materials: &[Material<GratingBsdf>]) -> Check<()> {
     for (i, m) in materials.iter().enumerate() {
-        let path = format!("objects[{i}].material");
         let duty = m.grating.as_ref().map_or(0.0, |g| {
             g.model.grating().slit_width_nm() / g.model.grating().period_nm()
         });
-        let diffuse = m.shading.coefficients().1 * m.albedo.max_component();
-        let total = m.mirror * m.mirror_tint.max_element() + (1.0 - m.mirror) * (diffuse + duty);
-        if total > 1.0 + 1e-12 {
-            return Err(FieldError::new(
-                format!("{path}.diffuse"),
-                format!(
-                    "expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color \
-                     + slit_width/period) is {total:.3}, above 1"
-                ),
-            ));
+        let (kd, albedo, tint) = (
+            m.shading.coefficients().1,
+            m.albedo.max_component(),
+            m.mirror_tint.max_element(),
+        );
+        let rest = 1.0 - m.mirror;
+        let total = m.mirror * tint + rest * (kd * albedo + duty);
+        if total <= 1.0 + 1e-12 {
+            continue;
         }
+        // The field whose term is the largest.
+        let terms = [
+            (
+                m.mirror * tint,
+                if tint > 1.0 { "mirror_color" } else { "mirror" },
+            ),
+            (
+                rest * kd * albedo,
+                if kd >= albedo { "diffuse" } else { "color" },
+            ),
+            (rest * duty, "slit_width_nm"),
+        ];
+        let field = terms
+            .iter()
+            .fold(terms[0], |a, &b| if b.0 > a.0 { b } else { a })
+            .1;
+        let n = number;
+        return Err(FieldError::new(
+            format!("objects[{i}].material.{field}"),
+            format!(
+                "expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color \
+                 + slit_width/period) = {}·{} + {}·({}·{} + {}) = {}, above 1",
+                n(m.mirror),
+                n(tint),
+                n(rest),
+                n(kd),
+                n(albedo),
+                n(duty),
+                n(total)
+            ),
+        ));
     }
     Ok(())
 }
@@ -205,13 +246,7 @@ pub fn check_materials(materials: &[Material<GratingBsdf>]) -> Check<()> {
 /// coherence length, default N·d) or `groove_sigma` (a Gaussian, groove roughness).
 pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBsdf> {
     let f = |name: &str| format!("{path}.{name}");
-    let slits = g.slits.unwrap_or(1000);
-    if !(1..=u32::MAX as u64).contains(&slits) {
-        return Err(FieldError::new(
-            f("slits"),
-            format!("expected an integer in [1, {}], got {slits}", u32::MAX),
-        ));
-    }
+    let slits = count(&f("slits"), g.slits.unwrap_or(1000), 1, RADIOMETRIC_SLITS)?;
     let grating = Grating::new(
         period,
         g.slit_width_nm.unwrap_or(period / 2.0),

@@ -221,21 +221,41 @@ period_nm = 1600.0
         "t.toml: field radiometry: a scene without a [radiometry] table (no physical units) is \
          the paper's ray tracer's"
     );
-    let e = err(&format!("[radiometry]\nexposure = 1.0\n{base}"));
-    assert!(e.contains("radiometric"), "{e}");
-    let e = err(&format!(
-        "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\ngroove_sigma = 3.0\ndiffuse = 0.0\n"
-    ));
-    assert!(e.contains("groove_sigma"), "{e}");
-    // Passivity: diffuse 1 × colour 0.7 + w/d 0.5 > 1.
-    let e = err(&format!(
-        "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\n"
-    ));
-    assert!(e.contains("passive"), "{e}");
+    // Each error names the field, the range or the rule, and the numbers.
+    let radiometric = |extra: &str| {
+        err(&format!(
+            "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\n{extra}\n"
+        ))
+    };
+    for (extra, expected) in [
+        ("diffuse = 0.0\ngroove_sigma = 3.0", "line 14, field objects[0].material.groove_sigma: invalid sigma = 3: must satisfy 0 < sigma <= MAX_GROOVE_SIGMA (1)"),
+        ("diffuse = 0.0\nslits = 4294967296", "line 14, field objects[0].material.slits: expected an integer in [1, 4294967295], got 4294967296"),
+        ("diffuse = 0.0\nslits = 18446744073709551616", "line 14, field objects[0].material.slits: expected an integer in [1, 4294967295], got 18446744073709551616"),
+        // Passivity: diffuse 1 × colour 0.7 + w/d 0.5 > 1 (the default diffuse: at the table).
+        ("", "line 9, field objects[0].material.diffuse: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0·1 + 1·(1·0.7 + 0.5) = 1.2, above 1"),
+        ("diffuse = 0.5\ncolor = [1.5, 1.5, 1.5]", "line 14, field objects[0].material.color: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0·1 + 1·(0.5·1.5 + 0.5) = 1.25, above 1"),
+        ("diffuse = 0.0\nmirror = 0.5\nmirror_color = [2.0, 1.0, 1.0]", "line 15, field objects[0].material.mirror_color: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0.5·2 + 0.5·(0·0.7 + 0.5) = 1.25, above 1"),
+        ("diffuse = 0.1\nslit_width_nm = 1600.0", "line 14, field objects[0].material.slit_width_nm: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0·1 + 1·(0.1·0.7 + 1) = 1.07, above 1"),
+        // Just above 1: printed in full, not as "1.000".
+        ("diffuse = 0.0\nmirror = 1.0\nmirror_color = [1.0000001, 1.0, 1.0]", "line 15, field objects[0].material.mirror_color: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 1·1.0000001 + 0·(0·0.7 + 0.5) = 1.0000001, above 1"),
+    ] {
+        assert_eq!(radiometric(extra), format!("t.toml: {expected}"), "{extra}");
+    }
     let e = err(&format!(
         "[radiometry]\nexposure = -1.0\n{base}model = \"radiometric\"\ndiffuse = 0.0\n"
     ));
-    assert!(e.contains("radiometry.exposure"), "{e}");
+    assert_eq!(
+        e,
+        "t.toml: line 2, field radiometry.exposure: expected a number in [0, 1e12], got -1"
+    );
+    let e = err(&format!(
+        "[radiometry]\nexposure = 1.0\n{base}diffuse = 0.0\n"
+    ));
+    assert_eq!(
+        e,
+        "t.toml: line 9, field objects[0].material.model: a scene with a [radiometry] table takes \
+         gratings of model \"radiometric\" only (the other models have no physical units)"
+    );
 }
 
 /// The comparisons of the docs (`cargo test --release --example pathtrace -- --ignored
