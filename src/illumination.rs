@@ -1,6 +1,8 @@
 //! The paper's illumination model (eq. 12): I = ambient + diffuse + diffraction, a shading model
 //! around any diffraction model, not a BRDF itself.
 
+use core::ops::{Add, Mul};
+
 use glam::DVec3;
 
 use crate::bxdf::{both_above, SpectralResponse};
@@ -101,6 +103,54 @@ impl Illumination {
     #[must_use]
     pub fn coefficients(&self) -> (f64, f64, f64) {
         (self.ambient, self.diffuse, self.diffraction)
+    }
+
+    /// Eq. 12 on colours, for renderers that shade in a colour space rather than per
+    /// wavelength: `ambient·ambient_light·albedo + Σ light·(diffuse·cos θi·albedo +
+    /// diffraction·colour)` over `lights`, each given as (light, cos θi, diffraction colour):
+    /// the light's colour (times the fraction of it that is visible), the cosine between the
+    /// direction to it and the normal, and the diffraction model's colour toward it (for
+    /// instance `Spectral::xyz` of the grating at that u, in the caller's colour space; zero off
+    /// a grating). `C` is any colour with component-wise products, such as a linear-RGB
+    /// `DVec3`, or `f64` for one channel, where one light gives [`eval`](Self::eval)'s number.
+    ///
+    /// A light with cos θi ≤ 0 (below the surface) or NaN adds nothing; cos θi above 1 counts
+    /// as 1. Colours are used as given: linear RGB of spectral colours can be negative, and no
+    /// component is clipped here (clipping is the caller's explicit step).
+    ///
+    /// ```
+    /// use diffraction::{AguHill, DiffractionBrdf, Grating, Illumination};
+    /// use glam::DVec3;
+    /// let shading = Illumination::new(0.5, 0.8, 2.0)?;
+    /// let (ambient, albedo) = (DVec3::splat(0.1), DVec3::new(0.6, 0.4, 0.2));
+    /// let (light, diffracted) = (DVec3::splat(0.9), DVec3::new(0.0, 0.3, 0.1));
+    /// let c = shading.shade(ambient, albedo, [(light, 0.5, diffracted), (light, -0.2, diffracted)]);
+    /// // The second light is below the surface.
+    /// let expected = ambient * albedo * 0.5 + light * (albedo * (0.8 * 0.5) + diffracted * 2.0);
+    /// assert!((c - expected).abs().max_element() < 1e-15);
+    /// // One channel and one light: the number `eval` gives at one wavelength.
+    /// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
+    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()));
+    /// let value = m.eval(wi, wo, 480.0);
+    /// let one = shading.shade(2.0, 1.0, [(1.5, wi.z, value)]);
+    /// assert_eq!(one, shading.eval(&m, wi, wo, 480.0, 2.0, 1.5));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn shade<C, I>(&self, ambient_light: C, albedo: C, lights: I) -> C
+    where
+        C: Copy + Add<Output = C> + Mul<Output = C> + Mul<f64, Output = C>,
+        I: IntoIterator<Item = (C, f64, C)>,
+    {
+        let mut c = ambient_light * albedo * self.ambient;
+        for (light, cos_i, diffracted) in lights {
+            if cos_i > 0.0 {
+                let reflected =
+                    albedo * (self.diffuse * cos_i.min(1.0)) + diffracted * self.diffraction;
+                c = c + light * reflected;
+            }
+        }
+        c
     }
 
     /// Eq. 12 at one wavelength: `ambient·ambient_light + light·(diffuse·cos θi +

@@ -15,15 +15,16 @@ use std::str::FromStr;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use diffraction::color::Xyz;
 use diffraction::frame::ShadingFrame;
 use diffraction::spectrum::Strategy;
 use diffraction::ColorTable;
 use glam::{DVec2, DVec3};
 
 use crate::geometry::{Hit, Ray};
-use crate::material::{GratingMaterial, Model};
+use crate::material::GratingMaterial;
+use crate::model::{Model, Paper};
 use crate::scene::{Light, Scene};
+use crate::whitted::PaperScene;
 
 /// Relative accuracy of the colour tables (of the brightest diffracted order's Y; about
 /// 0.1-0.3 ΔE2000 against `Exact`, docs/color_table.md), a build of 0.1-2 s per grating.
@@ -61,18 +62,19 @@ pub type Footprint = [Ray; 4];
 /// Whether a material's colour can come from a table: the paper's model with a finite slit
 /// count, and a strategy that estimates the spectral integral (the paper's peak colours are
 /// normalised differently and keep their own code).
-fn tabulable(g: &GratingMaterial) -> bool {
+fn tabulable(g: &GratingMaterial<Model>) -> bool {
     matches!(g.model, Model::AguHill(_)) && g.strategy != Strategy::PaperPeaks
 }
 
-/// Builds one table per distinct grating among the materials the scene's objects use
-/// (`filter` other than [`Filter::None`], not a radiometric scene), and sets the filter.
-/// Returns the number of tables built and the time taken.
-pub fn prepare(scene: &mut Scene, filter: Filter) -> Result<(usize, Duration), String> {
+/// Builds one table per distinct grating among the materials the scene's objects use (for a
+/// `filter` other than [`Filter::None`]), and sets the filter. Returns the number of tables
+/// built and the time taken.
+pub fn prepare(p: &mut PaperScene, filter: Filter) -> Result<(usize, Duration), String> {
     let start = Instant::now();
-    scene.filter = filter;
-    scene.tables = vec![None; scene.materials.len()];
-    if filter == Filter::None || scene.radiometry.is_some() {
+    let scene = &p.scene;
+    let mut tables = vec![None; scene.materials.len()];
+    if filter == Filter::None {
+        (p.filter, p.tables) = (filter, tables);
         return Ok((0, start.elapsed()));
     }
     let mut used = vec![false; scene.materials.len()];
@@ -97,8 +99,9 @@ pub fn prepare(scene: &mut Scene, filter: Filter) -> Result<(usize, Duration), S
                 built[built.len() - 1].clone()
             }
         };
-        scene.tables[i] = Some(table);
+        tables[i] = Some(table);
     }
+    (p.filter, p.tables) = (filter, tables);
     Ok((built.len(), start.elapsed()))
 }
 
@@ -114,7 +117,7 @@ pub fn cone_range(axis: DVec3, x: DVec3, half_angle: f64) -> (f64, f64) {
 /// Where an offset ray meets the surface near `hit`: its hit on the same object, or its
 /// intersection with the hit's tangent plane (with the hit's normal and tangent coordinates
 /// moved along the plane), or `None` when it runs parallel to the plane or away from it.
-fn offset_hit(scene: &Scene, ray: &Ray, hit: &Hit) -> Option<Hit> {
+fn offset_hit(scene: &Scene<Paper>, ray: &Ray, hit: &Hit) -> Option<Hit> {
     if let Some(h) = scene.objects[hit.object].intersect(ray, f64::INFINITY, hit.object) {
         return Some(h);
     }
@@ -138,22 +141,18 @@ fn offset_hit(scene: &Scene, ray: &Ray, hit: &Hit) -> Option<Hit> {
 
 /// The offset rays reflected at their own hits near `hit` (a mirror's ray differentials);
 /// an offset ray that does not meet the surface is replaced by the reflected central ray.
-pub fn reflect(scene: &Scene, fp: &Footprint, hit: &Hit, central: &Ray) -> Footprint {
+pub fn reflect(scene: &Scene<Paper>, fp: &Footprint, hit: &Hit, central: &Ray) -> Footprint {
     fp.map(|r| match offset_hit(scene, &r, hit) {
         Some(h) => {
             let n = h.normal;
-            let dir = r.dir - n * (2.0 * r.dir.dot(n));
-            Ray::new(
-                h.point + n * (1e-7 * (1.0 + h.point.abs().max_element())),
-                dir,
-            )
+            Ray::new(h.spawn_point(), r.dir - n * (2.0 * r.dir.dot(n)))
         }
         None => *central,
     })
 }
 
 /// u = (wi + wo)·t at a surface point, and its range over the light's disc.
-fn u_range(g: &GratingMaterial, h: &Hit, wo: DVec3, light: &Light) -> Option<(f64, f64)> {
+fn u_range(g: &GratingMaterial<Model>, h: &Hit, wo: DVec3, light: &Light) -> Option<(f64, f64)> {
     let t = g.field.world_direction(h.p, h.tangent, h.bitangent)?;
     let frame = ShadingFrame::new(h.normal, t)?;
     let x = frame.grating;
@@ -174,8 +173,8 @@ fn u_range(g: &GratingMaterial, h: &Hit, wo: DVec3, light: &Light) -> Option<(f6
 /// The footprint's interval of u for `light` at `hit` (seen along `ray`): the hull over the hit
 /// and the offset rays' points, each widened by the light's angular size.
 pub fn interval(
-    scene: &Scene,
-    g: &GratingMaterial,
+    scene: &Scene<Paper>,
+    g: &GratingMaterial<Model>,
     ray: &Ray,
     hit: &Hit,
     fp: &Footprint,
@@ -190,10 +189,4 @@ pub fn interval(
         }
     }
     Some((lo, hi))
-}
-
-/// The filtered diffraction colour: the table's mean over [u0, u1], scaled like the unfiltered
-/// colour (k_diffraction · exposure).
-pub fn filtered_xyz(table: &ColorTable, g: &GratingMaterial, u: (f64, f64), k: f64) -> Xyz {
-    table.mean(u.0, u.1).scale(k * g.exposure)
 }

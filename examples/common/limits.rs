@@ -56,15 +56,19 @@ pub const AUTO_ACCURACY: Range = Range::new(1e-6, 1.0);
 /// A closed range of accepted values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Range {
+    /// The smallest accepted value.
     pub min: f64,
+    /// The largest accepted value.
     pub max: f64,
 }
 
 impl Range {
+    /// The range [min, max].
     pub const fn new(min: f64, max: f64) -> Range {
         Range { min, max }
     }
 
+    /// Whether `v` lies in the range (false for NaN).
     pub fn contains(&self, v: f64) -> bool {
         v >= self.min && v <= self.max // false for NaN
     }
@@ -96,8 +100,10 @@ pub const PERIOD_NM: Range = Range::new(10.0, 1e5);
 pub const LINES_PER_MM: Range = Range::new(10.0, 1e5);
 /// The slit width, nm (and at most the period).
 pub const SLIT_WIDTH_NM: Range = Range::new(1e-3, 1e5);
-/// The number of coherently lit slits N.
+/// The number of coherently lit slits N of the paper's model.
 pub const SLITS: Range = Range::new(1.0, 1e9);
+/// The number of coherently lit slits N of the radiometric grating (the crate's `u32`).
+pub const RADIOMETRIC_SLITS: u64 = u32::MAX as u64;
 /// Thorman's lobe width, in u.
 pub const LOBE_WIDTH: Range = Range::new(1e-6, 1.0);
 /// Stam's groove depth (or sine amplitude), nm.
@@ -143,6 +149,33 @@ pub fn zero_or(path: &str, v: f64, range: Range) -> Result<f64, FieldError> {
     check(path, v, range).map_err(|e| FieldError::new(e.path, format!("{} (or 0)", e.message)))
 }
 
+/// The documented range of an integer field of a scene file (`objects[2].material.slits`),
+/// for the messages of values that are not integers of its type at all (`-1`, 2³², 2⁶⁴,
+/// `1e3`); `model` is the grating model of a `slits` field.
+pub fn integer_range(field: &str, model: Option<&str>) -> Option<(u64, u64)> {
+    let key = field.rsplit('.').next()?;
+    let table = field.strip_suffix(key)?.trim_end_matches('.');
+    let in_array = |name: &str| {
+        table
+            .strip_prefix(name)
+            .and_then(|r| r.strip_prefix('['))
+            .and_then(|r| r.split(']').next())
+            .is_some_and(|i| i.bytes().all(|b| b.is_ascii_digit()))
+    };
+    Some(match (table, key) {
+        ("render", "width" | "height") => (1, MAX_SIZE as u64),
+        ("render", "spp") => (1, MAX_SPP as u64),
+        ("render", "max_depth") => (0, MAX_DEPTH as u64),
+        ("render", "seed") => (0, u64::MAX),
+        (_, "samples") if in_array("lights") => (1, MAX_LIGHT_SAMPLES as u64),
+        (_, "slits") if in_array("objects") && table.ends_with("].material") => match model {
+            Some("radiometric") => (1, RADIOMETRIC_SLITS),
+            _ => (1, SLITS.max as u64),
+        },
+        _ => return None,
+    })
+}
+
 /// An integer count in [min, max].
 pub fn count<T: PartialOrd + Display + Copy>(
     path: &str,
@@ -164,12 +197,17 @@ pub fn count<T: PartialOrd + Display + Copy>(
 /// count or an accuracy is out of range (the crate's parser refuses counts above its own cap
 /// without saying which).
 pub fn parse_strategy(s: &str) -> Result<Strategy, String> {
-    let count = |k: &str| k.parse::<u64>().ok();
+    // A count of any length: digits beyond u64 are above every limit too.
+    let above = |k: &str, max: u32| {
+        !k.is_empty()
+            && k.bytes().all(|b| b.is_ascii_digit())
+            && k.parse::<u64>().map_or(true, |k| k > max as u64)
+    };
     match s.split_once(':') {
-        Some(("uniform", k)) if count(k).is_some_and(|k| k > MAX_UNIFORM_SAMPLES as u64) => {
+        Some(("uniform", k)) if above(k, MAX_UNIFORM_SAMPLES) => {
             return strategy(Strategy::Uniform { samples: u32::MAX })
         }
-        Some(("gauss", k)) if count(k).is_some_and(|k| k > MAX_GAUSS_INTERVALS as u64) => {
+        Some(("gauss", k)) if above(k, MAX_GAUSS_INTERVALS) => {
             return strategy(Strategy::GaussLegendre {
                 intervals: u32::MAX,
             })
@@ -231,5 +269,5 @@ pub fn work(width: u32, height: u32, spp: u32, frames: u32) -> Result<u64, Strin
 }
 
 // The stratification handles every count the limits let through.
-const _: () = assert!(MAX_SPP <= crate::render::MAX_STRATA_SAMPLES);
-const _: () = assert!(MAX_LIGHT_SAMPLES <= crate::render::MAX_STRATA_SAMPLES);
+const _: () = assert!(MAX_SPP <= crate::sampling::MAX_STRATA_SAMPLES);
+const _: () = assert!(MAX_LIGHT_SAMPLES <= crate::sampling::MAX_STRATA_SAMPLES);

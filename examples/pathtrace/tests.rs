@@ -8,10 +8,13 @@ use diffraction::{Band, SampledWavelengths};
 use glam::DVec3;
 
 use crate::geometry::Ray;
-use crate::material::Model;
+use crate::output::Image;
 use crate::path::{self, mis_weights, PathOptions};
-use crate::render::Rng;
+use crate::radiometry::Radiometric;
+use crate::run::{scenes_dir, Renderer};
+use crate::sampling::Rng;
 use crate::scene::{self, Scene};
+use crate::Integrator;
 
 /// ∫ ȳ dλ over 360-830 nm of the CIE 1931 2° observer at 1 nm (the sum of the table's ȳ
 /// column, 106.8566 in CIE 15:2004's table; colour-science gives the same).
@@ -26,13 +29,13 @@ const SIGMAS: f64 = 4.0;
 /// sphere's closed form (measured 5·10⁻⁵; ten times that).
 const WHITTED_TOLERANCE: f64 = 5e-4;
 
-fn parse(src: &str) -> Scene {
-    scene::parse(src, "test.toml", "test", Path::new(".")).unwrap()
+fn parse(src: &str) -> Scene<Radiometric> {
+    scene::parse::<Radiometric>(src, "test.toml", "test", Path::new(".")).unwrap()
 }
 
 /// A plane (albedo `albedo`, grey) at y = 0 seen from above, an E-spectrum sky of radiance
 /// `sky`, optionally a spherical light straight above.
-fn plane_scene(albedo: f64, sky: f64, light: Option<(f64, f64, f64)>) -> Scene {
+fn plane_scene(albedo: f64, sky: f64, light: Option<(f64, f64, f64)>) -> Scene<Radiometric> {
     let light = light.map_or(String::new(), |(height, radius, radiance)| {
         format!(
             "[[lights]]\nposition = [0.0, {height}, 0.0]\nradius = {radius}\nintensity = {radiance}\nsamples = 64\n"
@@ -60,14 +63,14 @@ color = [{albedo}, {albedo}, {albedo}]
 }
 
 /// Mean and standard error of Y over `n` paths along `ray` (film units).
-fn mean_y(scene: &Scene, ray: &Ray, n: u32, options: PathOptions) -> (f64, f64) {
-    let r = scene.radiometry.as_ref().unwrap();
+fn mean_y(scene: &Scene<Radiometric>, ray: &Ray, n: u32, options: PathOptions) -> (f64, f64) {
+    let r = &scene.units;
     let mut rng = Rng::new(11);
     let (mut s, mut s2) = (0.0, 0.0);
     for i in 0..n {
         let u = (i as f64 + rng.next_f64()) / n as f64;
         let l = SampledWavelengths::sample_uniform(u, Band::VISIBLE);
-        let y = path::film_xyz(&l, path::li(scene, r, ray, l, &mut rng, options)).y * r.exposure;
+        let y = path::film_xyz(&l, path::li(scene, ray, l, &mut rng, options)).y * r.exposure;
         s += y;
         s2 += y * y;
     }
@@ -77,7 +80,7 @@ fn mean_y(scene: &Scene, ray: &Ray, n: u32, options: PathOptions) -> (f64, f64) 
 
 #[test]
 fn the_ybar_integral_of_the_units_is_the_tables() {
-    let r = plane_scene(0.5, 1.0, None).radiometry.unwrap();
+    let r = plane_scene(0.5, 1.0, None).units;
     // Illuminant E: s = 1, so ∫ s·ȳ is the observer's own integral.
     assert!(
         (r.ys / YBAR_INTEGRAL - 1.0).abs() < YBAR_TOLERANCE,
@@ -114,7 +117,6 @@ fn direct_light_of_a_sphere_on_a_lambertian_plane() {
     let scene = plane_scene(a, 0.0, Some((height, radius, radiance)));
     let expected = a * radiance * (radius / height).powi(2) * YBAR_INTEGRAL;
     let ray = Ray::new(DVec3::new(0.0, 1.0, 0.0), DVec3::NEG_Y);
-    let r = scene.radiometry.as_ref().unwrap();
     for sampler in [true, false] {
         let options = PathOptions {
             grating_sampler: sampler,
@@ -130,7 +132,7 @@ fn direct_light_of_a_sphere_on_a_lambertian_plane() {
     let mut rng = Rng::new(3);
     let mut y = 0.0;
     for _ in 0..64 {
-        let c = crate::radiometric::whitted(&scene, r, &ray, 0, &mut rng);
+        let c = crate::whitted::trace(&scene, &ray, 0, &mut rng);
         y += LinearSrgb::new(c.x, c.y, c.z).to_xyz().y / 64.0;
     }
     assert!(
@@ -171,24 +173,26 @@ fn the_mis_weights_of_the_eight_techniques_sum_to_one() {
 
 #[test]
 fn the_cd_scene_loads_and_both_integrators_render_it() {
-    let mut scene = scene::load(&crate::scenes_dir().join("cd_area_light.toml")).unwrap();
-    assert!(scene.radiometry.is_some());
-    assert!(scene
-        .materials
-        .iter()
-        .filter_map(|m| m.grating.as_ref())
-        .all(|g| matches!(g.model, Model::Radiometric(_))));
+    let mut scene = scene::load::<Radiometric>(&scenes_dir().join("cd_area_light.toml")).unwrap();
+    assert_eq!(
+        scene
+            .materials
+            .iter()
+            .filter(|m| m.grating.is_some())
+            .count(),
+        1
+    );
     scene.settings.width = 16;
     scene.settings.height = 12;
     scene.settings.spp = 2;
-    for integrator in [path::Integrator::Whitted, path::Integrator::Path] {
-        let img = path::render_with(integrator, &scene, &scene.camera, false, "").unwrap();
+    for integrator in [Integrator::Whitted, Integrator::Path] {
+        let img = integrator.render(&scene, &scene.camera, None);
         for c in &img.pixels {
             let xyz = LinearSrgb::new(c.x, c.y, c.z).to_xyz();
-            assert!(c.is_finite(), "{integrator}: {c}");
+            assert!(c.is_finite(), "{integrator:?}: {c}");
             // Linear sRGB of spectral colours can be negative; XYZ cannot.
             for v in [xyz.x, xyz.y, xyz.z] {
-                assert!(v >= -1e-9, "{integrator}: {xyz:?}");
+                assert!(v >= -1e-9, "{integrator:?}: {xyz:?}");
             }
         }
     }
@@ -207,30 +211,54 @@ type = "grating"
 period_nm = 1600.0
 "#;
     let err = |s: &str| {
-        scene::parse(s, "t.toml", "t", Path::new("."))
+        scene::parse::<Radiometric>(s, "t.toml", "t", Path::new("."))
             .unwrap_err()
             .to_string()
     };
     let e = err(&format!("{base}model = \"radiometric\"\n"));
-    assert!(e.contains("objects[0].material.model"), "{e}");
-    let e = err(&format!("[radiometry]\nexposure = 1.0\n{base}"));
-    assert!(e.contains("radiometric"), "{e}");
-    let e = err(&format!(
-        "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\ngroove_sigma = 3.0\ndiffuse = 0.0\n"
-    ));
-    assert!(e.contains("groove_sigma"), "{e}");
-    // Passivity: diffuse 1 × colour 0.7 + w/d 0.5 > 1.
-    let e = err(&format!(
-        "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\n"
-    ));
-    assert!(e.contains("passive"), "{e}");
+    assert_eq!(
+        e,
+        "t.toml: field radiometry: a scene without a [radiometry] table (no physical units) is \
+         the paper's ray tracer's"
+    );
+    // Each error names the field, the range or the rule, and the numbers.
+    let radiometric = |extra: &str| {
+        err(&format!(
+            "[radiometry]\nexposure = 1.0\n{base}model = \"radiometric\"\n{extra}\n"
+        ))
+    };
+    for (extra, expected) in [
+        ("diffuse = 0.0\ngroove_sigma = 3.0", "line 14, field objects[0].material.groove_sigma: invalid sigma = 3: must satisfy 0 < sigma <= MAX_GROOVE_SIGMA (1)"),
+        ("diffuse = 0.0\nslits = 4294967296", "line 14, field objects[0].material.slits: expected an integer in [1, 4294967295], got 4294967296"),
+        ("diffuse = 0.0\nslits = 18446744073709551616", "line 14, field objects[0].material.slits: expected an integer in [1, 4294967295], got 18446744073709551616"),
+        // Passivity: diffuse 1 × colour 0.7 + w/d 0.5 > 1 (the default diffuse: at the table).
+        ("", "line 9, field objects[0].material.diffuse: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0·1 + 1·(1·0.7 + 0.5) = 1.2, above 1"),
+        ("diffuse = 0.5\ncolor = [1.5, 1.5, 1.5]", "line 14, field objects[0].material.color: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0·1 + 1·(0.5·1.5 + 0.5) = 1.25, above 1"),
+        ("diffuse = 0.0\nmirror = 0.5\nmirror_color = [2.0, 1.0, 1.0]", "line 15, field objects[0].material.mirror_color: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0.5·2 + 0.5·(0·0.7 + 0.5) = 1.25, above 1"),
+        ("diffuse = 0.1\nslit_width_nm = 1600.0", "line 14, field objects[0].material.slit_width_nm: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 0·1 + 1·(0.1·0.7 + 1) = 1.07, above 1"),
+        // Just above 1: printed in full, not as "1.000".
+        ("diffuse = 0.0\nmirror = 1.0\nmirror_color = [1.0000001, 1.0, 1.0]", "line 15, field objects[0].material.mirror_color: expected a passive material: mirror·mirror_color + (1 − mirror)·(diffuse·color + slit_width/period) = 1·1.0000001 + 0·(0·0.7 + 0.5) = 1.0000001, above 1"),
+    ] {
+        assert_eq!(radiometric(extra), format!("t.toml: {expected}"), "{extra}");
+    }
     let e = err(&format!(
         "[radiometry]\nexposure = -1.0\n{base}model = \"radiometric\"\ndiffuse = 0.0\n"
     ));
-    assert!(e.contains("radiometry.exposure"), "{e}");
+    assert_eq!(
+        e,
+        "t.toml: line 2, field radiometry.exposure: expected a number in [0, 1e12], got -1"
+    );
+    let e = err(&format!(
+        "[radiometry]\nexposure = 1.0\n{base}diffuse = 0.0\n"
+    ));
+    assert_eq!(
+        e,
+        "t.toml: line 9, field objects[0].material.model: a scene with a [radiometry] table takes \
+         gratings of model \"radiometric\" only (the other models have no physical units)"
+    );
 }
 
-/// The comparisons of the docs (`cargo test --release --example raytrace -- --ignored
+/// The comparisons of the docs (`cargo test --release --example pathtrace -- --ignored
 /// cd_area_light_comparison --nocapture`): (a) Whitted against (b) path-traced direct light of
 /// `cd_area_light` without the sky, mean ΔE2000 of the clipped pictures; (c) at equal time, the
 /// pixel variance of path tracing with and without the grating sampler in the MIS, over
@@ -240,11 +268,11 @@ period_nm = 1600.0
 fn cd_area_light_comparison() {
     use diffraction::color::Lab;
     use std::time::Instant;
-    let images = crate::scenes_dir().join("../../docs/images");
-    let base = scene::load(&crate::scenes_dir().join("cd_area_light.toml")).unwrap();
+    let images = scenes_dir().join("../../docs/images");
+    let base = scene::load::<Radiometric>(&scenes_dir().join("cd_area_light.toml")).unwrap();
     let white = diffraction::color::WhitePoint::new(base.spectral.white()).unwrap();
     let clip = base.settings.clip;
-    let lab = |img: &crate::render::Image| -> Vec<Lab> {
+    let lab = |img: &Image| -> Vec<Lab> {
         img.pixels
             .iter()
             .map(|c| {
@@ -255,8 +283,12 @@ fn cd_area_light_comparison() {
             })
             .collect()
     };
-    let save = |img: &crate::render::Image, name: &str| {
-        crate::output::write_png(&images.join(name), &crate::output::to_rgb8(img, clip)).unwrap();
+    let save = |img: &Image, name: &str| {
+        let png = crate::output::to_rgb8(img, clip);
+        crate::files::write_one(&images.join(name), crate::files::Kind::Png, "", |w| {
+            crate::output::png_to(w, &png)
+        })
+        .unwrap();
     };
     let env = |k: &str, d: u32| {
         std::env::var(k)
@@ -267,10 +299,10 @@ fn cd_area_light_comparison() {
 
     // (a) and (b): direct light of the spherical light only.
     let mut direct = base.clone();
-    direct.radiometry.as_mut().unwrap().sky = [0.0; 2];
+    direct.units.sky = [0.0; 2];
     direct.settings.spp = env("WHITTED_SPP", 64);
     let t = Instant::now();
-    let whitted = crate::render::render(&direct, &direct.camera, false, "");
+    let whitted = crate::whitted::render(&direct, &direct.camera, None);
     let t_whitted = t.elapsed().as_secs_f64();
     direct.settings.spp = env("DIRECT_SPP", 1024);
     let t = Instant::now();
@@ -278,7 +310,7 @@ fn cd_area_light_comparison() {
         grating_sampler: true,
         max_depth: 1,
     };
-    let traced = path::render(&direct, &direct.camera, options, false).unwrap();
+    let traced = path::render(&direct, &direct.camera, options, None);
     let t_traced = t.elapsed().as_secs_f64();
     let (a, b) = (lab(&whitted), lab(&traced));
     let de: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x.delta_e2000(*y)).collect();
@@ -308,14 +340,14 @@ fn cd_area_light_comparison() {
             max_depth: full.settings.max_depth,
         };
         let t = Instant::now();
-        let img = path::render(&full, &full.camera, options, false).unwrap();
+        let img = path::render(&full, &full.camera, options, None);
         (img, t.elapsed().as_secs_f64())
     };
     // Cost per sample of each, to give both the same time.
     let (_, t_s) = time_of(true, spp, 100);
     let (_, t_c) = time_of(false, spp, 100);
     let spp_cosine = ((spp as f64 * t_s / t_c).round() as u32).max(1);
-    let mut variance = |sampler: bool, spp: u32| -> (f64, f64, crate::render::Image, f64) {
+    let mut variance = |sampler: bool, spp: u32| -> (f64, f64, Image, f64) {
         let mut imgs = Vec::new();
         let mut time = 0.0;
         for k in 0..runs {

@@ -21,6 +21,26 @@ pub struct SceneError {
     pub field: Option<String>,
     /// What is wrong and what is expected.
     pub message: String,
+    /// Whether the scene is valid but another renderer's (see `Physics::accepts`).
+    pub other_renderer: bool,
+}
+
+impl SceneError {
+    /// An error in `file`, at a line and a field when known.
+    pub fn new(
+        file: &str,
+        line: Option<usize>,
+        field: Option<String>,
+        message: String,
+    ) -> SceneError {
+        SceneError {
+            file: file.to_string(),
+            line,
+            field,
+            message,
+            other_renderer: false,
+        }
+    }
 }
 
 impl fmt::Display for SceneError {
@@ -41,11 +61,14 @@ impl std::error::Error for SceneError {}
 /// A failed check: the field path and the message.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldError {
+    /// The field path, e.g. `objects[2].material.period_nm`.
     pub path: String,
+    /// What is wrong and what is expected.
     pub message: String,
 }
 
 impl FieldError {
+    /// The error `message` at the field `path`.
     pub fn new(path: impl Into<String>, message: impl Into<String>) -> FieldError {
         FieldError {
             path: path.into(),
@@ -53,6 +76,9 @@ impl FieldError {
         }
     }
 }
+
+/// The result of a check of a scene value.
+pub type Check<T> = Result<T, FieldError>;
 
 /// 1-based line of a byte offset.
 pub fn line_of(src: &str, offset: usize) -> usize {

@@ -23,56 +23,18 @@
 //! * The film: XYZ = exposure · mean_j cmf(λ_j)·L(λ_j)/p(λ_j), `diffraction::cie::cmf`, then
 //!   the crate's colour pipeline (linear sRGB here, Hall clipping and encoding in `output`).
 
-use std::f64::consts::FRAC_1_PI;
-use std::str::FromStr;
-
-use diffraction::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use diffraction::cie::cmf;
 use diffraction::color::Xyz;
-use diffraction::{Band, Bsdf, SampledWavelengths};
+use diffraction::{Band, SampledWavelengths};
 use glam::{DVec2, DVec3};
-use indicatif::ProgressBar;
-use rayon::prelude::*;
 
-use crate::geometry::Ray;
-use crate::radiometric::{
-    nearest, nearest_emitter, occluded, offset, reflectance, sample_sphere, sphere_pdf, Emitter,
-    Radiometry, Surface,
-};
-use crate::render::{CameraRays, Image, Rng};
-use crate::scene::{Camera, Scene};
-use crate::texture::hash64;
-
-/// The integrator of a render (`--integrator`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Integrator {
-    /// The paper's Whitted-style tracer (for radiometric scenes: direct light from the
-    /// emitters, integrated over each area light by its light samples).
-    #[default]
-    Whitted,
-    /// The spectral path tracer of this module.
-    Path,
-}
-
-impl FromStr for Integrator {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Integrator, String> {
-        match s {
-            "whitted" => Ok(Integrator::Whitted),
-            "path" => Ok(Integrator::Path),
-            _ => Err("expected whitted or path".into()),
-        }
-    }
-}
-
-impl std::fmt::Display for Integrator {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Integrator::Whitted => "whitted",
-            Integrator::Path => "path",
-        })
-    }
-}
+use crate::camera::{self, Camera, CameraRays};
+use crate::geometry::{nearest, occluded, Ray, SHADOW_REACH};
+use crate::output::Image;
+use crate::radiometry::{Emitter, Radiometric, Radiometry};
+use crate::sampling::Rng;
+use crate::scene::Scene;
+use crate::surface::{nearest_emitter, sample_sphere, sphere_pdf, Surface};
 
 /// Options of the path tracer beyond the scene's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -86,82 +48,37 @@ pub struct PathOptions {
 /// Vertices after which Russian roulette may end a path (pbrt-v4 starts after the second).
 pub const ROULETTE_DEPTH: u32 = 3;
 
-/// Renders with `integrator`: the Whitted renderer of `render`, or this module's path tracer
-/// (which needs a radiometric scene).
-pub fn render_with(
-    integrator: Integrator,
-    scene: &Scene,
-    camera: &Camera,
-    progress: bool,
-    label: &str,
-) -> Result<Image, String> {
-    match integrator {
-        Integrator::Whitted => Ok(crate::render::render(scene, camera, progress, label)),
-        Integrator::Path => {
-            let options = PathOptions {
-                grating_sampler: true,
-                max_depth: scene.settings.max_depth,
-            };
-            render(scene, camera, options, progress)
-        }
-    }
-}
+/// The seed salt of the path tracer's pixel generators (its random numbers differ from the
+/// Whitted renderer's at the same seed).
+const SALT: u64 = 0x9a7;
 
 /// Renders a radiometric scene by path tracing, `settings.spp` paths per pixel (stratified
-/// over the pixel, four wavelengths each), in linear sRGB.
+/// over the pixel, four wavelengths each, the heroes stratified over the pixel's paths), in
+/// linear sRGB.
 pub fn render(
-    scene: &Scene,
+    scene: &Scene<Radiometric>,
     camera: &Camera,
     options: PathOptions,
-    progress: bool,
-) -> Result<Image, String> {
-    let Some(r) = &scene.radiometry else {
-        return Err(format!(
-            "{}: the path integrator needs a radiometric scene (a [radiometry] table with the \
-             camera's exposure, gratings of model \"radiometric\")",
-            scene.name
-        ));
-    };
+    progress: Option<&str>,
+) -> Image {
+    let r = &scene.units;
     let s = &scene.settings;
-    let (w, h) = (s.width, s.height);
-    let rays = CameraRays::new(camera, w, h);
-    let bar = if progress {
-        ProgressBar::new(h as u64)
-    } else {
-        ProgressBar::hidden()
+    let rays = CameraRays::new(camera, s.width, s.height);
+    let spp = s.spp as f64;
+    let path = |c: &camera::CameraSample, rng: &mut Rng| {
+        let ray = rays.ray(c.point.x, c.point.y);
+        // The hero stratified over the pixel's samples too.
+        let u = (c.index as f64 + rng.next_f64()) / spp;
+        let lambdas = SampledWavelengths::sample_uniform(u, Band::VISIBLE);
+        let l = li(scene, &ray, lambdas, rng, options);
+        let xyz = film_xyz(&lambdas, l);
+        DVec3::new(xyz.x, xyz.y, xyz.z)
     };
-    let cols = (s.spp as f64).sqrt().ceil() as u32;
-    let rows = s.spp.div_ceil(cols);
-    let mut pixels = vec![DVec3::ZERO; (w as usize) * (h as usize)];
-    pixels
-        .par_chunks_mut(w as usize)
-        .enumerate()
-        .for_each(|(y, row)| {
-            for (x, out) in row.iter_mut().enumerate() {
-                let mut rng = Rng::new(s.seed ^ hash64(((y as u64) << 32) | x as u64) ^ 0x9a7);
-                let mut sum = Xyz::default();
-                for i in 0..s.spp {
-                    let (cx, cy) = ((i % cols) as f64, (i / cols) as f64);
-                    let jx = (cx + rng.next_f64()) / cols as f64;
-                    let jy = (cy + rng.next_f64()) / rows as f64;
-                    let ray = rays.ray(x as f64 + jx, y as f64 + jy);
-                    // The hero stratified over the pixel's samples too.
-                    let u = (i as f64 + rng.next_f64()) / s.spp as f64;
-                    let lambdas = SampledWavelengths::sample_uniform(u, Band::VISIBLE);
-                    let l = li(scene, r, &ray, lambdas, &mut rng, options);
-                    sum += film_xyz(&lambdas, l);
-                }
-                let c = (sum * (r.exposure / s.spp as f64)).to_linear_srgb();
-                *out = DVec3::new(c.r, c.g, c.b);
-            }
-            bar.inc(1);
-        });
-    bar.finish_and_clear();
-    Ok(Image {
-        width: w,
-        height: h,
-        pixels,
-    })
+    let film = |sum: DVec3| {
+        let c = (Xyz::new(sum.x, sum.y, sum.z) * (r.exposure / spp)).to_linear_srgb();
+        DVec3::new(c.r, c.g, c.b)
+    };
+    camera::render(s, SALT, progress, path, film)
 }
 
 /// The film's estimate of ∫ L·cmf dλ from four wavelengths: mean_j cmf(λ_j)·L_j/p(λ_j)
@@ -207,117 +124,6 @@ fn mean(v: [f64; 4]) -> f64 {
     v.iter().sum::<f64>() / 4.0
 }
 
-/// One BSDF sample of a [`Surface`].
-struct SurfaceSample {
-    /// Local direction toward the light.
-    wi: DVec3,
-    /// f·cos θi / p(hero) per wavelength.
-    weight: [f64; 4],
-    /// Densities under each wavelength (for MIS; unused for delta samples).
-    pdf4: [f64; 4],
-    /// The hero's density.
-    pdf: f64,
-    /// A delta lobe (no MIS) ...
-    specular: bool,
-    /// ... that disperses (the secondaries end).
-    dispersive: bool,
-}
-
-impl Surface<'_> {
-    /// f (1/sr, cosine excluded) of the lobes with a density, per wavelength.
-    fn f4(&self, wo: DVec3, wi: DVec3, l: &SampledWavelengths) -> [f64; 4] {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return [0.0; 4];
-        }
-        let g = self.grating.map_or([0.0; 4], |b| b.f4(wo, wi, l));
-        let lam = l.lambda();
-        std::array::from_fn(|j| {
-            reflectance(self.diffuse, lam[j]) * FRAC_1_PI + self.grating_weight * g[j]
-        })
-    }
-
-    /// The density of [`sample`](Self::sample) at wi (its part with a density), per
-    /// wavelength as hero.
-    fn pdf4(&self, wo: DVec3, wi: DVec3, l: &SampledWavelengths, sampler: bool) -> [f64; 4] {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return [0.0; 4];
-        }
-        let [_, p_l, p_g] = self.lobe_probabilities();
-        let cos = cosine_hemisphere_pdf(wi.z);
-        let g = match self.grating {
-            Some(b) if sampler && p_g > 0.0 => b.pdf4(wo, wi, l),
-            _ => [cos; 4],
-        };
-        std::array::from_fn(|k| p_l * cos + p_g * g[k])
-    }
-
-    fn sample(
-        &self,
-        wo: DVec3,
-        l: &SampledWavelengths,
-        rng: &mut Rng,
-        sampler: bool,
-    ) -> Option<SurfaceSample> {
-        if wo.z <= 0.0 {
-            return None;
-        }
-        let [p_s, p_l, _] = self.lobe_probabilities();
-        let uc = rng.next_f64();
-        let u2 = DVec2::new(rng.next_f64(), rng.next_f64());
-        if uc < p_s {
-            let wi = DVec3::new(-wo.x, -wo.y, wo.z);
-            let lam = l.lambda();
-            let k = self.mirror / p_s;
-            return Some(SurfaceSample {
-                wi,
-                weight: std::array::from_fn(|j| reflectance(self.tint, lam[j]) * k),
-                pdf4: [0.0; 4],
-                pdf: p_s,
-                specular: true,
-                dispersive: false,
-            });
-        }
-        let wi = match self.grating {
-            Some(b) if sampler && uc >= p_s + p_l => {
-                // Reuse uc's remaining randomness for the order choice.
-                let uo = ((uc - p_s - p_l) / (1.0 - p_s - p_l)).clamp(0.0, 1.0 - f64::EPSILON);
-                let s = b.sample(wo, l.hero(), uo, u2)?;
-                if s.flags.is_specular() {
-                    let p_g = 1.0 - p_s - p_l;
-                    let w = self.grating_weight * s.weight() / p_g;
-                    return Some(SurfaceSample {
-                        wi: s.wi,
-                        weight: [w, 0.0, 0.0, 0.0],
-                        pdf4: [0.0; 4],
-                        pdf: s.pdf * p_g,
-                        specular: true,
-                        dispersive: true,
-                    });
-                }
-                s.wi
-            }
-            _ => sample_cosine_hemisphere(u2),
-        };
-        if wi.z <= 0.0 {
-            return None;
-        }
-        let pdf4 = self.pdf4(wo, wi, l, sampler);
-        let pdf = pdf4[0];
-        if !(pdf > 0.0 && pdf.is_finite()) {
-            return None;
-        }
-        let f = self.f4(wo, wi, l);
-        Some(SurfaceSample {
-            wi,
-            weight: std::array::from_fn(|j| f[j] * wi.z / pdf),
-            pdf4,
-            pdf,
-            specular: false,
-            dispersive: false,
-        })
-    }
-}
-
 /// The emitted spectral radiance of an emitter (or a point light's intensity) at the four
 /// wavelengths.
 fn emitted(r: &Radiometry, e: &Emitter, l: &SampledWavelengths) -> [f64; 4] {
@@ -328,13 +134,13 @@ fn emitted(r: &Radiometry, e: &Emitter, l: &SampledWavelengths) -> [f64; 4] {
 /// The radiance along a camera ray at the four wavelengths (relative to the sampling of the
 /// wavelengths: the film divides by their densities).
 pub fn li(
-    scene: &Scene,
-    r: &Radiometry,
+    scene: &Scene<Radiometric>,
     camera_ray: &Ray,
     mut lambdas: SampledWavelengths,
     rng: &mut Rng,
     options: PathOptions,
 ) -> [f64; 4] {
+    let r = &scene.units;
     let mut l = [0.0; 4];
     let mut beta = [1.0; 4];
     let mut r_u = [1.0; 4];
@@ -347,7 +153,7 @@ pub fn li(
     let n_lights = r.emitters.len();
     let mut depth = 0u32;
     loop {
-        let hit = nearest(scene, &ray, f64::INFINITY);
+        let hit = nearest(&scene.objects, &ray, f64::INFINITY);
         let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
         if let Some((i, _)) = nearest_emitter(r, &ray, t_hit) {
             let le = emitted(r, &r.emitters[i], &lambdas);
@@ -383,7 +189,7 @@ pub fn li(
         }
         let surface = Surface::at(scene, &hit);
         let wo = surface.frame.to_local(-ray.dir);
-        let origin = offset(&hit);
+        let origin = hit.spawn_point();
 
         // Next-event estimation.
         if surface.has_density() && n_lights > 0 {
@@ -402,7 +208,7 @@ pub fn li(
                 let wi = surface.frame.to_local(dir);
                 if wi.z > 0.0
                     && wo.z > 0.0
-                    && !occluded(scene, &Ray::new(origin, dir), dist * (1.0 - 1e-9))
+                    && !occluded(&scene.objects, &Ray::new(origin, dir), dist * SHADOW_REACH)
                 {
                     let f = surface.f4(wo, wi, &lambdas);
                     let le = emitted(r, e, &lambdas);

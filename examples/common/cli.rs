@@ -1,23 +1,16 @@
-//! Hand-written command-line parsing.
+//! Hand-written command-line parsing: the options both renderers take, and a hook for each
+//! one's own ([`Extra`]).
 
 use std::path::PathBuf;
 
 use diffraction::color::Clip;
 use diffraction::spectrum::Strategy;
 
-use crate::limits::{self, MAX_FRAMES, MAX_SIZE, MAX_SPP};
+use crate::limits::{self, MAX_DEPTH, MAX_FRAMES, MAX_SIZE, MAX_SPP};
 
-pub const USAGE: &str = "\
-raytrace: the diffraction crate's reference ray tracer (Agu & Hill, figures 4-6)
-
-USAGE:
-    raytrace [SCENE...] [OPTIONS]
-    raytrace make-label [--out FILE]
-
-With no SCENE, renders every scene of examples/scenes into out/ (NAME.png and the linear
-NAME.pfm). SCENE is a shipped scene's name (fig4a, fig4b, fig5a, fig5b, fig6) or a path to a
-.toml scene file.
-
+/// The options both renderers take, for their `--help` (after their own header and before
+/// their own options).
+pub const OPTIONS: &str = "\
 OPTIONS:
     --width W          image width in pixels (1-16384; alone, keeps the scene's aspect ratio)
     --height H         image height in pixels (1-16384; width x height at most 16777216)
@@ -27,15 +20,7 @@ OPTIONS:
     --strategy NAME    spectral evaluation: peaks (default), peaks-refined, paper, exact,
                        uniform:K (K <= 4096), gauss:K (K <= 512), auto or auto:ACCURACY
                        (ACCURACY in [1e-6, 1])
-    --filter NAME      diffraction colour of the paper's model: none (default, at each
-                       sample's u), footprint (the mean over the pixel footprint's u and the
-                       light's size, from a colour table per grating built at load) or point
-                       (the table at each sample's u)
     --clip SCHEME      gamut clipping: clamp, intensity (default), constant
-    --integrator NAME  whitted (default) or path (spectral path tracing with MIS; needs a
-                       scene with a [radiometry] table, e.g. cd_area_light)
-    --max-depth D      bounces: mirror recursion (whitted) or path length (path; 1 = direct
-                       light only), 0-64
     --out PATH         one scene: the output file (.png, or .pfm for linear floats);
                        several scenes or --frames: the output directory (default out/)
     --pfm FILE         also write the linear, unclipped image as a PFM (one scene)
@@ -45,43 +30,75 @@ OPTIONS:
                        intensity and constant (default file out/NAME-clipping.png)
     --quiet            no progress bar and no messages
     -h, --help         this text
-
-Every output path is checked before rendering (extension, directory, writable, no two
-outputs on one file). Each file is written under a temporary name beside it and renamed into
-place when complete, so a failed run leaves existing files as they were.
-
-make-label writes the can label (default examples/assets/label.png).
 ";
 
-/// What to do.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Command {
-    Help,
-    MakeLabel { out: Option<PathBuf> },
-    Render(Options),
-}
+/// What both renderers promise about their outputs, for the end of their `--help`.
+pub const OUTPUTS: &str = "
+OUTPUTS:
+    Every output is checked before anything is rendered: its extension, its directory, no
+    two outputs on one file (whatever the spelling), none on an input of the run (a scene
+    file, a texture). An existing output is replaced only if it is a regular file with write
+    permission and one hard link (like cp without -f; the new file keeps its permissions);
+    a symbolic link is followed (the file it names is replaced, the link stays), and a link
+    to a missing file is refused. Every file is written under a temporary name and all are
+    renamed into place together once all are complete, missing directories made then: a
+    run that fails, at any step, leaves every existing file as it was and creates nothing.
+";
 
-/// The options of a render.
+/// The options of a render that both renderers take.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Options {
+    /// The scenes named (none: every shipped scene the renderer takes).
     pub scenes: Vec<String>,
+    /// `--width` (this and the next three replace the scene's `[render]` values).
     pub width: Option<u32>,
+    /// `--height`.
     pub height: Option<u32>,
+    /// `--spp`.
     pub spp: Option<u32>,
+    /// `--seed`.
     pub seed: Option<u64>,
+    /// `--strategy`: the default strategy of the scene's gratings replaced.
     pub strategy: Option<Strategy>,
+    /// `--clip`: the gamut clipping of the PNG.
     pub clip: Option<Clip>,
-    pub integrator: crate::path::Integrator,
+    /// `--max-depth`: the scene's `render.max_depth` replaced.
     pub max_depth: Option<u32>,
+    /// `--out`: the output file of one scene, or the output directory.
     pub out: Option<PathBuf>,
+    /// `--pfm`: a linear PFM besides the PNG (one scene).
     pub pfm: Option<PathBuf>,
+    /// `--frames`: an orbit of this many frames instead of a still.
     pub frames: Option<u32>,
+    /// `--compare-clip`: one picture of the three clipping schemes.
     pub compare_clip: bool,
-    pub filter: crate::footprint::Filter,
+    /// `--quiet`: no progress bar, no messages.
     pub quiet: bool,
 }
 
-fn int<T: std::str::FromStr + PartialOrd + std::fmt::Display>(
+/// A renderer's own arguments.
+pub trait Extra: Default {
+    /// Takes `arg` if it is this renderer's (`value` reads the flag's value), with the scenes
+    /// named so far: `Ok(true)` when taken, `Ok(false)` to leave it to the common options.
+    fn take(
+        &mut self,
+        arg: &str,
+        value: &mut dyn FnMut() -> Result<String, String>,
+        opts: &Options,
+    ) -> Result<bool, String>;
+}
+
+/// What to do: print the help, or render with these options.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Command<X> {
+    /// `-h`, `--help`.
+    Help,
+    /// Render with the common options and the renderer's own.
+    Render(Options, X),
+}
+
+/// `v` as an integer in [min, max], or an error naming the flag and the range.
+pub fn int<T: std::str::FromStr + PartialOrd + std::fmt::Display>(
     flag: &str,
     v: &str,
     min: T,
@@ -96,9 +113,9 @@ fn int<T: std::str::FromStr + PartialOrd + std::fmt::Display>(
 }
 
 /// Parses the arguments (without the program name).
-pub fn parse(args: &[String]) -> Result<Command, String> {
+pub fn parse<X: Extra>(args: &[String]) -> Result<Command<X>, String> {
     let mut opts = Options::default();
-    let mut make_label = false;
+    let mut extra = X::default();
     let mut i = 0;
     while i < args.len() {
         let arg = &args[i];
@@ -119,6 +136,9 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
             i += 1;
             Ok(v)
         };
+        if extra.take(flag, &mut value, &opts)? {
+            continue;
+        }
         match flag {
             "-h" | "--help" => return Ok(Command::Help),
             "--quiet" | "-q" => opts.quiet = true,
@@ -128,6 +148,7 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
             "--spp" => opts.spp = Some(int(flag, &value()?, 1, MAX_SPP)?),
             "--frames" => opts.frames = Some(int(flag, &value()?, 1, MAX_FRAMES)?),
             "--seed" => opts.seed = Some(int(flag, &value()?, 0, u64::MAX)?),
+            "--max-depth" => opts.max_depth = Some(int(flag, &value()?, 0, MAX_DEPTH)?),
             "--strategy" => {
                 let v = value()?;
                 opts.strategy = Some(
@@ -139,33 +160,11 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
                 let v = value()?;
                 opts.clip = Some(v.parse().map_err(|e| format!("--clip: {e}, got \"{v}\""))?);
             }
-            "--filter" => {
-                let v = value()?;
-                opts.filter = v
-                    .parse()
-                    .map_err(|e| format!("--filter: {e}, got \"{v}\""))?;
-            }
-            "--integrator" => {
-                let v = value()?;
-                opts.integrator = v
-                    .parse()
-                    .map_err(|e| format!("--integrator: {e}, got \"{v}\""))?;
-            }
-            "--max-depth" => {
-                opts.max_depth = Some(int(flag, &value()?, 0, crate::limits::MAX_DEPTH)?)
-            }
             "--out" | "-o" => opts.out = Some(PathBuf::from(value()?)),
             "--pfm" => opts.pfm = Some(PathBuf::from(value()?)),
-            "make-label" if opts.scenes.is_empty() && !make_label => make_label = true,
             f if f.starts_with('-') => return Err(format!("unknown option {f}")),
             scene => opts.scenes.push(scene.to_string()),
         }
-    }
-    if make_label {
-        if !opts.scenes.is_empty() {
-            return Err("make-label takes no scene".into());
-        }
-        return Ok(Command::MakeLabel { out: opts.out });
     }
     if opts.frames.is_some() && opts.compare_clip {
         return Err("--frames and --compare-clip cannot be combined".into());
@@ -173,61 +172,5 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
     if opts.pfm.is_some() && (opts.scenes.len() != 1 || opts.frames.is_some()) {
         return Err("--pfm needs exactly one scene and no --frames".into());
     }
-    Ok(Command::Render(opts))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn args(s: &str) -> Vec<String> {
-        s.split_whitespace().map(String::from).collect()
-    }
-
-    #[test]
-    fn options_parse() {
-        let Command::Render(o) = parse(&args(
-            "fig4a --width 64 --spp=2 --strategy paper --clip constant --out a.png",
-        ))
-        .unwrap() else {
-            panic!()
-        };
-        assert_eq!(o.scenes, ["fig4a"]);
-        assert_eq!((o.width, o.spp), (Some(64), Some(2)));
-        assert_eq!(o.strategy, Some(Strategy::PaperPeaks));
-        assert_eq!(o.clip, Some(Clip::ConstantIntensity));
-        assert_eq!(o.filter, crate::footprint::Filter::None);
-        let Command::Render(o) = parse(&args("fig6 --filter footprint")).unwrap() else {
-            panic!()
-        };
-        assert_eq!(o.filter, crate::footprint::Filter::Footprint);
-        assert_eq!(parse(&args("--help")).unwrap(), Command::Help);
-        assert_eq!(
-            parse(&args("make-label")).unwrap(),
-            Command::MakeLabel { out: None }
-        );
-    }
-
-    #[test]
-    fn absurd_values_are_refused() {
-        for bad in [
-            "--width 20000",
-            "--height 0",
-            "--spp 5000",
-            "--frames 10001",
-            "--width -3",
-            "--strategy uniform:0",
-            "--clip gamma",
-            "--filter box",
-            "--bogus",
-            "--width",
-        ] {
-            let e = parse(&args(bad)).unwrap_err();
-            assert!(
-                e.starts_with(bad.split_whitespace().next().unwrap())
-                    || e.contains("unknown option"),
-                "{bad}: {e}"
-            );
-        }
-    }
+    Ok(Command::Render(opts, extra))
 }

@@ -12,14 +12,38 @@ use glam::{DAffine3, DMat3, DVec2, DVec3};
 /// Distance below which a hit is ignored (self-intersection guard), in world units.
 pub const EPSILON: f64 = 1e-7;
 
+/// The fraction of the distance to a light a shadow ray tests: the point sampled on the light
+/// itself never counts as an occluder.
+pub const SHADOW_REACH: f64 = 1.0 - 1e-9;
+
+/// The nearest hit of any of `objects` along `ray` before `t_max` (its `object` the index).
+pub fn nearest(objects: &[Primitive], ray: &Ray, t_max: f64) -> Option<Hit> {
+    let mut best: Option<Hit> = None;
+    for (i, obj) in objects.iter().enumerate() {
+        let t = best.map_or(t_max, |b| b.t);
+        if let Some(hit) = obj.intersect(ray, t, i) {
+            best = Some(hit);
+        }
+    }
+    best
+}
+
+/// Whether any of `objects` lies on `ray` in (EPSILON, t_max).
+pub fn occluded(objects: &[Primitive], ray: &Ray, t_max: f64) -> bool {
+    objects.iter().any(|o| o.occludes(ray, t_max))
+}
+
 /// A ray `origin + t·dir`; `dir` is unit length.
 #[derive(Debug, Clone, Copy)]
 pub struct Ray {
+    /// Where the ray starts.
     pub origin: DVec3,
+    /// Its unit direction.
     pub dir: DVec3,
 }
 
 impl Ray {
+    /// The ray from `origin` along `dir` (normalised here).
     pub fn new(origin: DVec3, dir: DVec3) -> Ray {
         Ray {
             origin,
@@ -27,6 +51,7 @@ impl Ray {
         }
     }
 
+    /// The point at distance `t` along the ray.
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + self.dir * t
     }
@@ -88,7 +113,10 @@ pub enum Shape {
     /// The cylinder of radius ½ about the y axis, |y| ≤ ½, with both caps.
     Cylinder,
     /// The annulus `hole` ≤ r ≤ ½ in the plane y = 0 (two-sided); `hole` is the inner radius.
-    Disc { hole: f64 },
+    Disc {
+        /// The inner radius, in [0, ½).
+        hole: f64,
+    },
 }
 
 /// Which part of a primitive was hit (for materials that differ per part, e.g. a can's label).
@@ -120,7 +148,9 @@ struct LocalHit {
 /// A ray-surface intersection in world space.
 #[derive(Debug, Clone, Copy)]
 pub struct Hit {
+    /// The distance along the ray.
     pub t: f64,
+    /// The point hit, world coordinates.
     pub point: DVec3,
     /// Unit normal, turned to face the incoming ray.
     pub normal: DVec3,
@@ -131,19 +161,34 @@ pub struct Hit {
     /// direction across the grooves even under non-uniform scaling (the grating vector is a
     /// gradient, perpendicular to the grooves, and transforms like one).
     pub tangent: DVec3,
+    /// The second vector of that dual basis.
     pub bitangent: DVec3,
+    /// Texture coordinates in [0, 1]².
     pub uv: DVec2,
+    /// Which part of the primitive was hit.
     pub part: Part,
     /// The hit in the object's unscaled frame (for solid textures).
     pub object_point: DVec3,
+    /// The index of the object hit (see [`nearest`]).
     pub object: usize,
+}
+
+impl Hit {
+    /// The origin of secondary rays (shadow rays, reflections): the hit point moved off the
+    /// surface along its normal by a distance relative to the point's magnitude.
+    pub fn spawn_point(&self) -> DVec3 {
+        self.point + self.normal * (1e-7 * (1.0 + self.point.abs().max_element()))
+    }
 }
 
 /// A primitive placed in the scene.
 #[derive(Debug, Clone)]
 pub struct Primitive {
+    /// The shape in its local space.
     pub shape: Shape,
+    /// Where it is placed.
     pub transform: Transform,
+    /// Its material: an index into the scene's materials.
     pub material: usize,
 }
 

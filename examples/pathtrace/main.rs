@@ -1,0 +1,176 @@
+//! The spectral path tracer of the `diffraction` crate: scenes in physical units (a
+//! `[radiometry]` table, e.g. the CD of `cd_area_light`), with the energy-normalised grating
+//! `GratingBsdf`, four hero wavelengths per path, next-event estimation and BSDF sampling
+//! combined by MIS; and the Whitted-style renderer of the same scenes for comparison.
+//!
+//! ```text
+//! cargo run --release --example pathtrace                          # every such scene into out/
+//! cargo run --release --example pathtrace -- cd_area_light --spp 64 --out cd.png
+//! cargo run --release --example pathtrace -- cd_area_light --integrator whitted
+//! ```
+//!
+//! Geometry, textures, scene files and output are in `examples/common`, shared with the paper's
+//! ray tracer (`examples/raytrace`).
+
+#[path = "../common/camera.rs"]
+pub mod camera;
+#[path = "../common/cli.rs"]
+pub mod cli;
+#[path = "../common/diagnostics.rs"]
+pub mod diagnostics;
+#[path = "../common/files.rs"]
+pub mod files;
+#[path = "../common/font.rs"]
+pub mod font;
+#[path = "../common/geometry.rs"]
+pub mod geometry;
+#[path = "../common/limits.rs"]
+pub mod limits;
+#[path = "../common/material.rs"]
+pub mod material;
+#[path = "../common/output.rs"]
+pub mod output;
+#[path = "../common/run.rs"]
+pub mod run;
+#[path = "../common/sampling.rs"]
+pub mod sampling;
+#[path = "../common/scene.rs"]
+pub mod scene;
+#[path = "../common/schema.rs"]
+pub mod schema;
+#[path = "../common/texture.rs"]
+pub mod texture;
+
+mod path;
+mod radiometry;
+mod surface;
+mod whitted;
+
+#[cfg(test)]
+mod tests;
+
+use std::process::ExitCode;
+
+use cli::{Command, Options};
+use path::PathOptions;
+use radiometry::Radiometric;
+use scene::Scene;
+
+const USAGE: &str = "\
+pathtrace: the diffraction crate's spectral path tracer, for scenes in physical units
+
+USAGE:
+    pathtrace [SCENE...] [OPTIONS]
+
+With no SCENE, renders every shipped scene with a [radiometry] table (cd_area_light) into
+out/ (NAME.png and the linear NAME.pfm). SCENE is a shipped scene's name or a path to a .toml
+scene file with a [radiometry] table; the paper's scenes (fig4a ... fig6) are the example
+raytrace's.
+
+";
+
+const OWN_OPTIONS: &str = "\
+    --integrator NAME  path (default: spectral path tracing with MIS) or whitted (direct
+                       light from the emitters, each area light by its light samples)
+    --max-depth D      bounces: path length (path; 1 = direct light only) or mirror
+                       recursion (whitted), 0-64
+";
+
+/// The integrator of a render (`--integrator`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Integrator {
+    /// The spectral path tracer.
+    #[default]
+    Path,
+    /// Direct light from the emitters, integrated over each area light by its light samples,
+    /// and mirror recursion.
+    Whitted,
+}
+
+impl cli::Extra for Integrator {
+    fn take(
+        &mut self,
+        arg: &str,
+        value: &mut dyn FnMut() -> Result<String, String>,
+        _: &Options,
+    ) -> Result<bool, String> {
+        if arg != "--integrator" {
+            return Ok(false);
+        }
+        *self = match value()?.as_str() {
+            "path" => Integrator::Path,
+            "whitted" => Integrator::Whitted,
+            v => {
+                return Err(format!(
+                    "--integrator: expected path or whitted, got \"{v}\""
+                ))
+            }
+        };
+        Ok(true)
+    }
+}
+
+impl run::Renderer for Integrator {
+    type Physics = Radiometric;
+    type Prepared = Scene<Radiometric>;
+    const OTHER: &'static str = "raytrace";
+
+    fn prepare(
+        &self,
+        scene: Scene<Radiometric>,
+        _: &dyn Fn(&str),
+    ) -> Result<Scene<Radiometric>, String> {
+        Ok(scene)
+    }
+
+    fn scene<'a>(&self, scene: &'a Scene<Radiometric>) -> &'a Scene<Radiometric> {
+        scene
+    }
+
+    fn render(
+        &self,
+        scene: &Scene<Radiometric>,
+        camera: &camera::Camera,
+        progress: Option<&str>,
+    ) -> output::Image {
+        match self {
+            Integrator::Path => {
+                let options = PathOptions {
+                    grating_sampler: true,
+                    max_depth: scene.settings.max_depth,
+                };
+                path::render(scene, camera, options, progress)
+            }
+            Integrator::Whitted => whitted::render(scene, camera, progress),
+        }
+    }
+
+    fn integrator(&self) -> &'static str {
+        match self {
+            Integrator::Path => "path",
+            Integrator::Whitted => "whitted",
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match cli::parse::<Integrator>(&args) {
+        Err(e) => {
+            eprintln!("error: {e}\n\nRun with --help for usage.");
+            return ExitCode::from(2);
+        }
+        Ok(Command::Help) => {
+            print!("{USAGE}{}{OWN_OPTIONS}{}", cli::OPTIONS, cli::OUTPUTS);
+            Ok(())
+        }
+        Ok(Command::Render(opts, integrator)) => run::run(&integrator, &opts),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

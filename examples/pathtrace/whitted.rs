@@ -1,0 +1,100 @@
+//! The Whitted-style renderer of radiometric scenes (`--integrator whitted`): direct light
+//! integrated over each area light by its stratified light samples, mirror recursion; the
+//! reference the path tracer's direct light is compared with.
+
+use diffraction::color::Xyz;
+use glam::DVec3;
+
+use crate::camera::{self, Camera, CameraRays};
+use crate::geometry::{nearest, occluded, Ray, SHADOW_REACH};
+use crate::output::Image;
+use crate::radiometry::{Radiometric, Radiometry};
+use crate::sampling::{Rng, Strata};
+use crate::scene::Scene;
+use crate::surface::{nearest_emitter, sample_sphere, Surface};
+
+/// Renders a radiometric scene Whitted-style, `settings.spp` stratified samples per pixel.
+pub fn render(scene: &Scene<Radiometric>, camera: &Camera, progress: Option<&str>) -> Image {
+    let s = &scene.settings;
+    let rays = CameraRays::new(camera, s.width, s.height);
+    let sample = |c: &camera::CameraSample, rng: &mut Rng| {
+        trace(scene, &rays.ray(c.point.x, c.point.y), 0, rng)
+    };
+    camera::render(s, 0, progress, sample, |sum| sum / s.spp as f64)
+}
+
+/// The linear sRGB radiance along `ray` (film units: times the exposure), Whitted-style: the
+/// emitters and the sky seen directly, direct light from every emitter (point lights by one
+/// shadow ray, spherical ones by `samples` stratified directions uniform in their cone, each
+/// with its shadow ray), mirror recursion up to `max_depth`. Diffuse interreflection and the
+/// sky's light on surfaces are left out (the path integrator has them).
+pub fn trace(scene: &Scene<Radiometric>, ray: &Ray, depth: u32, rng: &mut Rng) -> DVec3 {
+    let r = &scene.units;
+    let hit = nearest(&scene.objects, ray, f64::INFINITY);
+    let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
+    if let Some((i, _)) = nearest_emitter(r, ray, t_hit) {
+        return film(r, r.white * r.emitters[i].scale);
+    }
+    let Some(hit) = hit else {
+        return film(r, r.white * r.sky_scale(ray.dir));
+    };
+    let surface = Surface::at(scene, &hit);
+    let n = hit.normal;
+    let wo = -ray.dir;
+    let wo_l = surface.frame.to_local(wo);
+    let origin = hit.spawn_point();
+    let mut xyz = Xyz::default();
+    for e in &r.emitters {
+        let light = |wi: DVec3, weight: f64, xyz: &mut Xyz| {
+            let wi_l = surface.frame.to_local(wi);
+            if wi_l.z <= 0.0 || wo_l.z <= 0.0 {
+                return;
+            }
+            // Lambertian: ∫ s·ρ·cmf dλ·cos/π.
+            let mut c = r.diffuse_xyz(surface.diffuse) * (wi_l.z / std::f64::consts::PI);
+            if let Some(b) = surface.grating {
+                // ∫ s·f·cmf dλ·cos, from the crate's colour (relative to ∫ s·ȳ).
+                let g = scene.spectral.xyz_brdf(b, wi_l, wo_l, surface.strategy);
+                c += g * (r.ys * surface.grating_weight);
+            }
+            *xyz += c * weight;
+        };
+        if e.radius <= 0.0 {
+            let to = e.center - hit.point;
+            let dist = to.length();
+            if n.dot(to) <= 0.0
+                || occluded(&scene.objects, &Ray::new(origin, to), dist * SHADOW_REACH)
+            {
+                continue;
+            }
+            light(to / dist, e.scale / (dist * dist), &mut xyz);
+            continue;
+        }
+        let k = e.samples.max(1);
+        let mut strata = Strata::new(k, rng);
+        while let Some((_, u)) = strata.next_sample(rng) {
+            let Some((dir, dist, pdf)) = sample_sphere(origin, e, u) else {
+                continue;
+            };
+            if n.dot(dir) <= 0.0
+                || occluded(&scene.objects, &Ray::new(origin, dir), dist * SHADOW_REACH)
+            {
+                continue;
+            }
+            light(dir, e.scale / (pdf * k as f64), &mut xyz);
+        }
+    }
+    let mut rgb = film(r, xyz);
+    if surface.mirror > 0.0 && depth < scene.settings.max_depth {
+        let dir = ray.dir - n * (2.0 * ray.dir.dot(n));
+        let reflected = trace(scene, &Ray::new(origin, dir), depth + 1, rng);
+        rgb += surface.tint * reflected * surface.mirror;
+    }
+    rgb
+}
+
+/// XYZ of radiance to the film's linear sRGB (times the exposure).
+pub fn film(r: &Radiometry, xyz: Xyz) -> DVec3 {
+    let c = (xyz * r.exposure).to_linear_srgb();
+    DVec3::new(c.r, c.g, c.b)
+}
