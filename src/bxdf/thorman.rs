@@ -270,21 +270,24 @@ impl SpectralResponse for Thorman {
 
     /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with intensity `brightness` (its
     /// own lobe's peak; `eval` there also holds the far tails of the other lobes) and equivalent
-    /// width √(2π)·σ·d/|m|, at most [`MAX_ORDERS`] of them (the lowest |m|).
+    /// width √(2π)·σ·d/|m| (saturating at `f64::MAX` where it overflows, for periods near
+    /// `f64::MAX`), at most [`MAX_ORDERS`] of them (the lowest |m|).
     /// Order 0's lobe is seen where |u| < 8.5·σ.
     fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
         if !both_above(wo, wi) {
             return PeakSummary::default();
         }
         let u = wi.x + wo.x;
-        let width = SQRT_TAU * self.lobe_width * self.equation.period_nm();
+        // σ·√(2π) ≤ 2.51 and d/|m| ≤ d: the product overflows only for d near f64::MAX.
+        let scale = SQRT_TAU * self.lobe_width;
+        let d = self.equation.period_nm();
         let mut orders = 0;
         for p in self.equation.orders(u, band).take(MAX_ORDERS as usize) {
             visit(Peak {
                 order: p.order,
                 wavelength_nm: p.wavelength_nm,
                 intensity: self.brightness,
-                equivalent_width_nm: width / (p.order as f64).abs(),
+                equivalent_width_nm: (scale * (d / (p.order as f64).abs())).min(f64::MAX),
             });
             orders += 1;
         }
