@@ -451,7 +451,11 @@ mod tests {
         // λ/d = 10⁻²³ at grazing incidence: the first order of the run is the first m whose
         // wo_z² is positive, found without walking the empty ones.
         let tiny = GratingEquation::new(1e23).unwrap();
-        for wi in [DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.6, 0.8, 0.0), DVec3::new(-1.0, 0.0, 0.0)] {
+        for wi in [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.6, 0.8, 0.0),
+            DVec3::new(-1.0, 0.0, 0.0),
+        ] {
             let mut p = tiny.propagating(wi, 1.0);
             let (m, dir) = p.next().unwrap();
             let ox = (m as f64 - 1.0) * 1e-23 - wi.x;

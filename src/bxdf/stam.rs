@@ -439,9 +439,9 @@ impl DiffractionBrdf for Stam {
 }
 
 impl SpectralResponse for Stam {
-    /// A BRDF: `eval·cos θi`.
+    /// A BRDF: `eval·cos θi` (0 for non-finite input, as `eval`).
     fn response(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eval(wo, wi, lambda_nm) * wi.z.clamp(0.0, 1.0)
+        self.eval(wo, wi, lambda_nm) * unit_cosine(wi.z)
     }
 
     /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, at most [`MAX_ORDERS`] of them (the
