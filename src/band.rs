@@ -44,7 +44,8 @@ impl Band {
     ///
     /// ```
     /// use diffraction::Band;
-    /// assert!(Band::new(500.0, 500.0 + Band::MIN_WIDTH_NM).is_ok());
+    /// assert!(Band::new(500.0, 500.00001).is_ok()); // 10⁻⁵ nm wide
+    /// assert!(Band::new(500.0, 500.0000001).is_err()); // 10⁻⁷ nm
     /// assert_eq!(Band::new(5e-324, 1e-323).unwrap_err().parameter(), "max_nm");
     /// ```
     pub const MIN_WIDTH_NM: f64 = 1e-6;

@@ -388,7 +388,7 @@ impl GratingField {
     /// use glam::DVec2;
     /// use std::f64::consts::FRAC_PI_2;
     /// let f = GratingField::constant(FRAC_PI_2);
-    /// assert_eq!(f, GratingField::Uniform(Tile::Constant { angle: FRAC_PI_2 }));
+    /// assert_eq!(f, GratingField::uniform(Tile::Constant { angle: FRAC_PI_2 }));
     /// let t = f.direction_at(DVec2::new(3.0, -2.0)).unwrap();
     /// assert!((t - DVec2::Y).length() < 1e-15); // cos(π/2) rounds to 6e-17, not 0
     /// ```
