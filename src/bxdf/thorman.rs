@@ -243,7 +243,8 @@ impl Thorman {
 
 impl DiffractionBrdf for Thorman {
     /// `brightness · Σ_m exp(−½((u − m·λ/d)/σ)²)`, u = `wi.x + wo.x`; 0 below the surface,
-    /// for λ ≤ 0 and for non-finite input.
+    /// for λ ≤ 0 and for non-finite input. Where the lobes overlap so densely that the sum
+    /// exceeds `f64::MAX` (λ/d below about 10⁻³⁰⁸·σ) it saturates there.
     fn eval(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
         if !(both_above(wo, wi) && lambda_nm > 0.0) {
             return 0.0;
@@ -254,10 +255,11 @@ impl DiffractionBrdf for Thorman {
             return 0.0;
         }
         let v = self.brightness * self.lobes(u, step);
-        if v.is_finite() {
-            v
-        } else {
+        if v.is_nan() {
+            // brightness 0 times an overflowing sum: no light.
             0.0
+        } else {
+            v.min(f64::MAX)
         }
     }
 }
