@@ -458,6 +458,10 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
                 p.intensity.is_finite() && p.intensity >= 0.0,
                 "peak of a model"
             );
+            assert!(
+                is_ok(p.equivalent_width_nm) && band.contains(p.wavelength_nm),
+                "peak of a model: {p:?} in {band:?}"
+            );
         });
         assert!(u64::from(summary.orders) <= MAX_VISITS_PER_CALL);
         tally.max_visits = tally.max_visits.max(counting.visits.get());
@@ -733,7 +737,20 @@ fn radiometric(
         evals: Cell::new(0),
         visits: Cell::new(0),
     };
-    let summary = counting.peaks(wo, wi, band, &mut |_| {});
+    let mut bad_peak = None;
+    let summary = counting.peaks(wo, wi, band, &mut |p| {
+        let ok =
+            is_ok(p.intensity) && is_ok(p.equivalent_width_nm) && band.contains(p.wavelength_nm);
+        if !ok && bad_peak.is_none() {
+            bad_peak = Some(p);
+        }
+    });
+    tally.expect(
+        bad_peak.is_none(),
+        Owner::Other,
+        "GratingBsdf::peaks finite",
+        || format!("{}: {bad_peak:?}", repro("peaks")),
+    );
     let visits = counting.visits.get();
     tally.expect(
         visits <= MAX_VISITS_PER_CALL && u64::from(summary.orders) == visits,
