@@ -983,6 +983,18 @@ fn diffracted_orders_at_tiny_wavelength_over_period() {
     }
 }
 
+/// The issue's weight-bound case (a lobe narrower than f64's phase resolution): the weight was
+/// 8.8·10⁻⁹ against a bound of 1.96·10⁻¹³; it is within the bound on this base.
+#[test]
+fn sample_weight_within_its_bound_for_a_sub_resolution_lobe() {
+    let b = GratingBsdf::new(Grating::new(1e12, 3.0, 1379100723).unwrap());
+    let wo = DVec3::new(0.39996, 0.17600, 0.8995);
+    let bound = b.sample_weight_bound(wo, 417.473);
+    if let Some(x) = b.sample(wo, 417.473, 0.1, DVec2::new(0.8662, 0.3)) {
+        assert!(x.weight() <= bound, "{} > {bound}", x.weight());
+    }
+}
+
 /// The reproducers of the issue, one per class, with the values each must give.
 #[test]
 fn reproducers() {
