@@ -3,7 +3,8 @@
 
 use crate::error::{positive, Error, Requirement};
 
-/// A wavelength band [min_nm, max_nm], validated: 0 < min < max, both finite.
+/// A wavelength band [min_nm, max_nm], validated: 0 < min < max, both finite, and at least
+/// [`Band::MIN_WIDTH_NM`] wide (so that the uniform density 1/(max − min) is finite).
 ///
 /// ```
 /// use diffraction::Band;
@@ -34,7 +35,23 @@ impl Band {
         max_nm: 830.0,
     };
 
-    /// A custom band; rejects non-finite or non-positive ends and `max_nm <= min_nm`.
+    /// The narrowest accepted band, nm (a femtometre): `max_nm − min_nm` must be at least this,
+    /// so that the density 1/(max − min) of a uniform wavelength (for example
+    /// [`SampledWavelengths::sample_uniform`](crate::SampledWavelengths::sample_uniform)) is
+    /// at most 10⁶ per nm, finite with room for the products a renderer makes with it. A band
+    /// is an integration range; one narrower than this resolves nothing a colour could show
+    /// (at 360 nm it is 3·10⁻⁹ of the wavelength).
+    ///
+    /// ```
+    /// use diffraction::Band;
+    /// assert!(Band::new(500.0, 500.00001).is_ok()); // 10⁻⁵ nm wide
+    /// assert!(Band::new(500.0, 500.0000001).is_err()); // 10⁻⁷ nm
+    /// assert_eq!(Band::new(5e-324, 1e-323).unwrap_err().parameter(), "max_nm");
+    /// ```
+    pub const MIN_WIDTH_NM: f64 = 1e-6;
+
+    /// A custom band; rejects non-finite or non-positive ends, `max_nm <= min_nm` and bands
+    /// narrower than [`MIN_WIDTH_NM`](Self::MIN_WIDTH_NM) (both reported as `max_nm`).
     ///
     /// ```
     /// use diffraction::Band;
@@ -42,6 +59,10 @@ impl Band {
     /// assert_eq!((b.min_nm(), b.max_nm()), (380.0, 780.0));
     /// assert_eq!(Band::new(0.0, 780.0).unwrap_err().parameter(), "min_nm");
     /// assert_eq!(Band::new(500.0, 500.0).unwrap_err().parameter(), "max_nm"); // empty
+    /// assert_eq!(
+    ///     Band::new(500.0, 500.0000000001).unwrap_err().to_string(),
+    ///     "invalid max_nm = 500.0000000001: must satisfy max_nm >= min_nm + Band::MIN_WIDTH_NM (500.000001)"
+    /// );
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     pub fn new(min_nm: f64, max_nm: f64) -> Result<Band, Error> {
@@ -54,6 +75,18 @@ impl Band {
                 Requirement::GreaterThan {
                     bound_name: "min_nm",
                     bound: min_nm,
+                },
+            ));
+        }
+        // max − min is exact or rounds down by at most half an ulp of max: a band that passes
+        // has a width of at least MIN_WIDTH_NM·(1 − 2⁻⁵³).
+        if max_nm - min_nm < Band::MIN_WIDTH_NM {
+            return Err(Error::invalid(
+                "max_nm",
+                max_nm,
+                Requirement::AtLeast {
+                    bound_name: "min_nm + Band::MIN_WIDTH_NM",
+                    bound: min_nm + Band::MIN_WIDTH_NM,
                 },
             ));
         }

@@ -114,13 +114,20 @@ const DEBYE: [&[f64]; 8] = [
 /// ```
 #[must_use]
 pub fn bessel_j(order: i32, x: f64) -> f64 {
+    bessel_j_bounded(order, x, MAX_STEPS)
+}
+
+/// [`bessel_j`] with a lower cost limit: a recurrence that would take more than `max_steps`
+/// (≤ [`MAX_STEPS`]) steps gives way to Debye's expansions, whose only loop is the turning-point
+/// window of at most 2·(15·x^{1/3} + 2) + 2 steps.
+pub(crate) fn bessel_j_bounded(order: i32, x: f64, max_steps: f64) -> f64 {
     if !x.is_finite() {
         return f64::NAN;
     }
     let n = order.unsigned_abs();
     let odd = n % 2 == 1;
     let flip = odd && ((order < 0) != (x < 0.0));
-    let j = bessel_j_nonnegative(n, x.abs());
+    let j = bessel_j_nonnegative(n, x.abs(), max_steps.min(MAX_STEPS));
     if flip {
         -j
     } else {
@@ -128,8 +135,8 @@ pub fn bessel_j(order: i32, x: f64) -> f64 {
     }
 }
 
-/// J_n(x) for n ≥ 0, finite x ≥ 0.
-fn bessel_j_nonnegative(n: u32, x: f64) -> f64 {
+/// J_n(x) for n ≥ 0, finite x ≥ 0, with recurrences of at most `max_steps` steps.
+fn bessel_j_nonnegative(n: u32, x: f64, max_steps: f64) -> f64 {
     if x < SERIES_X {
         return series(n, x);
     }
@@ -142,7 +149,7 @@ fn bessel_j_nonnegative(n: u32, x: f64) -> f64 {
     } else {
         start_index(nf, x) as f64
     };
-    if steps > MAX_STEPS {
+    if steps > max_steps {
         return large(nf, x);
     }
     if x > ASYMPTOTIC_X && nf <= x {
@@ -387,6 +394,55 @@ pub(crate) fn bessel_squares(x: f64, lo: i64, hi: i64, weight: &mut dyn FnMut(i6
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Stam's peaks take J_m(φ) with a cost limit of 2000 steps over the model's phases
+    /// (φ ≤ 4π·10⁴ = 1.26·10⁵) and orders up to 2¹⁶: there Debye's expansions stand in for the
+    /// recurrence. They agree with the full recurrence (validated against mpmath for x ≤ 1000
+    /// in `tests/baselines.rs`, an independent algorithm) to below 10⁻¹¹ of the local amplitude
+    /// min(√(2/(π·√|x² − n²|)), x^{−1/3}) where J oscillates and near the turning point, and
+    /// to 10⁻¹² relative where it decays above 10⁻³⁰⁰ (measured 3.8·10⁻¹² and 3.4·10⁻¹³).
+    #[test]
+    fn the_bounded_path_agrees_with_the_recurrence() {
+        let (mut worst_abs, mut worst_rel) = (0.0f64, 0.0f64);
+        let xs = [2100.0, 3000.5, 9999.0, 38888.0, 65536.0, 99000.3];
+        for &x in &xs {
+            let c = math::cbrt(x);
+            let mut orders = vec![0u32, 1, 7, 100, 1000];
+            for off in [-40.0, -16.0, -15.0, -3.0, 0.0, 3.0, 15.0, 16.0, 40.0, 200.0] {
+                orders.push((x + off * c).max(0.0) as u32);
+            }
+            for k in [0.3, 0.7, 0.9, 1.1, 1.3] {
+                orders.push((k * x) as u32);
+            }
+            for n in orders {
+                let want = bessel_j_bounded(n as i32, x, MAX_STEPS);
+                let got = bessel_j_bounded(n as i32, x, 2000.0);
+                let nf = n as f64;
+                let amp = if nf < x {
+                    math::sqrt(2.0 / (PI * math::sqrt((x - nf) * (x + nf)))).min(1.0 / c)
+                } else {
+                    1.0 / c
+                };
+                if nf > x + DEBYE_WIDTH * c + 2.0 && want.abs() > 1e-300 {
+                    worst_rel = worst_rel.max(((got - want) / want).abs());
+                } else {
+                    worst_abs = worst_abs.max((got - want).abs() / amp);
+                }
+            }
+        }
+        println!("worst: {worst_abs:e} of the amplitude, {worst_rel:e} relative");
+        assert!(worst_abs < 1e-11, "{worst_abs}");
+        assert!(worst_rel < 1e-12, "{worst_rel}");
+    }
+
+    /// The cost of a bounded value: the recurrence when it is short, else at most the
+    /// turning-point window, 1510 steps for Stam's largest phase.
+    #[test]
+    fn the_bounded_turning_window_is_short() {
+        let x: f64 = 4.0 * PI * 1e4;
+        let width = DEBYE_WIDTH * math::cbrt(x) + 2.0;
+        assert!(2.0 * width + 2.0 < 1511.0, "{}", 2.0 * width + 2.0);
+    }
 
     /// The turning-point window is the only loop of the Debye path: at most
     /// 2·(15·x^{1/3} + 2) + 2 steps, within the cost limit for every order up to 2³¹ − 1

@@ -208,8 +208,12 @@ impl ShadingFrame {
 /// let t = Tile::Constant { angle: 0.0 };
 /// assert_eq!(t.direction_at(DVec2::new(5.0, 7.0)), Some(DVec2::X)); // the same everywhere
 /// ```
+///
+/// Its numbers must be finite; [`direction_at`](Tile::direction_at) returns `None` where they
+/// are not, and deserialisation (feature `serde`) rejects them with an error that names the
+/// field (`angle`, `center` or `twist`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum Tile {
     /// No grating: a plain (non-diffractive) surface.
     Plain,
@@ -228,9 +232,46 @@ pub enum Tile {
     },
 }
 
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Tile {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        /// The same shape as `Tile`, read before it is checked.
+        #[derive(serde::Deserialize)]
+        enum Raw {
+            Plain,
+            Constant { angle: f64 },
+            Radial { center: [f64; 2], twist: f64 },
+        }
+        let tile = match Raw::deserialize(d)? {
+            Raw::Plain => Tile::Plain,
+            Raw::Constant { angle } => Tile::Constant { angle },
+            Raw::Radial { center, twist } => Tile::Radial { center, twist },
+        };
+        tile.checked().map_err(serde::de::Error::custom)
+    }
+}
+
 impl Tile {
-    /// The unit grating vector at `p` in tangent coordinates, or `None` (plain tile, or the exact
-    /// centre of a radial tile, where the direction is undefined).
+    /// The tile if all its numbers are finite; otherwise the error names the first that is not.
+    #[cfg(feature = "serde")]
+    fn checked(self) -> Result<Tile, Error> {
+        match self {
+            Tile::Plain => {}
+            Tile::Constant { angle } => {
+                finite("angle", angle)?;
+            }
+            Tile::Radial { center, twist } => {
+                finite("center", center[0])?;
+                finite("center", center[1])?;
+                finite("twist", twist)?;
+            }
+        }
+        Ok(self)
+    }
+
+    /// The unit grating vector at `p` in tangent coordinates, or `None` (plain tile, the exact
+    /// centre of a radial tile, where the direction is undefined, and a tile or point whose
+    /// numbers are not finite: the result is always a finite unit vector).
     ///
     /// ```
     /// use diffraction::frame::Tile;
@@ -238,10 +279,11 @@ impl Tile {
     /// let cd = Tile::Radial { center: [1.0, 1.0], twist: 0.0 };
     /// assert_eq!(cd.direction_at(DVec2::new(5.0, 1.0)), Some(DVec2::X)); // away from the centre
     /// assert_eq!(cd.direction_at(DVec2::new(1.0, 1.0)), None); // the centre itself
+    /// assert_eq!(Tile::Constant { angle: f64::INFINITY }.direction_at(DVec2::ZERO), None);
     /// ```
     #[must_use]
     pub fn direction_at(&self, p: DVec2) -> Option<DVec2> {
-        match *self {
+        let dir = match *self {
             Tile::Plain => None,
             Tile::Constant { angle } => Some(DVec2::new(math::cos(angle), math::sin(angle))),
             Tile::Radial { center, twist } => {
@@ -252,7 +294,8 @@ impl Tile {
                     DVec2::from_angle(twist).rotate(r)
                 })
             }
-        }
+        };
+        dir.filter(|d| d.is_finite())
     }
 
     /// The same tile rotated by `twist` radians about the normal (plain stays plain).
@@ -345,7 +388,7 @@ impl GratingField {
     /// use glam::DVec2;
     /// use std::f64::consts::FRAC_PI_2;
     /// let f = GratingField::constant(FRAC_PI_2);
-    /// assert_eq!(f, GratingField::Uniform(Tile::Constant { angle: FRAC_PI_2 }));
+    /// assert_eq!(f, GratingField::uniform(Tile::Constant { angle: FRAC_PI_2 }));
     /// let t = f.direction_at(DVec2::new(3.0, -2.0)).unwrap();
     /// assert!((t - DVec2::Y).length() < 1e-15); // cos(π/2) rounds to 6e-17, not 0
     /// ```

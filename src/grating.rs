@@ -461,8 +461,11 @@ impl Grating {
     /// in the local frame: z normal, x grating vector) at one wavelength: the conical grating
     /// equation wo_x = m·λ/d − wi_x, wo_y = −wi_y, wo_z = √(1 − wo_x² − wo_y²).
     ///
-    /// Evanescent orders (wo_x² + wo_y² ≥ 1) are skipped, never returned as NaN. Order 0 is
-    /// the mirror direction. Returns nothing for λ ≤ 0 or a non-finite `wi`.
+    /// Evanescent orders (wo_x² + wo_y² ≥ 1) are skipped, never returned as NaN, and never
+    /// walked: the run of propagating orders is found before the first item in bounded work
+    /// whatever λ/d is ([`GratingEquation::propagating`]), and its length is known
+    /// (`ExactSizeIterator`). Order 0 is the mirror direction. Returns nothing for λ ≤ 0 or a
+    /// non-finite `wi`.
     ///
     /// ```
     /// use diffraction::Grating;
@@ -631,6 +634,11 @@ impl Iterator for DiffractedOrders {
             intensity: single_slit_cycles(self.duty * order as f64),
         })
     }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.orders.size_hint()
+    }
 }
 
+impl ExactSizeIterator for DiffractedOrders {}
 impl core::iter::FusedIterator for DiffractedOrders {}

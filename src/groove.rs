@@ -339,11 +339,17 @@ impl GrooveSpread {
     }
 
     /// The density of [`sample`](Self::sample) at v: s/(π·(s² + v²)); 0 for the ideal lobe.
+    /// Computed without intermediate overflow, so it is positive wherever the density itself
+    /// is above the smallest `f64` (a sample far in the proxy's tails keeps its density) and 0
+    /// only where it is below it or above `f64::MAX` (a scale s under 2·10⁻³⁰⁹, λ below
+    /// about 10⁻³⁰⁹·L).
     ///
     /// ```
     /// use diffraction::GrooveSpread;
     /// let g = GrooveSpread::gaussian(0.1)?;
     /// assert!((g.pdf(0.0, 550.0) - 1.0 / (std::f64::consts::PI * 0.1)).abs() < 1e-12);
+    /// // Far tails: s/(π·v²) = 0.1/(π·10³⁰⁰), not 0.
+    /// assert!((g.pdf(1e150, 550.0) / (0.1 / (std::f64::consts::PI * 1e300)) - 1.0).abs() < 1e-12);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
@@ -352,8 +358,14 @@ impl GrooveSpread {
         if !(s > 0.0 && s.is_finite() && v.is_finite()) {
             return 0.0;
         }
-        let t = v / s;
-        let p = 1.0 / (PI * s * (1.0 + t * t));
+        let p = if v.abs() > s {
+            // (r/π)/|v|/(1 + r²) with r = s/|v| ≤ 1: no square to overflow or underflow.
+            let r = s / v.abs();
+            (r / PI) / v.abs() / (1.0 + r * r)
+        } else {
+            let t = v / s;
+            1.0 / (PI * s * (1.0 + t * t))
+        };
         if p.is_finite() {
             p
         } else {

@@ -155,11 +155,15 @@ impl GratingEquation {
     /// in the local frame: z normal, x grating vector) at one wavelength: the conical grating
     /// equation wo_x = m·λ/d − wi_x, wo_y = −wi_y, wo_z = √(1 − wo_x² − wo_y²).
     ///
-    /// Evanescent orders (wo_x² + wo_y² ≥ 1) are never visited: the range of propagating m is
-    /// computed in closed form, so the cost is the number of propagating orders, one step per
-    /// item (at most 2·d/λ + 1, and never more than 2³² however small λ is: orders are `i32`).
-    /// The iterator is lazy; no library call walks it. Order 0 is the mirror
-    /// direction. Returns nothing for λ ≤ 0, a non-finite `wi` or |wi_y| ≥ 1.
+    /// Evanescent orders (wo_z² = 1 − wo_x² − wo_y² ≤ 0 as computed) are never visited: the
+    /// first and the last propagating order are found before the first item, by a closed form
+    /// and two bisections of at most 34 evaluations each (the
+    /// computed wo_z² rises and then falls with m, so the propagating orders are one run), and
+    /// every item is then one step. The work to the first item is therefore bounded whatever λ/d
+    /// is (λ/d = 10⁻²³ included, where rounding used to hide millions of empty orders at the
+    /// ends); the iterator yields at most 2·d/λ + 1 orders, and never more than 2³² (orders are
+    /// `i32`). It is lazy; no library call walks it. Order 0 is the mirror direction. Returns
+    /// nothing for λ ≤ 0, a non-finite `wi` or |wi_y| ≥ 1.
     ///
     /// ```
     /// use diffraction::GratingEquation;
@@ -188,15 +192,41 @@ impl GratingEquation {
             return empty;
         }
         let c = math::sqrt(c2);
-        // Propagating: |m·step − wi_x| < c.
+        // Propagating: |m·step − wi_x| < c, up to the rounding of the two sides.
         let lo = math::ceil((wi.x - c) / step);
         let hi = math::floor((wi.x + c) / step);
         let clamp = |v: f64| v.clamp(i32::MIN as f64, i32::MAX as f64) as i64;
+        let (lo, hi) = (clamp(lo), clamp(hi));
+        if lo > hi {
+            return empty;
+        }
+        let probe = Propagating {
+            wi,
+            step,
+            next: lo,
+            last: hi,
+        };
+        // wo_z² as computed is non-decreasing in m up to the order nearest the mirror of wi_x
+        // (wo_x = m·step − wi_x ≤ 0) and non-increasing after it: every operation is a
+        // correctly rounded, monotone one. So the propagating orders are one run around the
+        // crest; bisect for its ends.
+        let crest = clamp(math::rint(wi.x / step)).clamp(lo, hi);
+        let crest = [crest - 1, crest, crest + 1]
+            .into_iter()
+            .filter(|m| (lo..=hi).contains(m))
+            .max_by(|&a, &b| probe.z2(a).total_cmp(&probe.z2(b)))
+            .unwrap_or(crest);
+        if probe.z2(crest) <= 0.0 || probe.z2(crest).is_nan() {
+            return empty;
+        }
+        let up = |m: i64| probe.z2(m) > 0.0;
+        let first = first_true(lo, crest, &up);
+        let last = last_true(crest, hi, &up);
         Propagating {
             wi,
             step,
-            next: clamp(lo),
-            last: clamp(hi),
+            next: first,
+            last,
         }
     }
 }
@@ -294,30 +324,144 @@ impl Iterator for Propagating {
     type Item = (i32, DVec3);
 
     fn next(&mut self) -> Option<(i32, DVec3)> {
-        while self.next <= self.last {
-            let m = self.next;
-            self.next += 1;
-            let ox = m as f64 * self.step - self.wi.x;
-            let oy = -self.wi.y;
-            let z2 = 1.0 - ox * ox - oy * oy;
-            if z2 > 0.0 {
-                return Some((m as i32, DVec3::new(ox, oy, math::sqrt(z2))));
-            }
+        if self.next > self.last {
+            return None;
         }
-        None
+        let m = self.next;
+        self.next += 1;
+        let ox = m as f64 * self.step - self.wi.x;
+        let oy = -self.wi.y;
+        // Positive for every m of the run (found so in `propagating`); the guard only keeps a
+        // direction with a real z.
+        let z2 = (1.0 - ox * ox - oy * oy).max(0.0);
+        Some((m as i32, DVec3::new(ox, oy, math::sqrt(z2))))
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
         let n = (self.last - self.next + 1).max(0) as usize;
-        (0, Some(n))
+        (n, Some(n))
     }
 }
 
+impl ExactSizeIterator for Propagating {}
 impl core::iter::FusedIterator for Propagating {}
+
+impl Propagating {
+    /// wo_z² of order m, exactly as `next` computes it.
+    #[inline]
+    fn z2(&self, m: i64) -> f64 {
+        let ox = m as f64 * self.step - self.wi.x;
+        let oy = -self.wi.y;
+        1.0 - ox * ox - oy * oy
+    }
+}
+
+/// The most evaluations of wo_z² each of the two bisections of
+/// [`GratingEquation::propagating`] makes: the orders span at most 2³² values, so 33 halvings
+/// settle an end; one more for the test at the end.
+#[cfg(test)]
+const PROPAGATING_SEARCH_STEPS: u32 = 34;
+
+/// The smallest m in [lo, hi] with `ok(m)`, for `ok` false then true on [lo, hi] and true at hi.
+fn first_true(mut lo: i64, mut hi: i64, ok: &dyn Fn(i64) -> bool) -> i64 {
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if ok(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    hi
+}
+
+/// The largest m in [lo, hi] with `ok(m)`, for `ok` true then false on [lo, hi] and true at lo.
+fn last_true(mut lo: i64, mut hi: i64, ok: &dyn Fn(i64) -> bool) -> i64 {
+    while lo < hi {
+        let mid = hi - (hi - lo) / 2;
+        if ok(mid) {
+            lo = mid;
+        } else {
+            hi = mid - 1;
+        }
+    }
+    lo
+}
 
 impl GratingEquation {
     /// The equation of a period already validated by its owner.
     pub(crate) fn from_valid_period(period_nm: f64) -> GratingEquation {
         GratingEquation { period_nm }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each bisection settles an end of a range of up to 2³² orders in at most
+    /// `PROPAGATING_SEARCH_STEPS` evaluations.
+    #[test]
+    fn the_bisections_are_bounded() {
+        use core::cell::Cell;
+        let calls = Cell::new(0u32);
+        let (lo, hi) = (i32::MIN as i64, i32::MAX as i64);
+        for edge in [lo, lo + 1, -7, 0, 12345, hi - 1, hi] {
+            calls.set(0);
+            let ok = |m: i64| {
+                calls.set(calls.get() + 1);
+                m >= edge
+            };
+            assert_eq!(first_true(lo, hi, &ok), edge);
+            assert!(calls.get() <= PROPAGATING_SEARCH_STEPS, "{}", calls.get());
+            calls.set(0);
+            let ok = |m: i64| {
+                calls.set(calls.get() + 1);
+                m <= edge
+            };
+            assert_eq!(last_true(lo, hi, &ok), edge);
+            assert!(calls.get() <= PROPAGATING_SEARCH_STEPS, "{}", calls.get());
+        }
+    }
+
+    /// The run of propagating orders is exactly the set of m whose wo_z² is positive, also
+    /// where λ/d is so small that rounding leaves millions of empty orders at its ends.
+    #[test]
+    fn the_run_is_every_propagating_order() {
+        let e = GratingEquation::new(1600.0).unwrap();
+        for wi in [
+            DVec3::Z,
+            DVec3::new(0.6, 0.0, 0.8),
+            DVec3::new(-0.6, 0.0, 0.8),
+            DVec3::new(0.3, -0.4, (0.75f64).sqrt()),
+        ] {
+            for l in [400.0, 550.0, 800.0, 1600.0, 3199.0] {
+                let p = e.propagating(wi, l);
+                let step = l / 1600.0;
+                let want: Vec<i32> = (-10..=10)
+                    .filter(|&m| {
+                        let ox = m as f64 * step - wi.x;
+                        1.0 - ox * ox - wi.y * wi.y > 0.0
+                    })
+                    .collect();
+                assert_eq!(p.len(), want.len());
+                assert_eq!(p.map(|o| o.0).collect::<Vec<_>>(), want, "{wi} {l}");
+            }
+        }
+        // λ/d = 10⁻²³ at grazing incidence: the first order of the run is the first m whose
+        // wo_z² is positive, found without walking the empty ones.
+        let tiny = GratingEquation::new(1e23).unwrap();
+        for wi in [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.6, 0.8, 0.0),
+            DVec3::new(-1.0, 0.0, 0.0),
+        ] {
+            let mut p = tiny.propagating(wi, 1.0);
+            let (m, dir) = p.next().unwrap();
+            let ox = (m as f64 - 1.0) * 1e-23 - wi.x;
+            let before = 1.0 - ox * ox - wi.y * wi.y;
+            assert!(m == i32::MIN || before <= 0.0, "{wi}: {m} is not the first");
+            assert!(dir.z > 0.0 && dir.is_finite());
+        }
     }
 }

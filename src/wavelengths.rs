@@ -45,7 +45,9 @@ pub struct SampledWavelengths {
 impl SampledWavelengths {
     /// Stratified uniform wavelengths: the hero at `band.min + u·B`, the others B/4 apart
     /// (wrapping around the band), each with density 1/B. `u` by the crate's rule for random
-    /// numbers ([`unit_random`](crate::unit_random)).
+    /// numbers ([`unit_random`](crate::unit_random)). Every wavelength is in the band and every
+    /// density finite and at most 10⁶ per nm ([`Band::MIN_WIDTH_NM`]), so the result is one that
+    /// [`new`](Self::new) accepts.
     ///
     /// ```
     /// use diffraction::{Band, SampledWavelengths};
@@ -166,18 +168,37 @@ impl SampledWavelengths {
     /// is 0 or `index` > 3). Multiply wavelength j's contribution f_j·cos/pdf4\[j\] by it, or
     /// equivalently use f_j·cos/Σ pdf4 for every j (Wilkie et al. 2014).
     ///
+    /// Always in [0, 1]: a density that is not a number ≥ 0 (negative, NaN) counts as 0, and
+    /// the sum is taken relative to the largest density, so huge finite densities (whose sum
+    /// would overflow) and infinite ones (each infinite density gets an equal share) still give
+    /// weights that add up to 1.
+    ///
     /// ```
     /// use diffraction::SampledWavelengths;
     /// let w = SampledWavelengths::balance_heuristic([3.0, 1.0, 0.0, 0.0], 0);
     /// assert_eq!(w, 0.75);
     /// assert_eq!(SampledWavelengths::balance_heuristic([0.0; 4], 0), 0.0);
+    /// assert_eq!(SampledWavelengths::balance_heuristic([f64::MAX; 4], 2), 0.25);
+    /// assert_eq!(SampledWavelengths::balance_heuristic([f64::NAN, 1.0, -1.0, 0.0], 1), 1.0);
     /// ```
     #[must_use]
     pub fn balance_heuristic(pdf4: [f64; 4], index: usize) -> f64 {
-        let sum: f64 = pdf4.iter().sum();
-        if index > 3 || !(sum > 0.0 && sum.is_finite()) {
+        if index > 3 {
             return 0.0;
         }
-        pdf4[index] / sum
+        // NaN and negative densities count as 0; ∞ as the largest value, shared equally.
+        let p = pdf4.map(|p| if p > 0.0 { p } else { 0.0 });
+        let top = p.iter().fold(0.0f64, |a, &b| a.max(b));
+        if top == 0.0 {
+            return 0.0;
+        }
+        let rel = if top.is_finite() {
+            p.map(|x| x / top)
+        } else {
+            p.map(|x| if x == top { 1.0 } else { 0.0 })
+        };
+        // Each term ≤ 1, so the sum is in [1, 4]: no overflow, no 0/0.
+        let sum: f64 = rel.iter().sum();
+        rel[index] / sum
     }
 }

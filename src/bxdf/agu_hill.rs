@@ -103,11 +103,13 @@ impl SpectralResponse for AguHill {
         PeakSummary { orders, specular }
     }
 
-    /// The grating itself at u = wi.x + wo.x, scale 1.
+    /// The grating itself at u = wi.x + wo.x, scale 1; `None` below the surface and where u
+    /// is not finite (directions so far from unit that wi.x + wo.x overflows).
     fn grating_response(&self, wo: DVec3, wi: DVec3) -> Option<GratingResponse> {
-        if !both_above(wo, wi) {
+        let u = wi.x + wo.x;
+        if !(both_above(wo, wi) && u.is_finite()) {
             return None;
         }
-        Some(GratingResponse::new(self.grating, wi.x + wo.x, 1.0))
+        Some(GratingResponse::new(self.grating, u, 1.0))
     }
 }

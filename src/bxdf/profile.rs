@@ -5,7 +5,7 @@ use core::f64::consts::PI;
 
 use num_complex::Complex64;
 
-use crate::bessel::bessel_j;
+use crate::bessel::{bessel_j, bessel_j_bounded};
 use crate::kernel::sinpi;
 use crate::math;
 
@@ -65,6 +65,20 @@ impl Profile {
                 j * j
             }
             Profile::Binary { fraction } => binary_coefficient(fraction, order, phase).norm_sqr(),
+        }
+    }
+}
+
+impl Profile {
+    /// [`efficiency`](Self::efficiency) with the Bessel recurrence of the sine limited to
+    /// `max_steps` steps (Debye's expansions beyond, see `bessel_j_bounded`).
+    pub(crate) fn efficiency_bounded(self, order: i32, phase: f64, max_steps: f64) -> f64 {
+        match self {
+            Profile::Sine => {
+                let j = bessel_j_bounded(order, phase, max_steps);
+                j * j
+            }
+            Profile::Binary { .. } => self.efficiency(order, phase),
         }
     }
 }

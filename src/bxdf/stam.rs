@@ -61,6 +61,11 @@
 //!   G/w² is 1 in the mirror direction but not in general elsewhere (at normal incidence it is
 //!   1/cos θo, above 1). What holds
 //!   exactly is Parseval, Σ_m |c_m|² = 1, and reciprocity f(wi, wo) = f(wo, wi).
+//! * **Grazing angles**: G/w² grows without bound toward the horizon (as 1/cos θo at normal
+//!   incidence), where the Kirchhoff approximation fails (the surface shadows itself). Each
+//!   cosine of G/w²'s denominator is taken as at least [`GRAZING_COS`] (a grazing angle of
+//!   0.57°): a documented clamp that leaves the model unchanged above it and bounds G/w² by
+//!   10⁸ everywhere; with σ_c ≤ [`MAX_COHERENCE_NM`] every value is finite.
 //! * It is a BRDF (1/sr, cosine excluded): the renderer multiplies by cos θi, and its
 //!   [`response`](SpectralResponse::response) is `eval·cos θi`.
 //! * Unlike the paper's model and [`Thorman`](crate::Thorman), the light is confined to the
@@ -91,6 +96,22 @@ const MAX_DEPTH_NM: f64 = 10_000.0;
 const MIN_WAVELENGTH_NM: f64 = 1.0;
 /// √π.
 const SQRT_PI: f64 = 1.772453850905516;
+/// The smallest cosine the geometry factor G/w² sees: below it (a grazing angle under 0.57°)
+/// each cosine of its denominator is taken as this. Stam's G/w² grows as 1/cos θ toward the
+/// horizon (1/cos⁴θ where both directions graze), without bound, where the Kirchhoff
+/// approximation it comes from has no validity (the tangent plane is shadowed); the clamp
+/// bounds it by 1/`GRAZING_COS`⁴ = 10⁸ and changes the model only within a projected solid
+/// angle of π·`GRAZING_COS`² = 3·10⁻⁴ sr of the horizon.
+pub const GRAZING_COS: f64 = 0.01;
+/// The longest accepted coherence width σ_c, nm (10⁶ km, the crate's longest coherence length,
+/// [`MAX_COHERENCE_NM`](crate::groove::MAX_COHERENCE_NM)): the lobe's peak k²σ_c²/π then stays
+/// below 1.3·10³¹ at λ ≥ 1 nm, so every value of the model is finite.
+pub const MAX_COHERENCE_NM: f64 = crate::groove::MAX_COHERENCE_NM;
+/// The most recurrence steps one Bessel value of [`Stam::peaks`](SpectralResponse::peaks) may
+/// take before it uses Debye's expansions (see [`bessel_j`]; at most 1510 steps near the
+/// turning point for the model's phases ≤ 4π·10⁴): bounds a `peaks` call to about
+/// 2000·[`MAX_ORDERS`] steps.
+const PEAK_BESSEL_STEPS: f64 = 2000.0;
 
 /// Stam's diffraction shader for a one-dimensional periodic surface (see the
 /// [module docs](self) for the derivation and every assumption).
@@ -103,7 +124,8 @@ const SQRT_PI: f64 = 1.772453850905516;
 /// f(wo, wi, λ) = F² · G/w² · Σ_m |c_m(k·w·h₀)|² · (k²σ_c²/π) · exp(−k²σ_c²·[(u − m·λ/d)² + v²])
 /// ```
 ///
-/// with (u, v, w) = wi + wo in the local frame, k = 2π/λ, G = (1 + wi·wo)²/(wi.z·wo.z), c_m the
+/// with (u, v, w) = wi + wo in the local frame, k = 2π/λ, G = (1 + wi·wo)²/(wi.z·wo.z) (each
+/// cosine of G/w² at least [`GRAZING_COS`], see the module docs), c_m the
 /// [`Profile`]'s Fourier coefficients and F² Schlick's reflectance. A BRDF: multiply by
 /// cos θi (its [`response`](SpectralResponse::response) does).
 ///
@@ -140,8 +162,9 @@ impl Stam {
     /// σ_c = `coherence_nm`, with reflectance R₀ = 1.
     ///
     /// Rejects d ≤ 0; h₀ < 0 or h₀ > 10 µm (h₀ = 0 is a flat mirror); σ_c < d (the orders would
-    /// overlap, see the module docs); a binary `fraction` outside (0, 1]; non-finite values.
-    /// Errors name `period_nm`, `depth_nm`, `coherence_nm` or `fraction`.
+    /// overlap, see the module docs) or σ_c > [`MAX_COHERENCE_NM`]; a binary `fraction` outside
+    /// (0, 1]; non-finite values. Errors name `period_nm`, `depth_nm`, `coherence_nm` or
+    /// `fraction`.
     ///
     /// ```
     /// use diffraction::{Profile, Stam};
@@ -174,6 +197,16 @@ impl Stam {
             ));
         }
         let sigma = positive("coherence_nm", coherence_nm)?;
+        if sigma > MAX_COHERENCE_NM {
+            return Err(Error::invalid(
+                "coherence_nm",
+                sigma,
+                Requirement::Within {
+                    min: d,
+                    max: MAX_COHERENCE_NM,
+                },
+            ));
+        }
         if sigma < d {
             return Err(Error::invalid(
                 "coherence_nm",
@@ -321,20 +354,32 @@ impl Stam {
         2.0 * PI * w * self.depth_nm / lambda_nm
     }
 
-    /// F²·G/w², the factor common to every order (0 where it is not finite).
+    /// F²·G/w², the factor common to every order, with each cosine of G/w² taken in
+    /// [[`GRAZING_COS`], 1] and 1 + wi·wo in [0, 2] (their ranges for unit directions), so that
+    /// it is at most 1/`GRAZING_COS`⁴ for every input.
     fn geometry(&self, wi: DVec3, wo: DVec3) -> f64 {
-        let w = wi.z + wo.z;
-        let c = 1.0 + wi.dot(wo);
-        let cos_h = math::sqrt((0.5 * c).clamp(0.0, 1.0));
+        let (ci, co) = (grazing_cosine(wi.z), grazing_cosine(wo.z));
+        let w = ci + co;
+        let c = (1.0 + wi.dot(wo)).clamp(0.0, 2.0);
+        let cos_h = math::sqrt(0.5 * c);
         let t = 1.0 - cos_h;
         let t2 = t * t;
         let fresnel = self.reflectance + (1.0 - self.reflectance) * (t2 * t2 * t);
-        let g = fresnel * c * c / (wi.z * wo.z * w * w);
+        let g = fresnel * c * c / (ci * co * w * w);
         if g.is_finite() {
             g
         } else {
             0.0
         }
+    }
+}
+
+/// A cosine as the geometry factor sees it: in [[`GRAZING_COS`], 1] (`GRAZING_COS` for NaN).
+fn grazing_cosine(z: f64) -> f64 {
+    if z > GRAZING_COS {
+        z.min(1.0)
+    } else {
+        GRAZING_COS
     }
 }
 
@@ -394,15 +439,21 @@ impl DiffractionBrdf for Stam {
 }
 
 impl SpectralResponse for Stam {
-    /// A BRDF: `eval·cos θi`.
+    /// A BRDF: `eval·cos θi` (0 for non-finite input, as `eval`).
     fn response(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eval(wo, wi, lambda_nm) * wi.z.clamp(0.0, 1.0)
+        self.eval(wo, wi, lambda_nm) * unit_cosine(wi.z)
     }
 
-    /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with its own lobe's response
-    /// (`eval·cos θi`) at λ_m (the whole of `eval` there but for the far tails of the other orders, below
-    /// 10⁻¹⁶ of their peaks) and the equivalent width λ_m·d/(2√π·σ_c·|m|). Order 0's lobe is
-    /// seen where k·σ_c·√(u² + v²) < 6 at the band's longest wavelength.
+    /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, at most [`MAX_ORDERS`] of them (the
+    /// lowest |m|), each with its own lobe's response (`eval·cos θi`) at λ_m (the whole of
+    /// `eval` there but for the far tails of the other orders, below 10⁻¹⁶ of their peaks) and
+    /// the equivalent width λ_m·d/(2√π·σ_c·|m|). Order 0's lobe is seen where
+    /// k·σ_c·√(u² + v²) < 6 at the band's longest wavelength.
+    ///
+    /// Bounded work: each order's coefficient J_m(φ)² takes at most 2000 recurrence steps,
+    /// beyond which it comes from Debye's expansions (which agree with the recurrence to
+    /// 10⁻¹¹ of the local amplitude, `src/bessel.rs`), so a call over any band costs at most
+    /// about 2000·[`MAX_ORDERS`] steps.
     fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
         if !both_above(wo, wi) {
             return PeakSummary::default();
@@ -419,16 +470,19 @@ impl SpectralResponse for Stam {
             let ks2 = ks * ks;
             // The same cut-off as `eval`: beyond 6 widths off the cone the lobe is 0.
             let efficiency = if l >= MIN_WAVELENGTH_NM && ks * v.abs() < CUTOFF {
-                self.profile.efficiency(p.order, self.phase(wi, wo, l))
+                self.profile
+                    .efficiency_bounded(p.order, self.phase(wi, wo, l), PEAK_BESSEL_STEPS)
             } else {
                 0.0
             };
             let value = geometry * ks2 / PI * efficiency * math::exp(-ks2 * v * v);
+            // d/σ_c ≤ 1, so the width is at most λ_m/(2√π): finite.
+            let width = l * (d / sigma) / (2.0 * SQRT_PI * (p.order as f64).abs());
             visit(Peak {
                 order: p.order,
                 wavelength_nm: l,
                 intensity: if value.is_finite() { value } else { 0.0 },
-                equivalent_width_nm: l * d / (2.0 * SQRT_PI * sigma * (p.order as f64).abs()),
+                equivalent_width_nm: width,
             });
             orders += 1;
         }

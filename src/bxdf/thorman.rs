@@ -243,7 +243,8 @@ impl Thorman {
 
 impl DiffractionBrdf for Thorman {
     /// `brightness · Σ_m exp(−½((u − m·λ/d)/σ)²)`, u = `wi.x + wo.x`; 0 below the surface,
-    /// for λ ≤ 0 and for non-finite input.
+    /// for λ ≤ 0 and for non-finite input. Where the lobes overlap so densely that the sum
+    /// exceeds `f64::MAX` (λ/d below about 10⁻³⁰⁸·σ) it saturates there.
     fn eval(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
         if !(both_above(wo, wi) && lambda_nm > 0.0) {
             return 0.0;
@@ -254,10 +255,11 @@ impl DiffractionBrdf for Thorman {
             return 0.0;
         }
         let v = self.brightness * self.lobes(u, step);
-        if v.is_finite() {
-            v
-        } else {
+        if v.is_nan() {
+            // brightness 0 times an overflowing sum: no light.
             0.0
+        } else {
+            v.min(f64::MAX)
         }
     }
 }
@@ -270,21 +272,24 @@ impl SpectralResponse for Thorman {
 
     /// Every order m ≠ 0 with λ_m = d·|u|/|m| in `band`, each with intensity `brightness` (its
     /// own lobe's peak; `eval` there also holds the far tails of the other lobes) and equivalent
-    /// width √(2π)·σ·d/|m|, at most [`MAX_ORDERS`] of them (the lowest |m|).
+    /// width √(2π)·σ·d/|m| (saturating at `f64::MAX` where it overflows, for periods near
+    /// `f64::MAX`), at most [`MAX_ORDERS`] of them (the lowest |m|).
     /// Order 0's lobe is seen where |u| < 8.5·σ.
     fn peaks(&self, wo: DVec3, wi: DVec3, band: Band, visit: &mut dyn FnMut(Peak)) -> PeakSummary {
         if !both_above(wo, wi) {
             return PeakSummary::default();
         }
         let u = wi.x + wo.x;
-        let width = SQRT_TAU * self.lobe_width * self.equation.period_nm();
+        // σ·√(2π) ≤ 2.51 and d/|m| ≤ d: the product overflows only for d near f64::MAX.
+        let scale = SQRT_TAU * self.lobe_width;
+        let d = self.equation.period_nm();
         let mut orders = 0;
         for p in self.equation.orders(u, band).take(MAX_ORDERS as usize) {
             visit(Peak {
                 order: p.order,
                 wavelength_nm: p.wavelength_nm,
                 intensity: self.brightness,
-                equivalent_width_nm: width / (p.order as f64).abs(),
+                equivalent_width_nm: (scale * (d / (p.order as f64).abs())).min(f64::MAX),
             });
             orders += 1;
         }
