@@ -158,7 +158,7 @@ impl core::error::Error for Error {}
 /// A number as a person reads it in a message: the shortest round-trip form, in scientific
 /// notation when it is very large or very small (so `f64::MAX` prints as `1.7976931348623157e308`,
 /// not as 309 digits, and a subnormal as `5e-324`).
-struct Num(f64);
+pub(crate) struct Num(pub(crate) f64);
 
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {

@@ -23,17 +23,52 @@ use core::fmt;
 /// assert_eq!(err.what(), "illuminant");
 /// assert_eq!(err.expected(), "one of E, D65, A");
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ParseError {
     what: &'static str,
     expected: &'static str,
+    /// For a known name with a number out of its range: the number as parsed.
+    out_of_range: Option<f64>,
 }
 
 impl ParseError {
     /// The error for a `what` (a noun phrase: "illuminant") whose accepted spellings are
     /// described by `expected` ("one of E, D65, A").
     pub(crate) const fn new(what: &'static str, expected: &'static str) -> Self {
-        ParseError { what, expected }
+        ParseError {
+            what,
+            expected,
+            out_of_range: None,
+        }
+    }
+
+    /// The error for a known name whose number `value` (a noun phrase `what`: "uniform count")
+    /// lies outside its range `expected` ("1 to 65536").
+    pub(crate) const fn number_out_of_range(
+        what: &'static str,
+        value: f64,
+        expected: &'static str,
+    ) -> Self {
+        ParseError {
+            what,
+            expected,
+            out_of_range: Some(value),
+        }
+    }
+
+    /// The number that was out of range, where the name was known and only its number was not
+    /// accepted (`None` for an unknown name).
+    ///
+    /// ```
+    /// use diffraction::spectrum::Strategy;
+    /// let e = "uniform:99999999999".parse::<Strategy>().unwrap_err();
+    /// assert_eq!(e.out_of_range(), Some(99999999999.0));
+    /// assert_eq!(e.to_string(), "uniform count 99999999999 is out of range: expected 1 to 65536");
+    /// assert_eq!("simpson".parse::<Strategy>().unwrap_err().out_of_range(), None);
+    /// ```
+    #[must_use]
+    pub const fn out_of_range(&self) -> Option<f64> {
+        self.out_of_range
     }
 
     /// What was being parsed, e.g. `"clipping scheme"` or `"illuminant"`.
@@ -61,9 +96,19 @@ impl ParseError {
 }
 
 impl fmt::Display for ParseError {
-    /// `unknown {what}: expected {expected}`.
+    /// `unknown {what}: expected {expected}`, or for a number out of range
+    /// `{what} {value} is out of range: expected {expected}`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "unknown {}: expected {}", self.what, self.expected)
+        match self.out_of_range {
+            None => write!(f, "unknown {}: expected {}", self.what, self.expected),
+            Some(v) => write!(
+                f,
+                "{} {} is out of range: expected {}",
+                self.what,
+                crate::error::Num(v),
+                self.expected
+            ),
+        }
     }
 }
 

@@ -4,11 +4,13 @@
 
 #[path = "support/bsdf_check.rs"]
 mod bsdf_check;
+#[path = "support/fixed_seed.rs"]
+mod fixed_seed;
 
 use bsdf_check::*;
 use diffraction::{Bsdf, DiffractionBrdf, Grating, GratingBsdf, GrooveSpread, Slits};
 use glam::{DVec2, DVec3};
-use proptest::prelude::{prop_assert, prop_oneof, proptest, Just, ProptestConfig, Strategy};
+use proptest::prelude::{prop_assert, prop_oneof, proptest, Just, Strategy};
 
 /// Resolution of the (θ, φ) χ² table (pbrt uses 80 × 160 with 10⁶ samples; the default
 /// cosine sampler is smooth, so a coarser table keeps CI fast).
@@ -198,7 +200,7 @@ fn ok(x: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1500))]
+    #![proptest_config(fixed_seed::config(1500, 0x5EED_0003, "tests/bsdf_models.proptest-regressions"))]
 
     #[test]
     fn grating_values_are_finite(

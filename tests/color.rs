@@ -1,6 +1,8 @@
 //! Unit and property tests of `diffraction::color`: conversions, the transfer function, the three
 //! clipping schemes and ΔE2000 (including the 34 test pairs of Sharma, Wu & Dalal 2005).
 
+#[path = "support/fixed_seed.rs"]
+mod fixed_seed;
 use approx::assert_abs_diff_eq;
 use diffraction::cie::Illuminant;
 use diffraction::color::{
@@ -441,7 +443,7 @@ fn in_gamut_colour() -> impl Strategy<Value = LinearSrgb> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(fixed_seed::config(2000, 0x5EED_0004, "tests/color.proptest-regressions"))]
 
     #[test]
     fn every_clip_lands_in_gamut(c in colour()) {
@@ -622,7 +624,7 @@ fn lab() -> impl Strategy<Value = Lab> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(fixed_seed::config(2000, 0x5EED_0005, "tests/color.proptest-regressions"))]
 
     #[test]
     fn delta_e2000_is_a_symmetric_non_negative_difference(a in lab(), b in lab()) {

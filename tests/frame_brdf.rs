@@ -1,5 +1,7 @@
 //! Grating-direction fields, the shading frame and the `DiffractionBrdf` implementation.
 
+#[path = "support/fixed_seed.rs"]
+mod fixed_seed;
 #[path = "support/tolerance.rs"]
 mod tolerance;
 
@@ -18,7 +20,7 @@ fn unit_upper(theta: f64, phi: f64) -> DVec3 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(500))]
+    #![proptest_config(fixed_seed::config(500, 0x5EED_0006, "tests/frame_brdf.proptest-regressions"))]
 
     /// eval is the grating intensity at u = wi.x + wo.x, the illumination model's diffraction
     /// term scales it by its coefficient, and eval_f32 agrees with it to f32 precision of its

@@ -1,6 +1,8 @@
 //! The grating: parameters, intensity at the closed-form maxima, the grating equation and the
 //! peak search, the forward (outgoing-direction) form, and the paper's half-vector error.
 
+#[path = "support/fixed_seed.rs"]
+mod fixed_seed;
 #[path = "support/tolerance.rs"]
 mod tolerance;
 
@@ -24,7 +26,7 @@ fn grating() -> impl Strategy<Value = Grating> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1000))]
+    #![proptest_config(fixed_seed::config(1000, 0x5EED_0007, "tests/grating.proptest-regressions"))]
 
     /// At λ_m the N-slit factor is 1, so the intensity equals S(β_m) (closed form:
     /// (sin πmw/d / (πmw/d))²), and every reported peak satisfies d·u = m·λ.
@@ -272,7 +274,7 @@ fn non_physical_wavelengths_give_zero_not_nan() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(fixed_seed::config(2000, 0x5EED_0008, "tests/grating.proptest-regressions"))]
 
     /// The fused intensity (one division) is the product of the two kernels at the same phases
     /// x = d·(u/λ), y = w·(u/λ), to a few ulp.

@@ -1,5 +1,7 @@
 //! Properties of the slit kernels against their closed forms (proptest), in f32 and f64.
 
+#[path = "support/fixed_seed.rs"]
+mod fixed_seed;
 #[path = "support/tolerance.rs"]
 mod tolerance;
 
@@ -20,7 +22,7 @@ fn slits() -> impl Strategy<Value = u32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(fixed_seed::config(2000, 0x5EED_0009, "tests/kernel_properties.proptest-regressions"))]
 
     #[test]
     fn n_slit_lies_in_unit_interval(x in -X_MAX..X_MAX, n in slits()) {

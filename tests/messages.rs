@@ -114,16 +114,37 @@ fn strategy_parse_errors_list_the_ranges() {
     let grating = "unknown strategy: expected uniform:K (K from 1 to 65536), gauss:K (K from 1 \
                    to 8192), peaks, peaks-refined, asymptotic, exact, auto or auto:ACCURACY \
                    (ACCURACY from 1e-6 to 1)";
-    for s in [
-        "uniform:99999999999",
-        "uniform:0",
-        "gauss:9000",
-        "auto:0",
-        "nonsense",
+    assert_eq!(
+        "nonsense".parse::<Strategy>().unwrap_err().to_string(),
+        grating
+    );
+    // A known name with its number out of range: the number and the range.
+    for (s, want) in [
+        (
+            "uniform:99999999999",
+            "uniform count 99999999999 is out of range: expected 1 to 65536",
+        ),
+        (
+            "uniform:0",
+            "uniform count 0 is out of range: expected 1 to 65536",
+        ),
+        (
+            "gauss:9000",
+            "gauss interval count 9000 is out of range: expected 1 to 8192",
+        ),
+        (
+            "auto:0",
+            "auto accuracy 0 is out of range: expected 1e-6 to 1",
+        ),
+        (
+            "auto:1e-9",
+            "auto accuracy 1e-9 is out of range: expected 1e-6 to 1",
+        ),
     ] {
+        assert_eq!(s.parse::<Strategy>().unwrap_err().to_string(), want, "{s}");
         assert_eq!(
-            s.parse::<Strategy>().unwrap_err().to_string(),
-            grating,
+            s.parse::<GenericStrategy>().unwrap_err().to_string(),
+            want,
             "{s}"
         );
     }
@@ -169,6 +190,8 @@ mod serde_validation {
             "{e}"
         );
         let e = json_err::<Strategy>(r#""uniform:0""#);
+        assert!(e.starts_with("uniform count 0 is out of range"), "{e}");
+        let e = json_err::<Strategy>(r#""simpson""#);
         assert!(e.starts_with("unknown strategy: expected uniform:K"), "{e}");
         let e = json_err::<GenericStrategy>(r#""exact""#);
         assert!(e.starts_with("unknown generic strategy"), "{e}");

@@ -3,6 +3,8 @@
 
 #[path = "support/fine_quadrature.rs"]
 mod fine_quadrature;
+#[path = "support/fixed_seed.rs"]
+mod fixed_seed;
 #[path = "support/generic_models.rs"]
 mod generic_models;
 #[path = "support/tolerance.rs"]
@@ -216,7 +218,7 @@ fn monte_carlo_estimators_are_unbiased() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(fixed_seed::config(200, 0x5EED_000A, "tests/spectral.proptest-regressions"))]
 
     /// Every strategy returns finite, non-negative XYZ for any finite u and grating.
     #[test]
@@ -262,7 +264,7 @@ fn infinite_gratings_integrate_to_zero_off_the_mirror() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(60))]
+    #![proptest_config(fixed_seed::config(60, 0x5EED_000B, "tests/spectral.proptest-regressions"))]
 
     /// The generic path (what any model gets) on the Agu-Hill model, outside its contract,
     /// agrees with the grating's lobe-exact path to the generic `WINDOWS` rule's measured error

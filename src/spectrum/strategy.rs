@@ -442,14 +442,49 @@ enum Shared {
     Auto(f64),
 }
 
-fn parse_shared(s: &str) -> Option<Shared> {
-    match s.split_once(':') {
-        None => (s == "auto").then_some(Shared::Auto(DEFAULT_ACCURACY)),
-        Some(("uniform", k)) => k.parse().ok().map(Shared::Uniform),
-        Some(("gauss", k)) => k.parse().ok().map(Shared::Gauss),
-        Some(("auto", a)) => a.parse().ok().map(Shared::Auto),
-        Some(_) => None,
+/// A count in `1..=cap`, or the error that names the count and the range (digits beyond any
+/// integer type are out of range too).
+fn parse_count(
+    k: &str,
+    cap: u32,
+    what: &'static str,
+    range: &'static str,
+) -> Option<Result<u32, ParseError>> {
+    if k.is_empty() || !k.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
     }
+    let v: f64 = k.parse().ok()?;
+    Some(match k.parse::<u32>() {
+        Ok(n) if (1..=cap).contains(&n) => Ok(n),
+        _ => Err(ParseError::number_out_of_range(what, v, range)),
+    })
+}
+
+/// `uniform:K`, `gauss:K`, `auto`, `auto:A`: `None` for anything else, an error naming the
+/// number where the name is known and its number out of range.
+fn parse_shared(s: &str) -> Option<Result<Shared, ParseError>> {
+    Some(match s.split_once(':') {
+        None => return (s == "auto").then_some(Ok(Shared::Auto(DEFAULT_ACCURACY))),
+        Some(("uniform", k)) => {
+            parse_count(k, MAX_WAVELENGTHS, "uniform count", "1 to 65536")?.map(Shared::Uniform)
+        }
+        Some(("gauss", k)) => {
+            parse_count(k, MAX_INTERVALS, "gauss interval count", "1 to 8192")?.map(Shared::Gauss)
+        }
+        Some(("auto", a)) => {
+            let v: f64 = a.parse().ok()?;
+            if v.is_finite() && (MIN_ACCURACY..=MAX_ACCURACY).contains(&v) {
+                Ok(Shared::Auto(v))
+            } else {
+                Err(ParseError::number_out_of_range(
+                    "auto accuracy",
+                    v,
+                    "1e-6 to 1",
+                ))
+            }
+        }
+        Some(_) => return None,
+    })
 }
 
 impl FromStr for Strategy {
@@ -479,12 +514,12 @@ impl FromStr for Strategy {
             return Ok(f);
         }
         match parse_shared(s) {
-            Some(Shared::Uniform(k)) => Strategy::uniform(k).ok(),
-            Some(Shared::Gauss(k)) => Strategy::gauss_legendre(k).ok(),
-            Some(Shared::Auto(a)) => Strategy::auto(a).ok(),
-            None => None,
+            Some(Ok(Shared::Uniform(k))) => Strategy::uniform(k).map_err(|_| PARSE_STRATEGY),
+            Some(Ok(Shared::Gauss(k))) => Strategy::gauss_legendre(k).map_err(|_| PARSE_STRATEGY),
+            Some(Ok(Shared::Auto(a))) => Strategy::auto(a).map_err(|_| PARSE_STRATEGY),
+            Some(Err(e)) => Err(e),
+            None => Err(PARSE_STRATEGY),
         }
-        .ok_or(PARSE_STRATEGY)
     }
 }
 
@@ -508,12 +543,14 @@ impl FromStr for GenericStrategy {
             return Ok(f);
         }
         match parse_shared(s) {
-            Some(Shared::Uniform(k)) => GenericStrategy::uniform(k).ok(),
-            Some(Shared::Gauss(k)) => GenericStrategy::gauss_legendre(k).ok(),
-            Some(Shared::Auto(a)) => GenericStrategy::auto(a).ok(),
-            None => None,
+            Some(Ok(Shared::Uniform(k))) => GenericStrategy::uniform(k).map_err(|_| PARSE_GENERIC),
+            Some(Ok(Shared::Gauss(k))) => {
+                GenericStrategy::gauss_legendre(k).map_err(|_| PARSE_GENERIC)
+            }
+            Some(Ok(Shared::Auto(a))) => GenericStrategy::auto(a).map_err(|_| PARSE_GENERIC),
+            Some(Err(e)) => Err(e),
+            None => Err(PARSE_GENERIC),
         }
-        .ok_or(PARSE_GENERIC)
     }
 }
 
