@@ -164,8 +164,14 @@ struct Node {
 ///   Nodes whose colour is provably below the tolerance (S(β) ≤ 1/β² at the band's smallest
 ///   phase, times the white, below 0.043·accuracy of the floor 555/(N·∫ȳ)) are black without an
 ///   evaluation: the dense combs of orders of very coarse gratings.
-/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) needs a
-///   per-wavelength weight in [`Spectral`], which it does not have yet.
+/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) is the table of
+///   [`Spectral::with_envelope`]`(response.envelope)` where the envelope does not depend on the
+///   directions (a Gaussian groove: λ⁻¹), the colour then `response.scale · lookup(response.u)`
+///   for the [`GratingResponse`](crate::GratingResponse) of
+///   [`SpectralResponse::grating_response`](crate::SpectralResponse::grating_response) (measured
+///   20 ns against 0.8 ms for the generic `xyz_brdf` and 22 µs for `xyz_response` with
+///   `auto(1e-3)`, CD grating, within 8·10⁻⁵ of `Exact`). A coherence length's envelope
+///   depends on v: use [`Spectral::xyz_response`] there.
 ///
 /// ```
 /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
