@@ -5,13 +5,17 @@ use alloc::vec::Vec;
 
 use crate::color::Xyz;
 use crate::error::{Error, Requirement};
-use crate::math::cbrt;
 use crate::spectrum::bounds::{self, accuracy_floor};
 #[cfg(doc)]
 use crate::spectrum::DEFAULT_ACCURACY;
 use crate::spectrum::{Illuminant, Spectral, Strategy};
 use crate::spectrum::{MAX_ACCURACY, MIN_ACCURACY};
 use crate::{Grating, Slits};
+
+mod grid;
+use grid::{
+    assemble, cell_integral, derivatives, hermite, power_of_two_below, tolerance, work_units,
+};
 
 /// Blocks per octave of u, as a power of two: the lookup reads the block from the exponent and the
 /// top `SUB_BITS` bits of the mantissa.
@@ -23,6 +27,8 @@ const U_MAX: f64 = 2.0;
 /// Shortest wavelength of the band, nm: order 0's first zero is at u = λ/(N·d), at least this
 /// over N·d.
 const LAMBDA_MIN_NM: f64 = 360.0;
+/// Longest wavelength of the band, nm: the smallest phase over the band is d·|u|/830.
+const LAMBDA_MAX_NM: f64 = 830.0;
 /// The first block [0, u₀) ends below λ_min/(`LOBE_FRACTION`·N·d): 1 − F_N < π²/(3·20²) < 1 %.
 const LOBE_FRACTION: f64 = 20.0;
 /// The first block ends at least here, 2⁻⁶⁴, so that there are at most 65 octaves (520 blocks,
@@ -41,6 +47,10 @@ const MAX_BLOCK_INTERVALS: usize = 1024;
 /// (the difference is of order (fraction)² of the cell's curvature; the cumulative form would
 /// lose digits instead).
 const TINY_FRACTION: f64 = 1.0 / (1u64 << 20) as f64;
+/// The share of the accuracy a node may use where `Exact` would otherwise be taken: the
+/// tolerance in the dark is (6/29)² = 0.043 of the accuracy (see [`tolerance`]), so a strategy
+/// whose bound meets this share of it keeps every channel inside its tolerance.
+const DARK_SHARE: f64 = (6.0 / 29.0) * (6.0 / 29.0);
 
 /// One uniform block of the grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -131,7 +141,9 @@ struct Node {
 /// where order 0's light reaches it but the colour is dark enough for `Asymptotic`'s bound
 /// (10⁻³ of that light) to move CIELAB's f(t) by less than accuracy/3 (t ≤ (accuracy/10⁻³)³);
 /// every other node (order 0's bright lobe and near tail, N < 5) is [`Strategy::EXACT`], which
-/// then dominates the build time. Memory is 72 bytes per node plus 32 per block
+/// then dominates the build time. Below that accuracy a node is the cheapest strategy whose
+/// bound meets 0.043 of the accuracy ([`Spectral::choose`] with [`Strategy::auto`]: the peak
+/// search for very fine gratings, N ≳ 10⁸ at 10⁻⁶, else `Exact`). Memory is 72 bytes per node plus 32 per block
 /// ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
 ///
 /// # Limits
@@ -142,8 +154,24 @@ struct Node {
 ///   tabulated; they cost O(visible orders) per call already.
 /// * |u| > 2 (no pair of unit directions gives it) is taken as 2; NaN and ±∞ give black, as in
 ///   [`Spectral::xyz`].
-/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) needs a
-///   per-wavelength weight in [`Spectral`], which it does not have yet.
+/// * Where N·d > 3.3·10²⁰ nm order 0's lobe (360 nm/(N·d) wide in u) is narrower than 1/20 of
+///   the first block [0, 2⁻⁶⁴): no grid of that spacing resolves it, so lookups with
+///   |u| < 2⁻⁶⁴ are [`Strategy::EXACT`] (microseconds instead of nanoseconds, on a range of
+///   u no unit direction pair is likely to give), [`error_estimate`](Self::error_estimate)
+///   leaves that block out, and [`mean`](Self::mean) over intervals within it uses its three
+///   tabulated values.
+/// * The work is capped: [`MAX_WORK`](Self::MAX_WORK).
+///   Nodes whose colour is provably below the tolerance (S(β) ≤ 1/β² at the band's smallest
+///   phase, times the white, below 0.043·accuracy of the floor 555/(N·∫ȳ)) are black without an
+///   evaluation: the dense combs of orders of very coarse gratings.
+/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) is the table of
+///   [`Spectral::with_envelope`]`(response.envelope)` where the envelope does not depend on the
+///   directions (a Gaussian groove: λ⁻¹), the colour then `response.scale · lookup(response.u)`
+///   for the [`GratingResponse`](crate::GratingResponse) of
+///   [`SpectralResponse::grating_response`](crate::SpectralResponse::grating_response) (measured
+///   20 ns against 0.8 ms for the generic `xyz_brdf` and 22 µs for `xyz_response` with
+///   `auto(1e-3)`, CD grating, within 8·10⁻⁵ of `Exact`). A coherence length's envelope
+///   depends on v: use [`Spectral::xyz_response`] there.
 ///
 /// ```
 /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -171,6 +199,13 @@ pub struct ColorTable {
     nodes: Vec<Node>,
     /// ∫₀^{u_i} of the interpolant at every node.
     cumulative: Vec<[f64; 3]>,
+    /// Where order 0's lobe is narrower than the first block (N·d > 360/(20·2⁻⁶⁴) nm): the
+    /// end of that block, below which a lookup is `Exact`; −1 where the grid resolves the lobe.
+    exact_below: f64,
+    /// The integrator, for those lookups.
+    spectral: Spectral,
+    /// Colour evaluations the build took.
+    evaluations: usize,
 }
 
 /// A block while the grid is refined.
@@ -214,6 +249,26 @@ impl ColorTable {
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     pub const MAX_NODES: usize = 6144;
+
+    /// The work budget of a build's refinement, in units of colour evaluations: each
+    /// [`Spectral::xyz`] call counts 1 + min(K, 4096)/1024 units for K orders in the band at
+    /// its u (the part of every strategy's work that grows with the grating). The initial grid
+    /// (at most 1041 nodes, 1040 midpoint checks and 520 block midpoints) is always evaluated;
+    /// refinement goes on while the budget lasts (worst blocks first;
+    /// [`error_estimate`](Self::error_estimate) says what was reached). Every evaluation does
+    /// bounded work, so every build does: the slowest measured are N ≈ 2³² at accuracy 10⁻⁶
+    /// (nodes by the peak search over up to 4096 orders, about 0.1-0.3 ms each: 1-2 s for the
+    /// table); tables of N ≤ 10⁶ and d ≤ 100 µm stay below the budget.
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 1000)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert!(t.evaluations() <= ColorTable::MAX_WORK);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub const MAX_WORK: usize = 16384;
 
     /// Tabulates the colour of `grating` under `spectral`'s illuminant, refining until every
     /// interval's midpoint meets `accuracy` in the sense of the [Accuracy](Self#accuracy) section
@@ -272,7 +327,30 @@ impl ColorTable {
             let r = accuracy / bounds::ASYMPTOTIC_ORDER0;
             r * r * r
         };
+        // Below the accuracy where `Asymptotic` is used, a node is the cheapest strategy whose
+        // bound meets DARK_SHARE of the accuracy (the peak search for very fine gratings,
+        // whose bound 8/N is far below it; otherwise `Exact`).
+        let careful = Strategy::auto((accuracy * DARK_SHARE).max(MIN_ACCURACY))?;
+        let evaluations = core::cell::Cell::new(0usize);
+        let work_done = core::cell::Cell::new(0usize);
+        // A colour is at most S_max·flat per channel (F_N ≤ 1, S(β) ≤ 1/β² with β ≥ π·ρ·x at
+        // the band's longest wavelength), and the tolerance at least DARK_SHARE·accuracy·
+        // white·floor: where that bound is below it the node is black without an evaluation
+        // (the dense combs of very coarse gratings, d·|u| in millimetres and more).
+        let flat = spectral.xyz(grating, 0.0, Strategy::EXACT);
+        let flat = [flat.x, flat.y, flat.z];
+        let dark = accuracy * DARK_SHARE * accuracy_floor(n);
+        let slit = core::f64::consts::PI * grating.open_fraction() / LAMBDA_MAX_NM;
+        let provably_dark = |u: f64| {
+            let beta = slit * d * u;
+            beta > 1.0 && (0..3).all(|c| flat[c] / (beta * beta) <= dark * white[c])
+        };
         let eval = |u: f64, scale: f64| {
+            if provably_dark(u) {
+                return [0.0; 3];
+            }
+            evaluations.set(evaluations.get() + 1);
+            work_done.set(work_done.get() + work_units(d * u));
             if fast {
                 let c = spectral.xyz(grating, u, Strategy::ASYMPTOTIC);
                 let c = [c.x, c.y, c.z];
@@ -284,14 +362,22 @@ impl ColorTable {
                     return c;
                 }
             }
-            let c = spectral.xyz(grating, u, Strategy::EXACT);
+            let strategy = if fast {
+                Strategy::EXACT
+            } else {
+                spectral.choose(grating, u, careful)
+            };
+            let c = spectral.xyz(grating, u, strategy);
             [c.x, c.y, c.z]
         };
         let mut scale = accuracy_floor(n);
         let diffracted_from = LAMBDA_MIN_NM / d;
 
         // Blocks: [0, u_lo), then 2^SUB_BITS per octave up to U_MAX.
-        let u_lo = power_of_two_below(LAMBDA_MIN_NM / (LOBE_FRACTION * n * d)).clamp(MIN_U_LO, 1.0);
+        let lobe_end = LAMBDA_MIN_NM / (LOBE_FRACTION * n * d);
+        let u_lo = power_of_two_below(lobe_end).clamp(MIN_U_LO, 1.0);
+        // Order 0's lobe narrower than the first block: not resolved (see `lookup`).
+        let unresolved = lobe_end < MIN_U_LO || lobe_end.is_nan();
         let base_key = u_lo.to_bits() >> SHIFT;
         let end_key = U_MAX.to_bits() >> SHIFT;
         let mut bounds = Vec::with_capacity((end_key - base_key + 2) as usize);
@@ -317,6 +403,12 @@ impl ColorTable {
                 }
             })
             .collect();
+        if unresolved {
+            // The first block holds the lobe, which no grid of that spacing resolves: lookups
+            // there are `Exact`, so the block is neither refined nor checked (its values only
+            // enter `mean`).
+            work[0].capped = true;
+        }
         let mut nodes_used = 2 * bounds.len() - 1;
         for w in &work {
             for (j, v) in w.vals.iter().enumerate() {
@@ -362,12 +454,19 @@ impl ColorTable {
                 break;
             }
             failing.sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
+            // The evaluations spent and planned for the next round's midpoint checks.
+            let mut planned = work_done.get();
             for (k, _) in failing {
                 let w = &mut work[k];
-                if nodes_used + w.n > Self::MAX_NODES || w.n >= MAX_BLOCK_INTERVALS {
+                // Doubling adds w.n nodes (already evaluated as midpoints) and costs 2·w.n
+                // new midpoint checks.
+                let cost = 2 * w.n * work_units(d * (w.u0 + w.n as f64 * w.h));
+                let over_budget = planned + cost > Self::MAX_WORK;
+                if nodes_used + w.n > Self::MAX_NODES || w.n >= MAX_BLOCK_INTERVALS || over_budget {
                     w.capped = true;
                     continue;
                 }
+                planned += cost;
                 nodes_used += w.n;
                 let mut vals = Vec::with_capacity(2 * w.n + 1);
                 for (j, m) in w.mids.iter().enumerate() {
@@ -382,7 +481,8 @@ impl ColorTable {
             }
         }
 
-        let error = work.iter().fold(0.0f64, |m, w| m.max(w.err));
+        let skip = unresolved as usize;
+        let error = work.iter().skip(skip).fold(0.0f64, |m, w| m.max(w.err));
         let (xs, fs, starts) = assemble(&work);
         let ds = derivatives(&xs, &fs);
         let blocks: Vec<Block> = work
@@ -421,7 +521,26 @@ impl ColorTable {
             blocks,
             nodes,
             cumulative,
+            exact_below: if unresolved { u_lo } else { -1.0 },
+            spectral: *spectral,
+            evaluations: evaluations.get(),
         })
+    }
+
+    /// The number of colour evaluations ([`Spectral::xyz`] calls) the build took (see
+    /// [`MAX_WORK`](Self::MAX_WORK)).
+    ///
+    /// ```
+    /// use diffraction::spectrum::{Illuminant, Spectral};
+    /// use diffraction::{ColorTable, Grating};
+    /// let g = Grating::new(1600.0, 800.0, 21)?;
+    /// let t = ColorTable::new(&Spectral::new(Illuminant::E), &g, 1e-3)?;
+    /// assert!(t.evaluations() >= t.node_count()); // every node, and the midpoint checks
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn evaluations(&self) -> usize {
+        self.evaluations
     }
 
     /// The interpolated colour at u: XYZ(|u|), O(1). |u| > 2 is taken as 2; NaN and ±∞ give
@@ -446,6 +565,9 @@ impl ColorTable {
         let a = u.abs();
         if !a.is_finite() {
             return Xyz::default();
+        }
+        if a < self.exact_below {
+            return self.spectral.xyz(&self.grating, a, Strategy::EXACT);
         }
         let (i, s, h) = self.locate(a.min(U_MAX));
         let f = hermite(&self.nodes[i], &self.nodes[i + 1], h, s);
@@ -661,119 +783,4 @@ impl ColorTable {
             + self.nodes.capacity() * core::mem::size_of::<Node>()
             + self.cumulative.capacity() * core::mem::size_of::<[f64; 3]>()
     }
-}
-
-/// The error allowed in channel `c` of `exact`, over the accuracy: the change of that channel
-/// that moves CIELAB's f(t) = t^(1/3) (linear below t = (6/29)³) by 1/3, at the exposure
-/// Y' = max(`scale`, Y) (t = channel / (white · Y')). So it is white_c·Y'·max(t, (6/29)³)^(2/3):
-/// at most white_c·Y' for channels up to the white, 0.043·white_c·Y_b where the colour is dark.
-fn tolerance(exact: &[f64; 3], c: usize, scale: f64, white: [f64; 3]) -> f64 {
-    const DARK: f64 = (6.0 / 29.0) * (6.0 / 29.0) * (6.0 / 29.0);
-    let exposure = scale.max(exact[1]);
-    let t = (exact[c] / (white[c] * exposure)).max(DARK);
-    let r = cbrt(t);
-    white[c] * exposure * r * r
-}
-
-/// 2^⌊log₂ x⌋ for positive finite x (the smallest normal number for smaller x).
-fn power_of_two_below(x: f64) -> f64 {
-    let x = x.max(f64::MIN_POSITIVE);
-    f64::from_bits(x.to_bits() & !((1u64 << 52) - 1))
-}
-
-/// The nodes of all blocks in order (shared ends once), their values, and each block's first
-/// node index.
-fn assemble(work: &[Work]) -> (Vec<f64>, Vec<[f64; 3]>, Vec<usize>) {
-    let total = 1 + work.iter().map(|w| w.n).sum::<usize>();
-    let (mut xs, mut fs, mut starts) = (
-        Vec::with_capacity(total),
-        Vec::with_capacity(total),
-        Vec::with_capacity(work.len()),
-    );
-    for (k, w) in work.iter().enumerate() {
-        starts.push(if k == 0 { 0 } else { xs.len() - 1 });
-        let skip = (k > 0) as usize;
-        for j in skip..=w.n {
-            xs.push(w.u0 + j as f64 * w.h);
-            fs.push(w.vals[j]);
-        }
-    }
-    (xs, fs, starts)
-}
-
-/// Derivatives at the nodes: the derivative of the Lagrange polynomial through the five nearest
-/// nodes (shifted inward at u = 2; mirrored through u = 0, where the colour is even, so the
-/// derivative at 0 is 0).
-fn derivatives(xs: &[f64], fs: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    let m = xs.len() as isize;
-    let point = |j: isize| -> (f64, [f64; 3]) {
-        if j >= 0 {
-            (xs[j as usize], fs[j as usize])
-        } else {
-            (-xs[(-j) as usize], fs[(-j) as usize])
-        }
-    };
-    let mut out = Vec::with_capacity(xs.len());
-    out.push([0.0; 3]);
-    for i in 1..m {
-        let lo = (i - 2).min(m - 5).max(-(m - 1));
-        let hi = (lo + 4).min(m - 1);
-        let (xc, _) = point(i);
-        let mut d = [0.0; 3];
-        for k in lo..=hi {
-            let (xk, fk) = point(k);
-            let weight = if k == i {
-                (lo..=hi)
-                    .filter(|&j| j != i)
-                    .map(|j| 1.0 / (xc - point(j).0))
-                    .sum::<f64>()
-            } else {
-                let mut num = 1.0;
-                let mut den = 1.0;
-                for j in lo..=hi {
-                    if j != k {
-                        den *= xk - point(j).0;
-                        if j != i {
-                            num *= xc - point(j).0;
-                        }
-                    }
-                }
-                num / den
-            };
-            for c in 0..3 {
-                d[c] += weight * fk[c];
-            }
-        }
-        out.push(d);
-    }
-    out
-}
-
-/// The cubic Hermite interpolant between nodes p and q (spacing h) at fraction s.
-#[inline]
-fn hermite(p: &Node, q: &Node, h: f64, s: f64) -> [f64; 3] {
-    let s2 = s * s;
-    let s3 = s2 * s;
-    let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
-    let h10 = (s3 - 2.0 * s2 + s) * h;
-    let h01 = 3.0 * s2 - 2.0 * s3;
-    let h11 = (s3 - s2) * h;
-    [
-        h00 * p.f[0] + h10 * p.d[0] + h01 * q.f[0] + h11 * q.d[0],
-        h00 * p.f[1] + h10 * p.d[1] + h01 * q.f[1] + h11 * q.d[1],
-        h00 * p.f[2] + h10 * p.d[2] + h01 * q.f[2] + h11 * q.d[2],
-    ]
-}
-
-/// ∫ of the Hermite interpolant over the first fraction s of the cell [p, q] (spacing h).
-#[inline]
-fn cell_integral(p: &Node, q: &Node, h: f64, s: f64) -> [f64; 3] {
-    let s2 = s * s;
-    let s3 = s2 * s;
-    let s4 = s2 * s2;
-    let i00 = (s - s3 + 0.5 * s4) * h;
-    let i10 = (0.5 * s2 - 2.0 / 3.0 * s3 + 0.25 * s4) * h * h;
-    let i01 = (s3 - 0.5 * s4) * h;
-    let i11 = (0.25 * s4 - s3 / 3.0) * h * h;
-    core::array::from_fn(|c| i00 * p.f[c] + i10 * p.d[c] + i01 * q.f[c] + i11 * q.d[c])
 }

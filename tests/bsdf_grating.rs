@@ -481,7 +481,8 @@ mod formulas {
                 let hi = ((wo.x + 1.0) / step + 0.5).ceil() as i64 - 1;
                 let total: f64 = (lo..=hi).map(|m| order_weight(rho, m)).sum();
                 let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-                let x = u / step;
+                // The phase as documented: x = d·(u/λ), the rounding `eval` reads too.
+                let x = d * (u / l);
                 let m = x.round_ties_even();
                 let r = x - m;
                 let pm = order_weight(rho, m as i64) / total;

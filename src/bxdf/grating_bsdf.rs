@@ -52,7 +52,12 @@
 //! ```
 //!
 //! computed by [`GratingBsdf::sample_weight_bound`] (10-22 for a CD-like grating; the largest
-//! weight measured in the furnace tests is 2.65, at N = 1); for N = ∞ with an ideal groove the weight is the constant ρ²·Σ S(π·ρ·m).
+//! weight measured in the furnace tests is 2.65, at N = 1); for N = ∞ with an ideal groove the
+//! weight is the constant ρ²·Σ S(π·ρ·m). The bound holds for every input, also where a lobe is
+//! narrower than the rounding of the phase x = d·u/λ (N·|x| beyond about 2⁵²: the sampled r
+//! is then lost to rounding when u is re-derived from wi): `eval` and `pdf` read the same
+//! rounded phase d·(u/λ), so N·F_N/q ≤ 2·atan N holds at whatever r the returned direction
+//! has.
 //!
 //! # Flags and the specular threshold
 //!
@@ -116,7 +121,7 @@ mod orders;
 mod regularize;
 mod wavelength;
 
-pub use albedo::MAX_ALBEDO_ORDERS;
+pub use albedo::{ALBEDO_CUT_MARGIN, MAX_ALBEDO_ORDERS};
 pub use efficiency::OrderEfficiency;
 use lobe::{lorentz_q, lorentz_r, GrooveFactor, Lobe};
 use orders::{Candidates, OrderDistribution};
@@ -479,7 +484,8 @@ impl SpectralResponse for GratingBsdf {
     /// the envelope λ⁻¹ (a groove spread that does not depend on λ) or λ⁻²·sinc²(π·L·v/λ) (a
     /// coherence length L, whose g is (L/λ)·sinc²(π·L·v/λ)), so the colour integrator takes its
     /// lobe-exact paths. `None` for N = ∞ and the ideal groove (delta lobes: `eval` is 0 and
-    /// the colour is the peaks' areas) and below the horizon.
+    /// the colour is the peaks' areas), below the horizon, and where u = wi.x + wo.x or
+    /// v = wi.y + wo.y is not finite (non-unit inputs whose sum overflows).
     fn grating_response(&self, wo: DVec3, wi: DVec3) -> Option<GratingResponse> {
         if !both_above(wo, wi) {
             return None;
@@ -488,6 +494,10 @@ impl SpectralResponse for GratingBsdf {
             return None;
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
+        if !(u.is_finite() && v.is_finite()) {
+            // Components beyond unit vectors whose sum overflows: no finite phase.
+            return None;
+        }
         let rho = self.grating.open_fraction();
         let base = wi.z.min(1.0) * rho * rho * n as f64 * self.grating.period_nm();
         let (scale, envelope) = match self.groove.kind() {
@@ -540,7 +550,14 @@ impl Bsdf for GratingBsdf {
                 let (u, v) = (wi.x + wo.x, wi.y + wo.y);
                 (
                     self.lobe.value(u, v, lambda_nm),
-                    self.pdf_x(&c, n as f64, u / step, v, wi.z, lambda_nm),
+                    self.pdf_x(
+                        &c,
+                        n as f64,
+                        self.lobe.phase(u, lambda_nm),
+                        v,
+                        wi.z,
+                        lambda_nm,
+                    ),
                     BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
                 )
             }
@@ -631,10 +648,12 @@ impl GratingBsdf {
             return 0.0;
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        self.pdf_x(&c, self.lobe.n as f64, u / step, v, wi.z, lambda_nm)
+        let x = self.lobe.phase(u, lambda_nm);
+        self.pdf_x(&c, self.lobe.n as f64, x, v, wi.z, lambda_nm)
     }
 
-    /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi at the phase x = u/(λ/d) (m = round(x), r = x − m) for the
+    /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi at the phase x = d·(u/λ) (m = round(x), r = x − m; the
+    /// phase `eval` evaluates F_N at, rounded the same way: `Lobe::phase`) for the
     /// candidates `c`, with two divisions: the order and u factors, and the v and cosine
     /// factors (q_v = (1/s)/(π·(1 + (v/s)²)), [`GrooveSpread::pdf`] to rounding).
     #[inline(always)]

@@ -17,7 +17,7 @@
 //! assert!(bounds::ASYMPTOTIC_ORDERS < bounds::PEAK_SEARCH_PER_SLIT / 1000.0);
 //! ```
 
-use crate::cie;
+use crate::cie_data;
 
 /// The peak search's bound is `PEAK_SEARCH_PER_SLIT / N` of the accuracy unit. Its leading
 /// error is the far tails of each order (F_N's mass spread over the period, with E·S·cmf not
@@ -64,6 +64,26 @@ pub const WINDOWS: f64 = 1e-6;
 /// ȳ).
 pub const FLOOR_PEAK_NM: f64 = 555.0;
 
+/// ∫ȳ dλ over the band, as [`cmf_areas`](crate::cie::cmf_areas) integrates it (the same operations in the same
+/// order, at compile time, so that the floor costs one division instead of a pass over the
+/// table).
+const YBAR_AREA: f64 = {
+    let rows = (cie_data::LAST_NM - cie_data::FIRST_NM) as usize;
+    let mut sum = 0.0;
+    let mut i = 0;
+    while i < rows {
+        let (a0, a1) = (1.0, 1.0);
+        let (b0, b1) = (
+            cie_data::CIE1931_2DEG[i][1],
+            cie_data::CIE1931_2DEG[i + 1][1],
+        );
+        let mid = 0.25 * (a0 + a1) * (b0 + b1);
+        sum += (a0 * b0 + 4.0 * mid + a1 * b1) / 6.0;
+        i += 1;
+    }
+    sum
+};
+
 /// The floor of the accuracy unit for N slits: 555/(N·∫ȳ dλ), the Y of an ideal first-order
 /// peak (S = 1) at 555 nm under a flat illuminant: the peak value 1 times its equivalent width
 /// λ/(|m|·N), over ∫ȳ. `f64::MIN_POSITIVE` for N = ∞ (or N ≤ 0).
@@ -75,7 +95,7 @@ pub const FLOOR_PEAK_NM: f64 = 555.0;
 /// ```
 #[must_use]
 pub fn accuracy_floor(slits: f64) -> f64 {
-    let y = FLOOR_PEAK_NM / (slits * cie::cmf_areas()[1]);
+    let y = FLOOR_PEAK_NM / (slits * YBAR_AREA);
     if y.is_finite() && y > 0.0 {
         y.max(f64::MIN_POSITIVE)
     } else {
@@ -129,5 +149,14 @@ impl Bound {
             order0: 0.0,
             of_colour,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The compile-time ∫ȳ is the run-time one to the bit.
+    #[test]
+    fn ybar_area_matches_the_table() {
+        assert_eq!(super::YBAR_AREA, crate::cie::cmf_areas()[1]);
     }
 }

@@ -88,6 +88,14 @@ impl Lobe {
         (self.scale * big * (a * a), (b * b) * lambda_nm)
     }
 
+    /// The phase x = d·(u/λ) as [`ratio`](Self::ratio) rounds it (the product of d with
+    /// q = u/λ), which the density reads too, so that f and pdf see the same r = x − round(x)
+    /// wherever rounding moves x by more than a lobe.
+    #[inline(always)]
+    pub(super) fn phase(&self, u: f64, lambda_nm: f64) -> f64 {
+        self.d * (u / lambda_nm)
+    }
+
     /// f at (u, v), finite and ≥ 0 (0 where the phase or the value is not finite).
     #[inline]
     pub(super) fn value(&self, u: f64, v: f64, lambda_nm: f64) -> f64 {
