@@ -466,3 +466,33 @@ fn light_samples_times_exact_colours_are_bounded() {
         Ok(())
     );
 }
+
+/// A scene the path tracer cannot render, after one it can, is reported before anything is
+/// rendered or written: the first scene's existing picture stays as it was.
+#[test]
+fn a_scene_for_the_other_renderer_fails_the_run_before_any_write() {
+    let dir = std::env::temp_dir().join(format!("pathtrace-plan-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let old = b"an existing picture";
+    std::fs::write(dir.join("cd_area_light.png"), old).unwrap();
+    let opts = crate::cli::Options {
+        scenes: vec!["cd_area_light".into(), "fig4a".into()],
+        out: Some(dir.clone()),
+        quiet: true,
+        ..Default::default()
+    };
+    let fig4a = scenes_dir().join("fig4a.toml");
+    assert_eq!(
+        crate::run::run(&Integrator::Path, &opts),
+        Err(format!(
+            "{}: field radiometry: a scene without a [radiometry] table (no physical units) is \
+             the paper's ray tracer's: render it with `cargo run --release --example raytrace \
+             -- fig4a`",
+            fig4a.display()
+        ))
+    );
+    assert_eq!(std::fs::read(dir.join("cd_area_light.png")).unwrap(), old);
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
