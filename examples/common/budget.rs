@@ -103,12 +103,20 @@ fn grating_ns(spectral: &Spectral, g: &Grating, strategy: Strategy) -> f64 {
         Slits::Finite(n) if n < 100 => 6e3,
         _ => 0.0,
     };
+    // Each line: the measured worst over N = 10-2³² at each period (400, 1600, 10⁴, 10⁵ nm),
+    // as a constant plus a slope in d (the number of orders in the band grows with d).
     match strategy {
+        // 0.7-4.4 µs (7 µs for N < 100).
         Strategy::PeakSearch { .. } => 1.5e3 + 0.05 * d + few,
+        // 0.2-3 µs.
         Strategy::PaperPeaks => 200.0 + 0.03 * d + few,
+        // 60-310 µs at d = 400 nm, 0.7-4.8 ms at 10⁵ nm.
         Strategy::Exact => 3e5 + 45.0 * d,
+        // 5-27 µs.
         Strategy::Asymptotic => 3e4,
+        // 40-55 ns a wavelength.
         Strategy::Uniform { samples } => 60.0 * samples as f64,
+        // 8 wavelengths an interval: 330-420 ns.
         Strategy::GaussLegendre { intervals } => 450.0 * intervals as f64,
         // What Auto picks over u in (0, 2], at its dearest.
         Strategy::Auto { accuracy } => (1..=40)
