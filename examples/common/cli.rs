@@ -28,6 +28,8 @@ OPTIONS:
                        its target: PATH/NAME_0000.png ... and PATH/NAME.gif
     --compare-clip     one picture of three panels: the render clipped with clamp,
                        intensity and constant (default file out/NAME-clipping.png)
+    --dry-run          load the scenes, check the outputs and estimate the work (printed),
+                       but prepare, render and write nothing
     --quiet            no progress bar and no messages
     -h, --help         this text
 ";
@@ -43,6 +45,12 @@ OUTPUTS:
     to a missing file is refused. Every file is written under a temporary name and all are
     renamed into place together once all are complete, missing directories made then: a
     run that fails, at any step, leaves every existing file as it was and creates nothing.
+
+WORK:
+    Before anything is prepared or rendered, each scene's work is estimated (ray-object
+    tests, shadow rays, colour evaluations, exposure scans, colour tables; --dry-run prints
+    it) and a scene estimated above 600 s of one core is refused, naming the largest part and
+    the options or scene fields that reduce it (examples/common/budget.rs).
 ";
 
 /// The options of a render that both renderers take.
@@ -74,6 +82,8 @@ pub struct Options {
     pub compare_clip: bool,
     /// `--quiet`: no progress bar, no messages.
     pub quiet: bool,
+    /// `--dry-run`: check and estimate only.
+    pub dry_run: bool,
 }
 
 /// A renderer's own arguments.
@@ -143,6 +153,7 @@ pub fn parse<X: Extra>(args: &[String]) -> Result<Command<X>, String> {
             "-h" | "--help" => return Ok(Command::Help),
             "--quiet" | "-q" => opts.quiet = true,
             "--compare-clip" => opts.compare_clip = true,
+            "--dry-run" => opts.dry_run = true,
             "--width" => opts.width = Some(int(flag, &value()?, 1, MAX_SIZE)?),
             "--height" => opts.height = Some(int(flag, &value()?, 1, MAX_SIZE)?),
             "--spp" => opts.spp = Some(int(flag, &value()?, 1, MAX_SPP)?),

@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::budget::Estimate;
 use crate::camera::{progress_wanted, Camera};
 use crate::cli::Options;
 use crate::files::{self, Kind, Target, Transaction};
@@ -29,6 +30,9 @@ pub trait Renderer: Sync {
         scene: Scene<Self::Physics>,
         note: &dyn Fn(&str),
     ) -> Result<Self::Prepared, String>;
+    /// The work of rendering `frames` pictures of `scene` and of preparing it, before it is
+    /// prepared ([`crate::budget`]).
+    fn estimate(&self, scene: &Scene<Self::Physics>, frames: u32) -> Estimate;
     /// The scene of a prepared scene.
     fn scene<'a>(&self, prepared: &'a Self::Prepared) -> &'a Scene<Self::Physics>;
     /// Renders from `camera` with the scene's settings, with a progress bar of that label.
@@ -357,24 +361,49 @@ pub fn run<R: Renderer>(r: &R, opts: &Options) -> Result<(), String> {
             continue;
         };
         let s = &scene.settings;
-        limits::work(s.width, s.height, s.spp, opts.frames.unwrap_or(1))
+        let frames = opts.frames.unwrap_or(1);
+        limits::work(s.width, s.height, s.spp, frames)
             .map_err(|e| format!("{}: {e}", scene.name))?;
+        let estimate = r.estimate(&scene, frames);
+        estimate.check(&scene.name)?;
+        if opts.dry_run {
+            println!(
+                "{}: estimated work {} s of one core ({})",
+                scene.name,
+                crate::budget::short(estimate.seconds()),
+                estimate
+                    .parts
+                    .iter()
+                    .map(|p| format!("{} s for {}", crate::budget::short(p.ns * 1e-9), p.what))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
         let outputs = outputs(&scene.name, single, all, opts)?;
-        planned.push((scene, outputs));
+        planned.push((scene, outputs, estimate.seconds()));
     }
     let targets: Vec<Target> = planned
         .iter()
-        .flat_map(|(_, o)| o.targets())
+        .flat_map(|(_, o, _)| o.targets())
         .cloned()
         .collect();
     let inputs: Vec<files::Input> = planned
         .iter()
-        .flat_map(|(s, _)| s.inputs.iter().cloned())
+        .flat_map(|(s, _, _)| s.inputs.iter().cloned())
         .collect();
     files::check(&targets, &inputs)?;
+    if opts.dry_run {
+        return Ok(());
+    }
     let mut jobs = Vec::new();
-    for (scene, outputs) in planned {
+    for (scene, outputs, estimate) in planned {
+        let work = format!(
+            "{}: estimated work {} s of one core",
+            scene.name,
+            crate::budget::short(estimate)
+        );
         jobs.push((r.prepare(scene, &|m| note(opts, m))?, outputs));
+        note(opts, &work);
     }
     let mut staged = Transaction::default();
     for (prepared, outputs) in &jobs {

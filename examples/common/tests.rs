@@ -8,6 +8,7 @@ use std::path::Path;
 use diffraction::spectrum::Spectral;
 use glam::DVec3;
 
+use crate::budget::{self, Estimate};
 use crate::camera::{self, Camera, CameraRays};
 use crate::cli::{self, Command, Options};
 use crate::diagnostics::{Check, SceneError};
@@ -43,6 +44,17 @@ impl Renderer for Flat {
     fn prepare(&self, scene: Scene<Flat>, _: &dyn Fn(&str)) -> Result<Scene<Flat>, String> {
         Ok(scene)
     }
+    /// As a Whitted renderer: the pilot's rays and every light sample at every hit.
+    fn estimate(&self, scene: &Scene<Flat>, frames: u32) -> Estimate {
+        let s = &scene.settings;
+        let samples = s.width as f64 * s.height as f64 * s.spp as f64 * frames as f64;
+        let pilot = budget::pilot(scene, &scene.camera, true);
+        let shadow_rays = scene.lights.iter().map(|l| l.samples as f64).sum();
+        let mut est = Estimate::default();
+        budget::tracing(&mut est, samples, &pilot, scene.objects.len(), shadow_rays);
+        est
+    }
+
     fn scene<'a>(&self, scene: &'a Scene<Flat>) -> &'a Scene<Flat> {
         scene
     }

@@ -12,6 +12,8 @@
 //! Geometry, textures, scene files and output are in `examples/common`, shared with the paper's
 //! ray tracer (`examples/raytrace`).
 
+#[path = "../common/budget.rs"]
+pub mod budget;
 #[path = "../common/camera.rs"]
 pub mod camera;
 #[path = "../common/cli.rs"]
@@ -51,6 +53,7 @@ mod tests;
 
 use std::process::ExitCode;
 
+use budget::{Estimate, Integrand};
 use cli::{Command, Options};
 use path::PathOptions;
 use radiometry::Radiometric;
@@ -121,6 +124,68 @@ impl run::Renderer for Integrator {
         _: &dyn Fn(&str),
     ) -> Result<Scene<Radiometric>, String> {
         Ok(scene)
+    }
+
+    /// Path tracing: at most `max_depth` vertices past each primary hit, each with a shadow ray
+    /// and a BSDF evaluation; Whitted: the rays of the pilot, and at every grating hit one
+    /// colour per light sample (the dearest grating's).
+    fn estimate(&self, scene: &Scene<Radiometric>, frames: u32) -> Estimate {
+        let s = &scene.settings;
+        let samples = s.width as f64 * s.height as f64 * s.spp as f64 * frames as f64;
+        let mut est = Estimate::default();
+        let objects = scene.objects.len();
+        match self {
+            Integrator::Path => {
+                // Every path that hits goes on to max_depth vertices (Russian roulette and the
+                // sky end most sooner), each on a grating as often as the camera rays are.
+                let pilot = budget::pilot(scene, &scene.camera, false);
+                let per_sample = pilot.hits * s.max_depth.max(1) as f64;
+                let traced = budget::Pilot {
+                    rays: 1.0 + per_sample,
+                    hits: per_sample,
+                    grating_hits: 0.0,
+                };
+                budget::tracing(&mut est, samples, &traced, objects, 1.0);
+                let on_gratings = samples * per_sample * pilot.grating_hits / pilot.hits.max(1e-9);
+                est.add(
+                    format!("{} grating BSDF evaluations", budget::count(on_gratings)),
+                    on_gratings * budget::BSDF_NS,
+                    "--width/--height, --spp, --frames or --max-depth",
+                );
+            }
+            Integrator::Whitted => {
+                let pilot = budget::pilot(scene, &scene.camera, true);
+                let light_samples: f64 =
+                    scene.units.emitters.iter().map(|e| e.samples as f64).sum();
+                budget::tracing(&mut est, samples, &pilot, objects, light_samples);
+                let dearest = scene
+                    .materials
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, m)| m.grating.as_ref().map(|g| (i, g)))
+                    .map(|(i, g)| {
+                        let integrand = Integrand::Grating(*g.model.grating());
+                        let ns = budget::colour_ns(&scene.spectral, integrand, g.strategy);
+                        (
+                            ns,
+                            format!("strategy {} of objects[{i}].material", g.strategy),
+                        )
+                    })
+                    .fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a });
+                let colours = samples * pilot.grating_hits * light_samples;
+                est.add(
+                    format!(
+                        "{} colour evaluations ({})",
+                        budget::count(colours),
+                        dearest.1
+                    ),
+                    colours * dearest.0,
+                    "--width/--height, --spp, --frames, the lights' samples, or a cheaper \
+                     --strategy or material strategy",
+                );
+            }
+        }
+        est
     }
 
     fn scene<'a>(&self, scene: &'a Scene<Radiometric>) -> &'a Scene<Radiometric> {

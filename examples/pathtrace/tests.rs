@@ -7,6 +7,7 @@ use diffraction::color::LinearSrgb;
 use diffraction::{Band, SampledWavelengths};
 use glam::DVec3;
 
+use crate::budget;
 use crate::geometry::Ray;
 use crate::output::Image;
 use crate::path::{self, mis_weights, PathOptions};
@@ -406,4 +407,92 @@ fn cd_area_light_comparison() {
     );
     save(&img_s, "cd_area_path_equal_time.png");
     save(&img_c, "cd_area_path_nosampler.png");
+}
+
+/// Four area lights of 1024 samples and an `exact` radiometric grating of N = 2³² − 1, each
+/// within its limit: the Whitted renderer would take minutes at 16 × 12 pixels and is refused
+/// with its estimate; the path tracer (one light sample per vertex) renders it.
+#[test]
+fn light_samples_times_exact_colours_are_bounded() {
+    let mut src = String::from(
+        "[render]\nwidth = 16\nheight = 12\nspp = 4\nstrategy = \"exact\"\n\
+         [camera]\nposition = [0.0, 5.0, 0.0]\nlook_at = [0.0, 0.0, 0.01]\n\
+         [radiometry]\nexposure = 1.0\n\
+         [[objects]]\nshape = \"quad\"\nscale = 1000.0\n[objects.material]\ntype = \"grating\"\n\
+         model = \"radiometric\"\nperiod_nm = 1600.0\nslits = 4294967295\ndiffuse = 0.0\n",
+    );
+    for i in 0..4 {
+        src += &format!("[[lights]]\nposition = [{i}.0, 3.0, 0.0]\nradius = 0.3\nsamples = 1024\n");
+    }
+    let scene = scene::parse::<Radiometric>(&src, "t.toml", "exact", Path::new(".")).unwrap();
+    // Closed form: 768 samples, each one hit on the grating, 4096 light samples there, each
+    // with a colour of `exact` at d = 1600 nm and a shadow ray against the one object.
+    let (samples, light) = (768.0, 4096.0);
+    let colours = samples * light;
+    let colour_ns = budget::colour_ns(
+        &scene.spectral,
+        budget::Integrand::Grating(diffraction::Grating::new(1600.0, 800.0, u32::MAX).unwrap()),
+        diffraction::spectrum::Strategy::Exact,
+    );
+    assert_eq!(colour_ns, 3e5 + 45.0 * 1600.0);
+    let total = samples * budget::SAMPLE_NS
+        + samples * budget::HIT_NS
+        + colours * budget::SHADOW_NS
+        + samples * (1.0 + light) * budget::RAY_TEST_NS
+        + colours * colour_ns;
+    assert_eq!(
+        Integrator::Whitted.estimate(&scene, 1).check("exact"),
+        Err(format!(
+            "exact: an estimated {} s of work on one core, above the budget of 600 s \
+             (examples/common/budget.rs); most of it, {} s, is {} colour evaluations (strategy \
+             exact of objects[0].material): reduce --width/--height, --spp, --frames, the \
+             lights' samples, or a cheaper --strategy or material strategy",
+            budget::short(total * 1e-9),
+            budget::short(colours * colour_ns * 1e-9),
+            budget::count(colours)
+        ))
+    );
+    let path = Integrator::Path.estimate(&scene, 1);
+    assert!(path.seconds() < 0.1, "{path:?}");
+    let img = Integrator::Path.render(&scene, &scene.camera, None);
+    assert!(img.pixels.iter().all(|p| p.is_finite()));
+    // With `peaks` and 16 samples a light, the Whitted renderer is within the budget too.
+    let cheap = src
+        .replace("strategy = \"exact\"", "strategy = \"peaks\"")
+        .replace("samples = 1024", "samples = 16");
+    let scene = scene::parse::<Radiometric>(&cheap, "t.toml", "cheap", Path::new(".")).unwrap();
+    assert_eq!(
+        Integrator::Whitted.estimate(&scene, 1).check("cheap"),
+        Ok(())
+    );
+}
+
+/// A scene the path tracer cannot render, after one it can, is reported before anything is
+/// rendered or written: the first scene's existing picture stays as it was.
+#[test]
+fn a_scene_for_the_other_renderer_fails_the_run_before_any_write() {
+    let dir = std::env::temp_dir().join(format!("pathtrace-plan-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let old = b"an existing picture";
+    std::fs::write(dir.join("cd_area_light.png"), old).unwrap();
+    let opts = crate::cli::Options {
+        scenes: vec!["cd_area_light".into(), "fig4a".into()],
+        out: Some(dir.clone()),
+        quiet: true,
+        ..Default::default()
+    };
+    let fig4a = scenes_dir().join("fig4a.toml");
+    assert_eq!(
+        crate::run::run(&Integrator::Path, &opts),
+        Err(format!(
+            "{}: field radiometry: a scene without a [radiometry] table (no physical units) is \
+             the paper's ray tracer's: render it with `cargo run --release --example raytrace \
+             -- fig4a`",
+            fig4a.display()
+        ))
+    );
+    assert_eq!(std::fs::read(dir.join("cd_area_light.png")).unwrap(), old);
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
 }

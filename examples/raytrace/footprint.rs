@@ -62,7 +62,7 @@ pub type Footprint = [Ray; 4];
 /// Whether a material's colour can come from a table: the paper's model with a finite slit
 /// count, and a strategy that estimates the spectral integral (the paper's peak colours are
 /// normalised differently and keep their own code).
-fn tabulable(g: &GratingMaterial<Model>) -> bool {
+pub fn tabulable(g: &GratingMaterial<Model>) -> bool {
     matches!(g.model, Model::AguHill(_)) && g.strategy != Strategy::PaperPeaks
 }
 

@@ -16,6 +16,8 @@
 //! output are in `examples/common`, shared with the path tracer (`examples/pathtrace`), which
 //! renders the scenes in physical units.
 
+#[path = "../common/budget.rs"]
+pub mod budget;
 #[path = "../common/camera.rs"]
 pub mod camera;
 #[path = "../common/cli.rs"]
@@ -51,6 +53,9 @@ mod model;
 mod whitted;
 
 #[cfg(test)]
+#[path = "../common/budget_tests.rs"]
+mod budget_tests;
+#[cfg(test)]
 #[path = "../common/tests.rs"]
 mod common_tests;
 #[cfg(test)]
@@ -59,11 +64,14 @@ mod files_tests;
 #[cfg(test)]
 mod footprint_tests;
 #[cfg(test)]
+mod sweep_tests;
+#[cfg(test)]
 mod tests;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use budget::Estimate;
 use cli::{Command, Options};
 use files::Kind;
 use footprint::Filter;
@@ -169,6 +177,66 @@ impl run::Renderer for Raytracer {
             ));
         }
         Ok(p)
+    }
+
+    /// The Whitted tracer's rays and colours (one per light at every grating hit, the dearest
+    /// grating's), each distinct grating's exposure scan, and `--filter`'s tables.
+    fn estimate(&self, scene: &Scene<Paper>, frames: u32) -> Estimate {
+        let s = &scene.settings;
+        let samples = s.width as f64 * s.height as f64 * s.spp as f64 * frames as f64;
+        let pilot = budget::pilot(scene, &scene.camera, true);
+        let shadow_rays: f64 = scene.lights.iter().map(|l| l.samples as f64).sum();
+        let mut est = Estimate::default();
+        budget::tracing(&mut est, samples, &pilot, scene.objects.len(), shadow_rays);
+        let gratings = scene.materials.iter().enumerate();
+        let gratings = gratings.filter_map(|(i, m)| m.grating.as_ref().map(|g| (i, g)));
+        let tabled = |g: &material::GratingMaterial<model::Model>| {
+            self.filter != Filter::None && footprint::tabulable(g)
+        };
+        let mut dearest = (0.0, String::new());
+        let (mut seen, mut scans, mut tables) = (std::collections::HashSet::new(), 0.0, Vec::new());
+        for (i, g) in gratings {
+            let colour = match tabled(g) {
+                true => budget::FOOTPRINT_NS,
+                false => budget::colour_ns(&scene.spectral, g.model.integrand(), g.strategy),
+            };
+            if colour > dearest.0 {
+                dearest = (
+                    colour,
+                    format!("strategy {} of objects[{i}].material", g.strategy),
+                );
+            }
+            let scan = model::exposure_strategy(g.strategy);
+            if seen.insert(format!("{:?} {scan:?}", g.model)) {
+                scans += budget::colour_ns(&scene.spectral, g.model.integrand(), scan);
+            }
+            if tabled(g) && !tables.contains(&g.model.integrand()) {
+                tables.push(g.model.integrand());
+            }
+        }
+        let n = (model::EXPOSURE_SCAN + 1) as f64;
+        est.add(
+            format!("{} exposure scans of {n} colours each", seen.len()),
+            n * scans,
+            "the number of distinct gratings or their models' parameters",
+        );
+        let colours = samples * pilot.grating_hits * scene.lights.len() as f64;
+        est.add(
+            format!(
+                "{} colour evaluations ({})",
+                budget::count(colours),
+                dearest.1
+            ),
+            colours * dearest.0,
+            "--width/--height, --spp, --frames, the number of lights, or a cheaper --strategy or \
+             material strategy",
+        );
+        est.add(
+            format!("{} colour tables", tables.len()),
+            tables.len() as f64 * budget::TABLE_NS,
+            "the number of distinct gratings, or --filter none",
+        );
+        est
     }
 
     fn scene<'a>(&self, p: &'a PaperScene) -> &'a Scene<Paper> {

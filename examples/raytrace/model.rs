@@ -11,6 +11,7 @@ use diffraction::Stam;
 use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
 use glam::DVec3;
 
+use crate::budget::Integrand;
 use crate::diagnostics::{Check, FieldError};
 use crate::limits::{self, check, count};
 use crate::material::{model_error, Material};
@@ -37,6 +38,16 @@ impl Model {
             Model::Thorman(m) => m,
             #[cfg(feature = "stam")]
             Model::Stam(m) => m,
+        }
+    }
+
+    /// How the crate integrates the model's colour (for the work estimate).
+    pub fn integrand(&self) -> Integrand {
+        match self {
+            Model::AguHill(m) => Integrand::Grating(*m.grating()),
+            Model::Thorman(m) => Integrand::Thorman(m.period_nm()),
+            #[cfg(feature = "stam")]
+            Model::Stam(m) => Integrand::Stam(m.period_nm()),
         }
     }
 
@@ -206,8 +217,8 @@ fn stam_model(
     ))
 }
 
-/// The exposures of the distinct (model, strategy) pairs of a scene's materials, each scanned
-/// once: per material, its grating's exposure (1 without a grating).
+/// The exposures of the distinct (model, scan strategy) pairs of a scene's materials, each
+/// scanned once: per material, its grating's exposure (1 without a grating).
 pub fn exposures(spectral: &Spectral, materials: &[Material<Model>]) -> Vec<f64> {
     let mut seen: HashMap<String, f64> = HashMap::new();
     materials
@@ -215,8 +226,9 @@ pub fn exposures(spectral: &Spectral, materials: &[Material<Model>]) -> Vec<f64>
         .map(|m| match &m.grating {
             None => 1.0,
             Some(g) => {
-                // Debug prints every parameter exactly (shortest round-trip floats).
-                let key = format!("{:?} {:?}", g.model, g.strategy);
+                // Debug prints every parameter exactly (shortest round-trip floats); the scan
+                // depends on the strategy through `exposure_strategy` only.
+                let key = format!("{:?} {:?}", g.model, exposure_strategy(g.strategy));
                 *seen
                     .entry(key)
                     .or_insert_with(|| model_exposure(spectral, &g.model, g.strategy))
@@ -231,7 +243,7 @@ pub fn exposures(spectral: &Spectral, materials: &[Material<Model>]) -> Vec<f64>
 /// exposure for every strategy that estimates the spectral integral; the paper's peak colours
 /// are normalised differently (each peak has weight S(β_m), about 1) and are measured with
 /// themselves.
-fn exposure_strategy(strategy: Strategy) -> Strategy {
+pub fn exposure_strategy(strategy: Strategy) -> Strategy {
     match strategy {
         Strategy::PaperPeaks => Strategy::PaperPeaks,
         _ => Strategy::PeakSearch { refine: false },

@@ -510,3 +510,21 @@ fn the_path_tracer_options_name_the_other_example() {
     };
     assert!(a.make_label);
 }
+
+/// At most 256 distinct gratings, each with its exposure scan: the 257th is refused where it
+/// is written.
+#[test]
+fn at_most_256_distinct_gratings() {
+    let mut src = String::from(MINIMAL);
+    for i in 0..257 {
+        src += &format!(
+            "[[objects]]\nshape = \"quad\"\n[objects.material]\ntype = \"grating\"\nperiod_nm = {}\n",
+            1000 + i
+        );
+    }
+    assert_eq!(
+        error_of(&src),
+        "test.toml: line 1286, field objects[256].material: more than 256 distinct gratings (each \
+         needs an exposure scan)"
+    );
+}
