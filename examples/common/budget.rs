@@ -25,10 +25,11 @@
 //! 0.9-3.6 times with ray-object tests at 10 ns (the lowest where they dominate), hence
 //! [`RAY_TEST_NS`].
 
-use diffraction::spectrum::{Spectral, Strategy};
+use diffraction::spectrum::{GenericStrategyKind, Spectral, StrategyKind};
 use diffraction::{Grating, Slits};
 
 use crate::camera::{Camera, CameraRays};
+use crate::colour::Colour;
 use crate::geometry::{nearest, Ray};
 use crate::scene::{Physics, Scene};
 
@@ -79,20 +80,23 @@ pub enum Integrand {
 /// (on the grating paths the peak search 0.7-7 µs, `Exact` 60 µs-4.8 ms growing with the
 /// period; on the generic paths, which evaluate the model at every wavelength of a rule or
 /// around every peak, 0.1-1.5 ms for the peak search and up to 6 ms for `Exact`).
-pub fn colour_ns(spectral: &Spectral, integrand: Integrand, strategy: Strategy) -> f64 {
+pub fn colour_ns(spectral: &Spectral, integrand: Integrand, colour: Colour) -> f64 {
     match integrand {
-        Integrand::Grating(g) => grating_ns(spectral, &g, strategy),
+        Integrand::Grating(g) => grating_ns(spectral, &g, colour),
         Integrand::Thorman(d) | Integrand::Stam(d) => {
             let stam = matches!(integrand, Integrand::Stam(_));
-            match strategy {
+            let Some(generic) = colour.generic() else {
+                // The paper's peak colours.
+                return 1e3 + 1.3 * d;
+            };
+            match generic.kind() {
                 // Stam's sine profile of depth 10⁴ nm: up to 1.5 ms.
-                Strategy::PeakSearch { .. } if stam => 2e6,
+                GenericStrategyKind::PeakSearch if stam => 2e6,
                 // Thorman's lobes of width 0.005 at d = 10⁵ nm: 1.2 ms.
-                Strategy::PeakSearch { .. } => 2e5 + 15.0 * d,
-                Strategy::PaperPeaks => 1e3 + 1.3 * d,
-                Strategy::Uniform { samples } => 200.0 * samples as f64,
-                Strategy::GaussLegendre { intervals } => 1600.0 * intervals as f64,
-                // The generic path integrates Asymptotic and Auto as Exact.
+                GenericStrategyKind::PeakSearch => 2e5 + 15.0 * d,
+                GenericStrategyKind::Uniform { samples } => 200.0 * samples as f64,
+                GenericStrategyKind::GaussLegendre { intervals } => 1600.0 * intervals as f64,
+                // The windows rule (and Auto, at its dearest).
                 _ if stam => 2e6 + 60.0 * d,
                 _ => 2e5 + 15.0 * d,
             }
@@ -100,36 +104,38 @@ pub fn colour_ns(spectral: &Spectral, integrand: Integrand, strategy: Strategy) 
     }
 }
 
-fn grating_ns(spectral: &Spectral, g: &Grating, strategy: Strategy) -> f64 {
+fn grating_ns(spectral: &Spectral, g: &Grating, colour: Colour) -> f64 {
     let d = g.period_nm();
     // Few slits: broad lobes, more work at the band ends.
     let few = match g.slits() {
         Slits::Finite(n) if n < 100 => 6e3,
         _ => 0.0,
     };
+    let Colour::Integral(strategy) = colour else {
+        // The paper's peak colours: 0.2-3 µs.
+        return 200.0 + 0.03 * d + few;
+    };
     // Each line: the measured worst over N = 10-2³² at each period (400, 1600, 10⁴, 10⁵ nm),
     // as a constant plus a slope in d (the number of orders in the band grows with d).
-    match strategy {
+    match strategy.kind() {
         // 0.7-4.4 µs (7 µs for N < 100).
-        Strategy::PeakSearch { .. } => 1.5e3 + 0.05 * d + few,
-        // 0.2-3 µs.
-        Strategy::PaperPeaks => 200.0 + 0.03 * d + few,
+        StrategyKind::PeakSearch | StrategyKind::PeakSearchRefined => 1.5e3 + 0.05 * d + few,
         // 60-310 µs at d = 400 nm, 0.7-4.8 ms at 10⁵ nm.
-        Strategy::Exact => 3e5 + 45.0 * d,
+        StrategyKind::Exact => 3e5 + 45.0 * d,
         // 5-27 µs.
-        Strategy::Asymptotic => 3e4,
+        StrategyKind::Asymptotic => 3e4,
         // 40-55 ns a wavelength.
-        Strategy::Uniform { samples } => 60.0 * samples as f64,
+        StrategyKind::Uniform { samples } => 60.0 * samples as f64,
         // 8 wavelengths an interval: 330-420 ns.
-        Strategy::GaussLegendre { intervals } => 450.0 * intervals as f64,
+        StrategyKind::GaussLegendre { intervals } => 450.0 * intervals as f64,
         // What Auto picks over u in (0, 2], at its dearest.
-        Strategy::Auto { accuracy } => (1..=40)
+        StrategyKind::Auto { .. } => (1..=40)
             .map(|i| {
-                let picked = spectral.choose(g, i as f64 / 20.0, accuracy);
-                if matches!(picked, Strategy::Auto { .. }) {
+                let picked = spectral.choose(g, i as f64 / 20.0, strategy);
+                if matches!(picked.kind(), StrategyKind::Auto { .. }) {
                     3e5 + 45.0 * d
                 } else {
-                    grating_ns(spectral, g, picked)
+                    grating_ns(spectral, g, Colour::Integral(picked))
                 }
             })
             .fold(0.0, f64::max),

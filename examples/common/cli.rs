@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use diffraction::color::Clip;
-use diffraction::spectrum::Strategy;
+use crate::colour::Colour;
 
 use crate::limits::{self, MAX_DEPTH, MAX_FRAMES, MAX_SIZE, MAX_SPP};
 
@@ -67,7 +67,7 @@ pub struct Options {
     /// `--seed`.
     pub seed: Option<u64>,
     /// `--strategy`: the default strategy of the scene's gratings replaced.
-    pub strategy: Option<Strategy>,
+    pub strategy: Option<Colour>,
     /// `--clip`: the gamut clipping of the PNG.
     pub clip: Option<Clip>,
     /// `--max-depth`: the scene's `render.max_depth` replaced.

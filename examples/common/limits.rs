@@ -15,7 +15,9 @@
 
 use std::fmt::Display;
 
-use diffraction::spectrum::Strategy;
+use diffraction::spectrum::StrategyKind;
+
+use crate::colour::Colour;
 
 use crate::diagnostics::FieldError;
 
@@ -193,10 +195,9 @@ pub fn count<T: PartialOrd + Display + Copy>(
     }
 }
 
-/// Parses a strategy name and checks it against the work limits, naming the limit when a
-/// count or an accuracy is out of range (the crate's parser refuses counts above its own cap
-/// without saying which).
-pub fn parse_strategy(s: &str) -> Result<Strategy, String> {
+/// Parses a colour rule (`paper` or a strategy name) and checks it against the work limits,
+/// naming the limit when a count or an accuracy is out of range.
+pub fn parse_strategy(s: &str) -> Result<Colour, String> {
     // A count of any length: digits beyond u64 are above every limit too.
     let above = |k: &str, max: u32| {
         !k.is_empty()
@@ -205,36 +206,43 @@ pub fn parse_strategy(s: &str) -> Result<Strategy, String> {
     };
     match s.split_once(':') {
         Some(("uniform", k)) if above(k, MAX_UNIFORM_SAMPLES) => {
-            return strategy(Strategy::Uniform { samples: u32::MAX })
+            return Err(format!(
+                "uniform:K takes at most {MAX_UNIFORM_SAMPLES} wavelengths"
+            ))
         }
         Some(("gauss", k)) if above(k, MAX_GAUSS_INTERVALS) => {
-            return strategy(Strategy::GaussLegendre {
-                intervals: u32::MAX,
-            })
+            return Err(format!(
+                "gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals"
+            ))
         }
         _ => {}
     }
-    s.parse()
-        .map_err(|e: diffraction::spectrum::ParseStrategyError| e.to_string())
+    s.parse::<Colour>()
+        .map_err(|e| e.to_string())
         .and_then(strategy)
 }
 
-/// A strategy within the work limits: `uniform:K` with K ≤ [`MAX_UNIFORM_SAMPLES`], `gauss:K`
-/// with K ≤ [`MAX_GAUSS_INTERVALS`], `auto:ACCURACY` in [`AUTO_ACCURACY`].
-pub fn strategy(s: Strategy) -> Result<Strategy, String> {
-    match s {
-        Strategy::Uniform { samples } if samples > MAX_UNIFORM_SAMPLES => Err(format!(
+/// A colour rule within the work limits: `uniform:K` with K ≤ [`MAX_UNIFORM_SAMPLES`],
+/// `gauss:K` with K ≤ [`MAX_GAUSS_INTERVALS`], `auto:ACCURACY` in [`AUTO_ACCURACY`].
+pub fn strategy(c: Colour) -> Result<Colour, String> {
+    let Colour::Integral(s) = c else {
+        return Ok(c);
+    };
+    match s.kind() {
+        StrategyKind::Uniform { samples } if samples > MAX_UNIFORM_SAMPLES => Err(format!(
             "uniform:K takes at most {MAX_UNIFORM_SAMPLES} wavelengths"
         )),
-        Strategy::GaussLegendre { intervals } if intervals > MAX_GAUSS_INTERVALS => Err(format!(
-            "gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals"
-        )),
-        Strategy::Auto { accuracy } if !AUTO_ACCURACY.contains(accuracy) => Err(format!(
+        StrategyKind::GaussLegendre { intervals } if intervals > MAX_GAUSS_INTERVALS => {
+            Err(format!(
+                "gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals"
+            ))
+        }
+        StrategyKind::Auto { accuracy } if !AUTO_ACCURACY.contains(accuracy) => Err(format!(
             "auto:ACCURACY takes an accuracy in [{}, {}]",
             short(AUTO_ACCURACY.min),
             short(AUTO_ACCURACY.max),
         )),
-        s => Ok(s),
+        _ => Ok(c),
     }
 }
 

@@ -10,7 +10,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use diffraction::frame::{GratingField, Tile};
-use diffraction::spectrum::Strategy;
 use diffraction::Illumination;
 use glam::DVec3;
 
@@ -18,6 +17,7 @@ use crate::diagnostics::{Check, FieldError};
 use crate::files::Input;
 use crate::geometry::{Hit, Part};
 use crate::limits::{self, check, zero_or};
+use crate::colour::Colour;
 use crate::scene::{parse_strategy, vec3, Physics};
 use crate::schema::{RawField, RawGrating, RawKind, RawMaterial, RawTile, MODELS};
 use crate::texture::{ImageTexture, Wood};
@@ -88,7 +88,7 @@ pub struct GratingMaterial<G> {
     /// The grating vector across the surface (constant, twisted, radial, checkerboard).
     pub field: GratingField,
     /// How the spectral integral is evaluated.
-    pub strategy: Strategy,
+    pub strategy: Colour,
     /// Whether `strategy` is the scene's default (and follows `--strategy`).
     pub follows_default: bool,
     /// The diffuse colour of the plain (non-grating) squares of a checkerboard.
@@ -107,7 +107,7 @@ impl<G> GratingMaterial<G> {
 /// and the distinct gratings so far (against [`limits::MAX_GRATINGS`]).
 pub struct Loader<'a> {
     /// The scene's default strategy.
-    pub strategy: Strategy,
+    pub strategy: Colour,
     /// The directory that texture paths are relative to.
     pub base: &'a Path,
     /// The scene's name, for the inputs' descriptions.
@@ -121,7 +121,7 @@ pub struct Loader<'a> {
 
 impl<'a> Loader<'a> {
     /// A loader with the scene's default strategy, resolving textures in `base`.
-    pub fn new(strategy: Strategy, base: &'a Path, scene: &'a str) -> Loader<'a> {
+    pub fn new(strategy: Colour, base: &'a Path, scene: &'a str) -> Loader<'a> {
         Loader {
             strategy,
             base,
@@ -405,7 +405,7 @@ fn build_field(fd: &RawField, path: &str, base_color: DVec3) -> Check<(GratingFi
             center: c,
             twist_deg,
         } => (
-            GratingField::Uniform(Tile::Radial {
+            GratingField::uniform(Tile::Radial {
                 center: center(&f("center"), *c)?,
                 twist: 0.0,
             }),

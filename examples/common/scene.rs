@@ -22,10 +22,11 @@ use std::path::Path;
 
 use diffraction::cie::Illuminant;
 use diffraction::color::Clip;
-use diffraction::spectrum::{Spectral, Strategy};
+use diffraction::spectrum::Spectral;
 use glam::DVec3;
 use toml::de::{DeTable, DeValue};
 
+use crate::colour::Colour;
 use crate::camera::Camera;
 use crate::diagnostics::{
     line_of, locate, path_at, plain_message, value_at, Check, FieldError, SceneError,
@@ -52,7 +53,7 @@ pub struct Settings {
     /// The gamut clipping of the PNG.
     pub clip: Clip,
     /// The default spectral strategy of the gratings.
-    pub strategy: Strategy,
+    pub strategy: Colour,
 }
 
 /// A point light, or with `radius` > 0 a spherical light sampled `samples` times for shadows.
@@ -115,7 +116,7 @@ pub struct Scene<P: Physics> {
 
 impl<P: Physics> Scene<P> {
     /// Switches every grating that uses the default strategy to `strategy`.
-    pub fn set_strategy(&mut self, strategy: Strategy) {
+    pub fn set_strategy(&mut self, strategy: Colour) {
         self.settings.strategy = strategy;
         for g in self.materials.iter_mut().filter_map(|m| m.grating.as_mut()) {
             if g.follows_default {
@@ -287,7 +288,7 @@ pub fn vec3(path: &str, v: [f64; 3], range: Range) -> Check<DVec3> {
 }
 
 /// The strategy named `s` at `path`, within the work limits.
-pub fn parse_strategy(path: &str, s: &str) -> Check<Strategy> {
+pub fn parse_strategy(path: &str, s: &str) -> Check<Colour> {
     limits::parse_strategy(s).map_err(|e| FieldError::new(path, format!("{e}, got \"{s}\"")))
 }
 
@@ -297,7 +298,7 @@ fn build<P: Physics>(raw: RawScene, name: &str, base: &Path) -> Check<Scene<P>> 
         None => Illuminant::D65,
         Some(s) => s
             .parse()
-            .map_err(|e: diffraction::cie::ParseIlluminantError| {
+            .map_err(|e: diffraction::ParseError| {
                 FieldError::new("render.illuminant", format!("{e}, got \"{s}\""))
             })?,
     };
@@ -319,12 +320,12 @@ fn build<P: Physics>(raw: RawScene, name: &str, base: &Path) -> Check<Scene<P>> 
         seed: r.seed.unwrap_or(1),
         clip: match r.clip.as_deref() {
             None => Clip::Intensity,
-            Some(s) => s.parse().map_err(|e: diffraction::color::ParseClipError| {
+            Some(s) => s.parse().map_err(|e: diffraction::ParseError| {
                 FieldError::new("render.clip", format!("{e}, got \"{s}\""))
             })?,
         },
         strategy: match r.strategy.as_deref() {
-            None => Strategy::PeakSearch { refine: false },
+            None => Colour::DEFAULT,
             Some(s) => parse_strategy("render.strategy", s)?,
         },
     };

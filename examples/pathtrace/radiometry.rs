@@ -260,18 +260,19 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
                 "give either coherence_nm or groove_sigma, not both",
             ))
         }
-        (Some(l), None) => Some((
-            GrooveSpread::CoherenceLength { length_nm: l },
-            "coherence_nm",
-        )),
-        (None, Some(s)) => Some((GrooveSpread::Gaussian { sigma: s }, "groove_sigma")),
+        (Some(l), None) => Some(
+            GrooveSpread::coherence_length(l)
+                .map_err(|e| FieldError::new(f("coherence_nm"), e.to_string()))?,
+        ),
+        (None, Some(s)) => Some(
+            GrooveSpread::gaussian(s)
+                .map_err(|e| FieldError::new(f("groove_sigma"), e.to_string()))?,
+        ),
         (None, None) => None,
     };
     let bsdf = match groove {
         None => GratingBsdf::new(grating),
-        Some((spread, key)) => GratingBsdf::new(grating)
-            .with_groove(spread)
-            .map_err(|e| FieldError::new(f(key), e.to_string()))?,
+        Some(spread) => GratingBsdf::new(grating).with_groove(spread),
     };
     Ok(bsdf)
 }

@@ -6,8 +6,8 @@ use std::f64::consts::FRAC_1_PI;
 
 use diffraction::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use diffraction::frame::ShadingFrame;
-use diffraction::spectrum::Strategy;
-use diffraction::{Bsdf, GratingBsdf, SampledWavelengths};
+use crate::colour::Colour;
+use diffraction::{Bsdf, DiffractionBrdf, GratingBsdf, SampledWavelengths};
 use glam::{DVec2, DVec3};
 
 use crate::geometry::{Hit, Ray};
@@ -27,7 +27,7 @@ pub struct Surface<'a> {
     /// The grating and its weight (1 − m).
     pub grating: Option<&'a GratingBsdf>,
     pub grating_weight: f64,
-    pub strategy: Strategy,
+    pub strategy: Colour,
 }
 
 impl<'a> Surface<'a> {
@@ -117,7 +117,7 @@ impl Surface<'_> {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return [0.0; 4];
         }
-        let g = self.grating.map_or([0.0; 4], |b| b.f4(wo, wi, l));
+        let g = self.grating.map_or([0.0; 4], |b| b.eval4(wo, wi, l));
         let lam = l.lambda();
         std::array::from_fn(|j| {
             reflectance(self.diffuse, lam[j]) * FRAC_1_PI + self.grating_weight * g[j]

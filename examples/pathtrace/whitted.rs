@@ -3,9 +3,11 @@
 //! reference the path tracer's direct light is compared with.
 
 use diffraction::color::Xyz;
+use diffraction::SpectralResponse;
 use glam::DVec3;
 
 use crate::camera::{self, Camera, CameraRays};
+use crate::colour::Colour;
 use crate::geometry::{nearest, occluded, Ray, SHADOW_REACH};
 use crate::output::Image;
 use crate::radiometry::{Radiometric, Radiometry};
@@ -54,7 +56,12 @@ pub fn trace(scene: &Scene<Radiometric>, ray: &Ray, depth: u32, rng: &mut Rng) -
             let mut c = r.diffuse_xyz(surface.diffuse) * (wi_l.z / std::f64::consts::PI);
             if let Some(b) = surface.grating {
                 // ∫ s·f·cmf dλ·cos, from the crate's colour (relative to ∫ s·ȳ).
-                let g = scene.spectral.xyz_brdf(b, wi_l, wo_l, surface.strategy);
+                let g = match surface.strategy {
+                    Colour::Integral(s) => b
+                        .grating_response(wo_l, wi_l)
+                        .map_or(Xyz::default(), |r| scene.spectral.xyz_response(&r, s)),
+                    Colour::Paper => scene.spectral.paper_peaks_brdf(b, wo_l, wi_l),
+                };
                 c += g * (r.ys * surface.grating_weight);
             }
             *xyz += c * weight;

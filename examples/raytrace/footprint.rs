@@ -16,7 +16,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use diffraction::frame::ShadingFrame;
-use diffraction::spectrum::Strategy;
+use crate::colour::Colour;
 use diffraction::ColorTable;
 use glam::{DVec2, DVec3};
 
@@ -63,7 +63,7 @@ pub type Footprint = [Ray; 4];
 /// count, and a strategy that estimates the spectral integral (the paper's peak colours are
 /// normalised differently and keep their own code).
 pub fn tabulable(g: &GratingMaterial<Model>) -> bool {
-    matches!(g.model, Model::AguHill(_)) && g.strategy != Strategy::PaperPeaks
+    matches!(g.model, Model::AguHill(_)) && g.strategy != Colour::Paper
 }
 
 /// Builds one table per distinct grating among the materials the scene's objects use (for a

@@ -7,6 +7,8 @@ use std::time::Instant;
 
 use diffraction::color::{LinearSrgb, WhitePoint};
 use diffraction::spectrum::Strategy;
+
+use crate::colour::Colour;
 use glam::DVec3;
 
 use crate::camera::CameraRays;
@@ -50,7 +52,7 @@ const ZERO_WIDTH_TOLERANCE: f64 = 5.3 * TABLE_ACCURACY;
 fn a_zero_width_footprint_is_the_unfiltered_colour() {
     let mut exact = grating_scene();
     // (The exposure is measured with the peak search for every strategy but the paper's.)
-    exact.scene.set_strategy(Strategy::Exact);
+    exact.scene.set_strategy(Colour::Integral(Strategy::EXACT));
     let mut filtered = exact.clone();
     footprint::prepare(&mut filtered, Filter::Footprint).unwrap();
     let mut worst: f64 = 0.0;

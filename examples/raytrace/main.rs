@@ -22,6 +22,8 @@ pub mod budget;
 pub mod camera;
 #[path = "../common/cli.rs"]
 pub mod cli;
+#[path = "../common/colour.rs"]
+pub mod colour;
 #[path = "../common/diagnostics.rs"]
 pub mod diagnostics;
 #[path = "../common/files.rs"]

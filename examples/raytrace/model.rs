@@ -5,13 +5,14 @@
 use std::collections::HashMap;
 
 use diffraction::color::Xyz;
-use diffraction::spectrum::{Spectral, Strategy};
+use diffraction::spectrum::Spectral;
 #[cfg(feature = "stam")]
 use diffraction::Stam;
-use diffraction::{AguHill, DiffractionBrdf, Grating, Thorman};
+use diffraction::{AguHill, DiffractionBrdf, Grating, SpectralResponse, Thorman};
 use glam::DVec3;
 
 use crate::budget::Integrand;
+use crate::colour::Colour;
 use crate::diagnostics::{Check, FieldError};
 use crate::limits::{self, check, count};
 use crate::material::{model_error, Material};
@@ -30,9 +31,13 @@ pub enum Model {
     Stam(Stam),
 }
 
+/// A model with its value and its colour (`dyn` needs one trait for both).
+pub trait Reflects: DiffractionBrdf + SpectralResponse {}
+impl<M: DiffractionBrdf + SpectralResponse> Reflects for M {}
+
 impl Model {
-    /// The model as a BRDF.
-    pub fn brdf(&self) -> &dyn DiffractionBrdf {
+    /// The model, for its value and its colour.
+    pub fn brdf(&self) -> &dyn Reflects {
         match self {
             Model::AguHill(m) => m,
             Model::Thorman(m) => m,
@@ -51,21 +56,29 @@ impl Model {
         }
     }
 
-    /// The diffraction term's colour for local directions `wi`, `wo` (z the normal, x the
-    /// grating vector) with `strategy`, times `exposure`: the crate's `Spectral::xyz_brdf`,
-    /// which takes the lobe-exact grating paths for Agu-Hill (a function of u = wi.x + wo.x
-    /// alone) and the generic path with cos θi for the others.
+    /// The diffraction term's colour for local directions `wo` (toward the eye) and `wi`
+    /// (toward the light), z the normal and x the grating vector, by `colour`, times
+    /// `exposure`: for Agu-Hill (a function of u = wi.x + wo.x alone) the crate's lobe-exact
+    /// grating paths `Spectral::xyz` (or the paper's peak colours `Spectral::paper_peaks`); for
+    /// the others the generic path `Spectral::xyz_brdf` with the strategy's generic rule (or
+    /// `Spectral::paper_peaks_brdf`).
     pub fn xyz(
         &self,
         spectral: &Spectral,
-        wi: DVec3,
         wo: DVec3,
-        strategy: Strategy,
+        wi: DVec3,
+        colour: Colour,
         exposure: f64,
     ) -> Xyz {
-        spectral
-            .xyz_brdf(self.brdf(), wi, wo, strategy)
-            .scale(exposure)
+        let xyz = match (self, colour) {
+            (Model::AguHill(m), Colour::Integral(s)) => spectral.xyz(m.grating(), wi.x + wo.x, s),
+            (Model::AguHill(m), Colour::Paper) => spectral.paper_peaks(m.grating(), wi.x + wo.x),
+            (other, _) => match colour.generic() {
+                Some(rule) => spectral.xyz_brdf(other.brdf(), wo, wi, rule),
+                None => spectral.paper_peaks_brdf(other.brdf(), wo, wi),
+            },
+        };
+        xyz.scale(exposure)
     }
 }
 
@@ -243,10 +256,10 @@ pub fn exposures(spectral: &Spectral, materials: &[Material<Model>]) -> Vec<f64>
 /// exposure for every strategy that estimates the spectral integral; the paper's peak colours
 /// are normalised differently (each peak has weight S(β_m), about 1) and are measured with
 /// themselves.
-pub fn exposure_strategy(strategy: Strategy) -> Strategy {
-    match strategy {
-        Strategy::PaperPeaks => Strategy::PaperPeaks,
-        _ => Strategy::PeakSearch { refine: false },
+pub fn exposure_strategy(colour: Colour) -> Colour {
+    match colour {
+        Colour::Paper => Colour::Paper,
+        Colour::Integral(_) => Colour::DEFAULT,
     }
 }
 
@@ -268,9 +281,9 @@ pub const EXPOSURE_SCAN: usize = 4000;
 /// I(u, λ) ≈ 1 at every wavelength, Y ≈ 1, and including it would always give exposure 1. The
 /// mirror highlight of a light is therefore `exposure` times overexposed, as a real grating's
 /// zeroth order is next to its faint spectra. With the paper's own peak colours
-/// (`Strategy::PaperPeaks`, weights about 1) the exposure comes out near 1 and changes little.
-pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f64 {
-    let strategy = exposure_strategy(strategy);
+/// (`Colour::Paper`, weights about 1) the exposure comes out near 1 and changes little.
+pub fn exposure(spectral: &Spectral, grating: &Grating, colour: Colour) -> f64 {
+    let colour = exposure_strategy(colour);
     let u_min = diffraction::Band::VISIBLE.min_nm() / (2.0 * grating.period_nm());
     let mut max_y: f64 = 0.0;
     for i in 0..=EXPOSURE_SCAN {
@@ -278,7 +291,11 @@ pub fn exposure(spectral: &Spectral, grating: &Grating, strategy: Strategy) -> f
         if u.abs() < u_min {
             continue;
         }
-        max_y = max_y.max(spectral.xyz(grating, u, strategy).y);
+        let y = match colour {
+            Colour::Integral(s) => spectral.xyz(grating, u, s).y,
+            Colour::Paper => spectral.paper_peaks(grating, u).y,
+        };
+        max_y = max_y.max(y);
     }
     exposure_of(max_y)
 }
@@ -295,14 +312,14 @@ fn exposure_of(max_y: f64) -> f64 {
 /// The exposure of any model: as [`exposure`] (the same for Agu-Hill), scanning the Littrow
 /// configuration wi = wo = (u/2, 0, √(1 − u²/4)), which reaches every u in (−2, 2) on the plane
 /// of the diffracted cone (v = 0, where Stam's lobes are).
-pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) -> f64 {
-    let (brdf, period) = match model {
-        Model::AguHill(m) => return exposure(spectral, m.grating(), strategy),
-        Model::Thorman(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
+pub fn model_exposure(spectral: &Spectral, model: &Model, colour: Colour) -> f64 {
+    let period = match model {
+        Model::AguHill(m) => return exposure(spectral, m.grating(), colour),
+        Model::Thorman(m) => m.period_nm(),
         #[cfg(feature = "stam")]
-        Model::Stam(m) => (m as &dyn DiffractionBrdf, m.period_nm()),
+        Model::Stam(m) => m.period_nm(),
     };
-    let strategy = exposure_strategy(strategy);
+    let colour = exposure_strategy(colour);
     let u_min = diffraction::Band::VISIBLE.min_nm() / (2.0 * period);
     let mut max_y: f64 = 0.0;
     for i in 0..=EXPOSURE_SCAN {
@@ -311,7 +328,7 @@ pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) ->
             continue;
         }
         let w = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
-        max_y = max_y.max(spectral.xyz_brdf(brdf, w, w, strategy).y);
+        max_y = max_y.max(model.xyz(spectral, w, w, colour, 1.0).y);
     }
     exposure_of(max_y)
 }
@@ -320,12 +337,13 @@ pub fn model_exposure(spectral: &Spectral, model: &Model, strategy: Strategy) ->
 mod tests {
     use super::*;
     use diffraction::cie::Illuminant;
+    use diffraction::spectrum::Strategy;
 
     #[test]
     fn exposure_brings_the_brightest_order_to_one() {
         let spectral = Spectral::new(Illuminant::D65);
         let g = Grating::new(1600.0, 800.0, 1000).unwrap();
-        let k = exposure(&spectral, &g, Strategy::PeakSearch { refine: false });
+        let k = exposure(&spectral, &g, Colour::DEFAULT);
         // About N / (λ·…): hundreds for N = 1000.
         assert!(k > 100.0 && k < 10_000.0, "{k}");
         let brightest = (0..=EXPOSURE_SCAN)
@@ -333,20 +351,20 @@ mod tests {
             .filter(|u: &f64| u.abs() > 0.2)
             .map(|u| {
                 spectral
-                    .xyz(&g, u, Strategy::PeakSearch { refine: false })
+                    .xyz(&g, u, Strategy::PEAK_SEARCH)
                     .y
                     * k
             })
             .fold(0.0, f64::max);
         assert!((brightest - 1.0).abs() < 1e-9);
-        let paper = exposure(&spectral, &g, Strategy::PaperPeaks);
+        let paper = exposure(&spectral, &g, Colour::Paper);
         assert!(paper > 0.3 && paper < 3.0, "{paper}");
         // The generic scan agrees with the grating's for Agu-Hill, and brings Thorman's
         // brightest diffracted colour to 1 too.
         let m = Model::AguHill(AguHill::new(g));
-        assert_eq!(model_exposure(&spectral, &m, Strategy::PaperPeaks), paper);
+        assert_eq!(model_exposure(&spectral, &m, Colour::Paper), paper);
         let t = Model::Thorman(Thorman::new(1600.0, 0.003).unwrap());
-        let k = model_exposure(&spectral, &t, Strategy::PeakSearch { refine: false });
+        let k = model_exposure(&spectral, &t, Colour::DEFAULT);
         assert!(k > 1.0 && k.is_finite(), "{k}");
     }
 }

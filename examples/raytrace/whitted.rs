@@ -185,7 +185,7 @@ fn shade(
                     (Some(table), Filter::Point, _) => table.mean(u, u).scale(exposure),
                     _ => g
                         .model
-                        .xyz(&scene.spectral, wi_l, wo_l, g.strategy, exposure),
+                        .xyz(&scene.spectral, wo_l, wi_l, g.strategy, exposure),
                 };
                 let rgb = xyz.to_linear_srgb();
                 diffracted = DVec3::new(rgb.r, rgb.g, rgb.b);
