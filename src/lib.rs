@@ -216,3 +216,8 @@ pub use wavelengths::SampledWavelengths;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The registry page's README (`README.crates-io.md`), compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.crates-io.md")]
+pub struct PackageReadmeDoctests;
