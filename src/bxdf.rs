@@ -24,6 +24,7 @@ use crate::wavelengths::SampledWavelengths;
 mod agu_hill;
 pub mod bsdf;
 pub mod grating_bsdf;
+mod hero_mis;
 #[cfg(feature = "stam")]
 pub(crate) mod profile;
 mod response;
@@ -32,8 +33,9 @@ pub mod stam;
 mod thorman;
 
 pub use agu_hill::AguHill;
-pub use bsdf::{Bsdf, BsdfFlags, BsdfSample};
+pub use bsdf::{Bsdf, BsdfFlags, BsdfSample, BsdfSample4};
 pub use grating_bsdf::{GratingBsdf, WavelengthSample};
+pub use hero_mis::HeroMis;
 #[cfg(feature = "stam")]
 pub use profile::Profile;
 pub use response::{Envelope, GratingResponse, PeakSummary, SpectralResponse};

@@ -44,12 +44,17 @@
 //!   [`Spectral::paper_peaks`](spectrum::Spectral::paper_peaks)). The reference ray tracer
 //!   `examples/raytrace` does exactly this.
 //! * **A spectral path tracer** (physical units): [`GratingBsdf`], a [`Bsdf`] with an exact
-//!   sampling density: `eval(wo, wi, λ)`, `sample`, `pdf`, four wavelengths at once (`eval4`,
-//!   `pdf4`) with [`SampledWavelengths`], and a wavelength sampler from the grating's own response
-//!   (`docs/radiometry.md`; `examples/pathtrace`).
+//!   sampling density: `eval(wo, wi, λ)`, `sample`, `pdf`, and four wavelengths at once
+//!   ([`Bsdf::sample4`], `eval4`, `pdf4`) with [`SampledWavelengths`] (uniform or
+//!   [`visible`]-importance sampled); [`HeroMis`] gives the hero-wavelength MIS weights of BSDF
+//!   and light samples along a path, [`SampledSpectrum`] carries the four values and
+//!   [`SampledSpectrum::to_xyz`] with a [`SpectralFilm`] turns them into the film's XYZ. The
+//!   recipe, with its furnace tests, is in [`HeroMis`]'s docs and `docs/radiometry.md`; a
+//!   wavelength sampler from the grating's own response is [`GratingBsdf::sample_wavelength`].
 //! * **An RGB renderer**: a [`ColorTable`] per grating material (feature `alloc`, on with `std`):
-//!   the colour XYZ(u) in nanoseconds a lookup, with the footprint mean for antialiasing, then
-//!   [`color`]'s conversion and Hall's clipping.
+//!   the colour XYZ(u) in nanoseconds a lookup, with the footprint mean for antialiasing over the
+//!   interval of u a pixel sees ([`footprint::u_interval`], from its ray differentials and the
+//!   light's size), then [`color`]'s conversion and Hall's clipping.
 //! * **Real time**: the same table, or the slit kernels ([`kernel`], `f32` and `f64`) evaluated at
 //!   a few wavelengths.
 //! * **Your own model**: implement [`DiffractionBrdf`] (and [`SpectralResponse`] to get its
@@ -70,10 +75,13 @@
 //!   models [`AguHill`] (the paper's), [`GratingBsdf`] (energy-normalised, for path tracers),
 //!   [`Thorman`] (peak directions only, every order equally bright) and, with the feature
 //!   `stam`, `Stam` (Fourier optics for sinusoidal and binary profiles, in `stam`).
-//! * [`Bsdf`], [`BsdfSample`], [`BsdfFlags`], [`SampledWavelengths`]: the samplable interface
-//!   for path tracers (pbrt-v4's BxDF shape), with [`GrooveSpread`] (the lobes along the
-//!   grooves) and [`grating_bsdf`] (the grating BSDF's parts: order efficiencies, sampling,
-//!   albedo, wavelength sampling, regularisation).
+//! * [`Bsdf`], [`BsdfSample`], [`BsdfSample4`], [`BsdfFlags`]: the samplable interface for path
+//!   tracers (pbrt-v4's BxDF shape), with [`GrooveSpread`] (the lobes along the grooves) and
+//!   [`grating_bsdf`] (the grating BSDF's parts: order efficiencies, sampling, albedo,
+//!   wavelength sampling, regularisation).
+//! * [`SampledWavelengths`], [`visible`], [`SampledSpectrum`], [`SpectralFilm`], [`HeroMis`]: a
+//!   spectral path's four wavelengths, their values, the film's XYZ and the MIS weights.
+//! * [`footprint`]: the interval of u a pixel sees, for footprint-filtered colour lookups.
 //! * [`SpectralResponse`], [`GratingResponse`], [`Envelope`], [`PeakSummary`]: what the colour
 //!   integrator needs of a model.
 //! * [`Illumination`]: the paper's illumination model (eq. 12), ambient + diffuse + diffraction
@@ -89,9 +97,9 @@
 //! ```
 //! use diffraction::color::Clip;
 //! use diffraction::frame::{GratingField, ShadingFrame};
+//! use diffraction::glam::{DVec2, DVec3};
 //! use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 //! use diffraction::Grating;
-//! use glam::{DVec2, DVec3};
 //!
 //! let cd = Grating::new(1600.0, 800.0, 1000)?;
 //! let field = GratingField::radial(DVec2::ZERO); // CD tracks around the spindle
@@ -121,6 +129,12 @@
 //!   default features: it works with `std` and with `libm`).
 //!
 //! One of `std` and `libm` must be enabled.
+//!
+//! ## Vectors
+//!
+//! Directions and points are `glam` 0.30's `DVec3`, `DVec2` and `Vec3`, re-exported as
+//! [`diffraction::glam`](glam): use them from there, and no `glam` dependency of the renderer
+//! has to match the crate's.
 
 #![cfg_attr(not(feature = "std"), no_std)]
 #![cfg_attr(docsrs, feature(doc_cfg))]
@@ -141,7 +155,9 @@ pub mod color;
 #[cfg(feature = "alloc")]
 mod color_table;
 mod error;
+mod film;
 mod float;
+pub mod footprint;
 pub mod frame;
 mod grating;
 pub mod groove;
@@ -152,33 +168,56 @@ mod orders;
 mod parse;
 mod quadrature;
 mod random;
+mod sampled_spectrum;
 mod special;
 pub mod spectrum;
+pub mod visible;
 mod wavelengths;
 
 pub use band::Band;
 #[cfg(feature = "stam")]
 pub use bxdf::stam;
 pub use bxdf::{
-    bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, DiffractionBrdf, Envelope,
-    GratingBsdf, GratingResponse, PeakSummary, SpectralResponse, Thorman, WavelengthSample,
-    MIN_COS_THETA,
+    bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, BsdfSample4, DiffractionBrdf,
+    Envelope, GratingBsdf, GratingResponse, HeroMis, PeakSummary, SpectralResponse, Thorman,
+    WavelengthSample, MIN_COS_THETA,
 };
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
 #[cfg(feature = "alloc")]
 pub use color_table::ColorTable;
 pub use error::{Error, Requirement};
+pub use film::SpectralFilm;
 pub use float::Float;
+/// The vector library of every direction and point in the API: [`glam`](https://docs.rs/glam)
+/// **0.30** (`DVec3`, `DVec2`, `Vec3`), re-exported so that a renderer uses the very types the
+/// crate takes, whatever `glam` it depends on itself. Write `use diffraction::glam::DVec3;`;
+/// a renderer on another `glam` version (0.29, 0.31) converts at the boundary
+/// (`DVec3::new(v.x, v.y, v.z)` or `DVec3::from_array`).
+///
+/// ```
+/// use diffraction::glam::DVec3;
+/// use diffraction::{DiffractionBrdf, Grating, GratingBsdf};
+/// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+/// assert!(b.eval(DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()), 480.0) > 0.0);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+pub use glam;
 pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
 pub use groove::{GrooveKind, GrooveSpread};
 pub use illumination::Illumination;
 pub use orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
 pub use parse::ParseError;
 pub use random::unit_random;
+pub use sampled_spectrum::SampledSpectrum;
 pub use wavelengths::SampledWavelengths;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The registry page's README (`README.crates-io.md`), compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.crates-io.md")]
+pub struct PackageReadmeDoctests;

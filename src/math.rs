@@ -49,6 +49,18 @@ mod imp {
     pub fn ln(x: f64) -> f64 {
         x.ln()
     }
+    #[inline]
+    pub fn tanh(x: f64) -> f64 {
+        x.tanh()
+    }
+    #[inline]
+    pub fn atanh(x: f64) -> f64 {
+        x.atanh()
+    }
+    #[inline]
+    pub fn cosh(x: f64) -> f64 {
+        x.cosh()
+    }
 }
 
 #[cfg(all(not(feature = "std"), feature = "libm"))]
@@ -96,6 +108,18 @@ mod imp {
     #[inline]
     pub fn ln(x: f64) -> f64 {
         libm::log(x)
+    }
+    #[inline]
+    pub fn tanh(x: f64) -> f64 {
+        libm::tanh(x)
+    }
+    #[inline]
+    pub fn atanh(x: f64) -> f64 {
+        libm::atanh(x)
+    }
+    #[inline]
+    pub fn cosh(x: f64) -> f64 {
+        libm::cosh(x)
     }
 }
 

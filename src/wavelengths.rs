@@ -3,6 +3,7 @@
 
 use crate::error::{Error, Requirement};
 use crate::random::unit_random;
+use crate::visible;
 use crate::Band;
 
 /// Four wavelengths carried by one path, with the densities they were sampled with
@@ -12,20 +13,24 @@ use crate::Band;
 /// Two ways to use the four with a dispersive BSDF (the sampled direction depends on λ):
 ///
 /// * **Hero-wavelength MIS** (Wilkie et al., "Hero Wavelength Spectral Sampling", EGSR 2014):
-///   the direction was sampled for the hero; weight wavelength j's contribution by the balance
-///   heuristic over the four, `p_j / Σ_k p_k` with `p_k = pdf4(wo, wi)[k]` (and the
-///   wavelength densities), see [`balance_heuristic`](Self::balance_heuristic). Unbiased, and
-///   where the lobes of the four overlap (small N) all four contribute.
+///   the four wavelengths are stratified copies of one random number, so each of them is
+///   equally likely to be the hero, and a direction the hero sampled is a sample of the
+///   one-sample MIS of four techniques (wavelength k's sampler, each chosen with probability
+///   ¼). Wavelength j's estimate is f_j·cos θ/(¼·Σ_k p_k) = f_j·cos θ/mean(pdf4), **not**
+///   f_j·cos θ/Σ_k p_k (which is 4× too dark). Along a path the techniques are whole paths,
+///   so the densities multiply over the bounces: [`HeroMis`](crate::HeroMis) keeps that
+///   state and gives the weights of BSDF samples and of light samples.
 /// * **Terminate the secondaries** (pbrt-v4's `TerminateSecondary`): keep the hero only and
 ///   divide by its density alone ([`terminate_secondary`](Self::terminate_secondary)).
 ///
-/// For gratings the crate recommends **hero MIS with [`Bsdf::pdf4`](crate::Bsdf::pdf4)** for glossy samples: the
-/// lobes of order m sit at u = m·λ/d, so for large N the secondaries' pdfs at the hero's
-/// direction are tiny and the balance heuristic gives them weight ≈ 0 by itself (it degrades
-/// gracefully into termination, with no bias and no branch), while for small N, where the
-/// lobes overlap, it keeps their contribution. For **SPECULAR** samples (N = ∞ or an ideal
-/// groove) the secondaries' densities are exactly 0 and `pdf4` cannot express the delta: there
-/// terminate the secondaries, as pbrt does for dispersive specular surfaces.
+/// For gratings the crate recommends **hero MIS** for glossy samples: the lobes of order m sit
+/// at u = m·λ/d, so for large N the secondaries' densities at the hero's direction are tiny
+/// and the balance heuristic gives the hero's own estimate back (it degrades gracefully into
+/// termination, with no bias and no branch), while for small N, where the lobes overlap, it
+/// keeps their contribution. For **SPECULAR** samples (N = ∞ or an ideal groove) the
+/// secondaries' densities are exactly 0 and `pdf4` cannot express the delta: there terminate
+/// the secondaries, as pbrt does for dispersive specular surfaces ([`HeroMis`](crate::HeroMis)
+/// does it for you).
 ///
 /// ```
 /// use diffraction::{Band, SampledWavelengths};
@@ -72,6 +77,36 @@ impl SampledWavelengths {
             lambda,
             pdf: [1.0 / b; 4],
         }
+    }
+
+    /// Stratified wavelengths from the visible importance density of pbrt-v4
+    /// ([`visible`](crate::visible): ∝ 1/cosh²(0.0072·(λ − 538)) over 360-830 nm): the hero
+    /// at the inverse CDF of `u`, the others at the inverse CDF of u + ¼, u + ½, u + ¾ (modulo
+    /// 1), each with its density [`visible::pdf`](crate::visible::pdf). Fewer samples fall
+    /// where the eye sees little (violet, deep red) than with
+    /// [`sample_uniform`](Self::sample_uniform). `u` by the crate's rule for random numbers.
+    ///
+    /// ```
+    /// use diffraction::{visible, SampledWavelengths};
+    /// let l = SampledWavelengths::sample_visible(0.2);
+    /// assert_eq!(l.hero(), visible::sample(0.2));
+    /// assert_eq!(l.lambda()[2], visible::sample(0.7));
+    /// assert_eq!(l.pdf()[1], visible::pdf(l.lambda()[1]));
+    /// ```
+    #[must_use]
+    pub fn sample_visible(u: f64) -> SampledWavelengths {
+        let u = unit_random(u);
+        let mut lambda = [0.0; 4];
+        let mut pdf = [0.0; 4];
+        for i in 0..4 {
+            let mut t = u + 0.25 * i as f64;
+            if t >= 1.0 {
+                t -= 1.0;
+            }
+            lambda[i] = visible::sample(t);
+            pdf[i] = visible::pdf(lambda[i]);
+        }
+        SampledWavelengths { lambda, pdf }
     }
 
     /// Four wavelengths (finite, > 0) with their densities (finite, ≥ 0), for example from a
@@ -161,44 +196,5 @@ impl SampledWavelengths {
     #[must_use]
     pub fn secondary_terminated(&self) -> bool {
         self.pdf[1..].iter().all(|&p| p == 0.0)
-    }
-
-    /// The balance-heuristic weight of wavelength `index` for a direction whose sampling
-    /// densities under the four wavelengths are `pdf4`: `pdf4[index] / Σ pdf4` (0 when the sum
-    /// is 0 or `index` > 3). Multiply wavelength j's contribution f_j·cos/pdf4\[j\] by it, or
-    /// equivalently use f_j·cos/Σ pdf4 for every j (Wilkie et al. 2014).
-    ///
-    /// Always in [0, 1]: a density that is not a number ≥ 0 (negative, NaN) counts as 0, and
-    /// the sum is taken relative to the largest density, so huge finite densities (whose sum
-    /// would overflow) and infinite ones (each infinite density gets an equal share) still give
-    /// weights that add up to 1.
-    ///
-    /// ```
-    /// use diffraction::SampledWavelengths;
-    /// let w = SampledWavelengths::balance_heuristic([3.0, 1.0, 0.0, 0.0], 0);
-    /// assert_eq!(w, 0.75);
-    /// assert_eq!(SampledWavelengths::balance_heuristic([0.0; 4], 0), 0.0);
-    /// assert_eq!(SampledWavelengths::balance_heuristic([f64::MAX; 4], 2), 0.25);
-    /// assert_eq!(SampledWavelengths::balance_heuristic([f64::NAN, 1.0, -1.0, 0.0], 1), 1.0);
-    /// ```
-    #[must_use]
-    pub fn balance_heuristic(pdf4: [f64; 4], index: usize) -> f64 {
-        if index > 3 {
-            return 0.0;
-        }
-        // NaN and negative densities count as 0; ∞ as the largest value, shared equally.
-        let p = pdf4.map(|p| if p > 0.0 { p } else { 0.0 });
-        let top = p.iter().fold(0.0f64, |a, &b| a.max(b));
-        if top == 0.0 {
-            return 0.0;
-        }
-        let rel = if top.is_finite() {
-            p.map(|x| x / top)
-        } else {
-            p.map(|x| if x == top { 1.0 } else { 0.0 })
-        };
-        // Each term ≤ 1, so the sum is in [1, 4]: no overflow, no 0/0.
-        let sum: f64 = rel.iter().sum();
-        rel[index] / sum
     }
 }

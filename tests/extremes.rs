@@ -804,20 +804,16 @@ fn wavelengths_and_grooves(rng: &mut Rng, band: Band, lambda: f64, tally: &mut T
     let _ = (l.hero(), band.contains(lambda));
     l.terminate_secondary();
     assert!(l.secondary_terminated() && l.pdf()[0].is_finite());
+    // The hero MIS weights of a light sample and of an emitter hit: finite and ≥ 0 for any
+    // densities.
     let pdf4 = [rng.real(), rng.real(), rng.real(), rng.real()];
-    let mut sum = 0.0;
-    for i in 0..5 {
-        let w = SampledWavelengths::balance_heuristic(pdf4, i);
-        assert!(
-            (0.0..=1.0).contains(&w),
-            "balance_heuristic({pdf4:?}, {i}) = {w}"
-        );
-        sum += w;
+    let mis = diffraction::HeroMis::new();
+    for w in [
+        mis.light_sample_weight(rng.real(), pdf4, &l),
+        mis.emitter_weight(rng.real(), &l),
+    ] {
+        assert!(w.is_finite() && w >= 0.0, "hero MIS weight of {pdf4:?}: {w}");
     }
-    assert!(
-        sum == 0.0 || (sum - 1.0).abs() < 1e-12,
-        "balance weights of {pdf4:?} sum to {sum}"
-    );
     let _ = SampledWavelengths::new(
         [rng.real(), rng.real(), rng.real(), rng.real()],
         [rng.real(), rng.real(), rng.real(), rng.real()],

@@ -150,7 +150,7 @@ fn naive_is_nan_at_exact_maxima_stable_is_one() {
     assert_eq!(single_slit(0.0f64), 1.0);
 }
 
-/// The stiff inputs of DESIGN.md never produce NaN or values outside [0, 1].
+/// The stiff inputs of docs/conventions.md (Numerics) never produce NaN or values outside [0, 1].
 #[test]
 fn stiff_inputs_stay_finite_and_bounded() {
     let ns = [0u32, 1, 2, 1_000_000, 10_000_000, u32::MAX];

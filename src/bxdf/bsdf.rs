@@ -36,6 +36,9 @@
 //! `f(wo, wi)` is [`eval`](DiffractionBrdf::eval), `Sample_f(wo, uc, u)` is
 //! [`sample`](Bsdf::sample), `PDF(wo, wi)` is [`pdf`](Bsdf::pdf), `Flags()` is
 //! [`flags`](Bsdf::flags), `Regularize()` is [`regularize`](Bsdf::regularize).
+//! [`sample4`](Bsdf::sample4) has no pbrt counterpart: it returns the values and densities of a
+//! path's four wavelengths for the hero's direction, what hero-wavelength MIS
+//! ([`HeroMis`](crate::HeroMis)) needs, in one call.
 //! Mitsuba's `BSDF` calls the direction toward the camera `si.wi` and the sampled one `wo`,
 //! and includes the cosine in its values:
 //!
@@ -46,7 +49,7 @@
 //! | `eval(ctx, si, wo)` | `eval(wo, wi, λ) · wi.z` |
 //! | `pdf(ctx, si, wo)` | `pdf(wo, wi, λ)` |
 //! | `sample(ctx, si, sample1, sample2)` → (bs, weight) | `sample(wo, λ, uc, u2)` → bs, weight = `f·wi.z/pdf` |
-//! | `eval_pdf(ctx, si, wo)` | `eval4` and `pdf4` (the four-wavelength calls share their work) |
+//! | `eval_pdf(ctx, si, wo)` | `eval4` and `pdf4` (the four-wavelength calls share their work); `sample4` for a sample and both |
 //! | `BSDFSample3f.sampled_type` | `flags` |
 //!
 //! ```
@@ -66,6 +69,7 @@ use core::ops::BitOr;
 use glam::{DVec2, DVec3};
 
 use crate::math;
+use crate::sampled_spectrum::SampledSpectrum;
 use crate::wavelengths::SampledWavelengths;
 use crate::DiffractionBrdf;
 
@@ -252,6 +256,168 @@ impl BsdfSample {
     }
 }
 
+/// One direction sampled at a path's hero wavelength, with the BSDF's values and densities at
+/// all four wavelengths ([`Bsdf::sample4`]).
+///
+/// Index 0 is the hero's sample: `f[0]` and `pdf[0]` are [`BsdfSample::f`] and
+/// [`BsdfSample::pdf`], the density the direction was drawn with. For j ≥ 1, `f[j]` is
+/// `eval(wo, wi, λ_j)` and `pdf[j]` is `pdf(wo, wi, λ_j)`: the density with which the sampler
+/// would have produced `wi` had λ_j been the hero (the densities of hero-wavelength MIS,
+/// [`HeroMis`](crate::HeroMis)). For a SPECULAR sample the secondaries' values and densities
+/// are 0 (a delta lobe has no density, and the direction belongs to the hero): terminate the
+/// secondaries ([`HeroMis::bsdf_sample`](crate::HeroMis::bsdf_sample) does).
+///
+/// ```
+/// use diffraction::{BsdfFlags, BsdfSample4, SampledSpectrum};
+/// use glam::DVec3;
+/// let wi = DVec3::new(0.6, 0.0, 0.8);
+/// let f = SampledSpectrum::new([1.0, 0.5, 0.0, 2.0]);
+/// let pdf = SampledSpectrum::new([0.4, 0.2, 0.0, 0.1]);
+/// let s = BsdfSample4::new(wi, f, pdf, BsdfFlags::REFLECTION | BsdfFlags::GLOSSY);
+/// // f_j·cos θi over the hero's density, at every wavelength:
+/// let w = s.weight().values();
+/// assert!((w[0] - 2.0).abs() < 1e-15 && (w[3] - 4.0).abs() < 1e-15);
+/// assert_eq!(s.hero().pdf, 0.4);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct BsdfSample4 {
+    /// The sampled direction toward the light, unit, local frame, z > 0.
+    pub wi: DVec3,
+    /// f(wo, wi, λ_j), 1/sr, cosine excluded (index 0: the hero's sample value).
+    pub f: SampledSpectrum,
+    /// The sampler's density at `wi` with λ_j as the hero, in solid angle (index 0: the density
+    /// the direction was drawn with, > 0).
+    pub pdf: SampledSpectrum,
+    /// What was sampled (at the hero wavelength).
+    pub flags: BsdfFlags,
+    /// The diffraction order whose lobe was sampled, for models that have orders.
+    pub order: Option<i32>,
+}
+
+impl BsdfSample4 {
+    /// A sample without an order.
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample4, SampledSpectrum};
+    /// use glam::DVec3;
+    /// let s = BsdfSample4::new(DVec3::Z, SampledSpectrum::ONE, SampledSpectrum::ONE, BsdfFlags::DIFFUSE);
+    /// assert_eq!(s.order, None);
+    /// ```
+    #[must_use]
+    pub fn new(
+        wi: DVec3,
+        f: SampledSpectrum,
+        pdf: SampledSpectrum,
+        flags: BsdfFlags,
+    ) -> BsdfSample4 {
+        BsdfSample4 {
+            wi,
+            f,
+            pdf,
+            flags,
+            order: None,
+        }
+    }
+
+    /// The same sample tagged with its diffraction order.
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample4, SampledSpectrum};
+    /// use glam::DVec3;
+    /// let s = BsdfSample4::new(DVec3::Z, SampledSpectrum::ONE, SampledSpectrum::ONE, BsdfFlags::GLOSSY);
+    /// assert_eq!(s.with_order(3).order, Some(3));
+    /// ```
+    #[must_use]
+    pub fn with_order(self, order: i32) -> BsdfSample4 {
+        BsdfSample4 {
+            order: Some(order),
+            ..self
+        }
+    }
+
+    /// The throughput factor of each wavelength, f_j·cos θi/pdf\[0\] (the direction was drawn
+    /// with the hero's density); 0 everywhere when that density is not positive. A path tracer
+    /// multiplies its throughput by it and applies the MIS weight of
+    /// [`HeroMis`](crate::HeroMis) where the path meets light.
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample4, SampledSpectrum};
+    /// use glam::DVec3;
+    /// let s = BsdfSample4::new(DVec3::Z, SampledSpectrum::splat(2.0), SampledSpectrum::ZERO, BsdfFlags::GLOSSY);
+    /// assert!(s.weight().is_zero());
+    /// ```
+    #[must_use]
+    pub fn weight(&self) -> SampledSpectrum {
+        let p = self.pdf[0];
+        if p > 0.0 {
+            self.f * (self.wi.z / p)
+        } else {
+            SampledSpectrum::ZERO
+        }
+    }
+
+    /// The hero wavelength's sample alone.
+    ///
+    /// ```
+    /// use diffraction::{BsdfFlags, BsdfSample4, SampledSpectrum};
+    /// use glam::DVec3;
+    /// let s = BsdfSample4::new(DVec3::Z, SampledSpectrum::splat(2.0), SampledSpectrum::ONE, BsdfFlags::GLOSSY);
+    /// assert_eq!((s.hero().f, s.hero().pdf, s.hero().wi), (2.0, 1.0, DVec3::Z));
+    /// ```
+    #[must_use]
+    pub fn hero(&self) -> BsdfSample {
+        BsdfSample {
+            wi: self.wi,
+            f: self.f[0],
+            pdf: self.pdf[0],
+            flags: self.flags,
+            order: self.order,
+        }
+    }
+
+    /// The four-wavelength sample of `hero`, sampled at λ₀ of `lambdas`, with the secondaries
+    /// from `eval4` and `pdf4` (0 for a SPECULAR sample): what [`Bsdf::sample4`] returns by
+    /// default.
+    ///
+    /// ```
+    /// use diffraction::{Band, Bsdf, BsdfSample4, Grating, GratingBsdf, SampledWavelengths};
+    /// use glam::{DVec2, DVec3};
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 30)?);
+    /// let l = SampledWavelengths::sample_uniform(0.4, Band::VISIBLE);
+    /// let wo = DVec3::new(0.3, 0.1, 0.9f64.sqrt());
+    /// let s = b.sample(wo, l.hero(), 0.3, DVec2::new(0.6, 0.2)).unwrap();
+    /// let four = BsdfSample4::from_hero(&b, wo, &l, s);
+    /// assert_eq!(four.pdf[2], b.pdf(wo, s.wi, l.lambda()[2]));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn from_hero<B: Bsdf + ?Sized>(
+        bsdf: &B,
+        wo: DVec3,
+        lambdas: &SampledWavelengths,
+        hero: BsdfSample,
+    ) -> BsdfSample4 {
+        let (mut f, mut pdf) = if hero.flags.is_specular() {
+            ([0.0; 4], [0.0; 4])
+        } else {
+            (
+                bsdf.eval4(wo, hero.wi, lambdas),
+                bsdf.pdf4(wo, hero.wi, lambdas),
+            )
+        };
+        f[0] = hero.f;
+        pdf[0] = hero.pdf;
+        BsdfSample4 {
+            wi: hero.wi,
+            f: SampledSpectrum::new(f),
+            pdf: SampledSpectrum::new(pdf),
+            flags: hero.flags,
+            order: hero.order,
+        }
+    }
+}
+
 /// A radiometric, samplable BSDF (pbrt-v4's `BxDF`): the value
 /// [`eval`](DiffractionBrdf::eval) in 1/sr (cosine excluded) with an importance sampler of exact
 /// density. See the [module docs](self) for conventions, the pbrt and Mitsuba mappings and why
@@ -310,6 +476,36 @@ pub trait Bsdf: DiffractionBrdf {
     /// ```
     fn pdf4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
         lambdas.lambda().map(|l| self.pdf(wo, wi, l))
+    }
+
+    /// Samples wi at the hero wavelength of `lambdas` (as [`sample`](Self::sample) with
+    /// λ₀, `uc`, `u2`) and returns the BSDF's values and densities at all four wavelengths for
+    /// that direction ([`BsdfSample4`]): one call per bounce for a hero-wavelength path
+    /// tracer. The default is [`BsdfSample4::from_hero`] (`sample`, then `eval4` and `pdf4`);
+    /// models override it to share the work (the grating's costs about one `sample` + `eval4`).
+    ///
+    /// ```
+    /// use diffraction::{Band, Bsdf, DiffractionBrdf, Grating, GratingBsdf, SampledWavelengths};
+    /// use glam::{DVec2, DVec3};
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 30)?);
+    /// let l = SampledWavelengths::sample_uniform(0.4, Band::VISIBLE);
+    /// let wo = DVec3::new(0.3, 0.1, 0.9f64.sqrt());
+    /// let s = b.sample4(wo, &l, 0.3, DVec2::new(0.6, 0.2)).unwrap();
+    /// let hero = b.sample(wo, l.hero(), 0.3, DVec2::new(0.6, 0.2)).unwrap();
+    /// assert_eq!((s.wi, s.pdf[0]), (hero.wi, hero.pdf));
+    /// assert_eq!(s.f.values(), b.eval4(wo, s.wi, &l));
+    /// assert_eq!(s.pdf.values(), b.pdf4(wo, s.wi, &l));
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    fn sample4(
+        &self,
+        wo: DVec3,
+        lambdas: &SampledWavelengths,
+        uc: f64,
+        u2: DVec2,
+    ) -> Option<BsdfSample4> {
+        let hero = self.sample(wo, lambdas.hero(), uc, u2)?;
+        Some(BsdfSample4::from_hero(self, wo, lambdas, hero))
     }
 
     /// The kinds of lobe the model has.

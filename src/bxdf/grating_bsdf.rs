@@ -116,6 +116,7 @@ use crate::{DiffractionBrdf, Envelope, GratingResponse, PeakSummary};
 
 mod albedo;
 mod efficiency;
+mod four;
 mod lobe;
 mod orders;
 mod regularize;
@@ -616,6 +617,18 @@ impl Bsdf for GratingBsdf {
             }
         }
         out
+    }
+
+    /// The hero's `sample` and the secondaries' values and densities at its direction, sharing
+    /// the checks and (u, v) (`four.rs`); equal to `sample` + `eval4` + `pdf4` to the bit.
+    fn sample4(
+        &self,
+        wo: DVec3,
+        lambdas: &SampledWavelengths,
+        uc: f64,
+        u2: DVec2,
+    ) -> Option<crate::BsdfSample4> {
+        self.sample_four(wo, lambdas, uc, u2)
     }
 
     /// REFLECTION | GLOSSY for finite N with a groove spread; REFLECTION | SPECULAR for N = ∞
