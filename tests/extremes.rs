@@ -812,7 +812,10 @@ fn wavelengths_and_grooves(rng: &mut Rng, band: Band, lambda: f64, tally: &mut T
         mis.light_sample_weight(rng.real(), pdf4, &l),
         mis.emitter_weight(rng.real(), &l),
     ] {
-        assert!(w.is_finite() && w >= 0.0, "hero MIS weight of {pdf4:?}: {w}");
+        assert!(
+            w.is_finite() && w >= 0.0,
+            "hero MIS weight of {pdf4:?}: {w}"
+        );
     }
     let _ = SampledWavelengths::new(
         [rng.real(), rng.real(), rng.real(), rng.real()],

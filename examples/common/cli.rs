@@ -3,8 +3,8 @@
 
 use std::path::PathBuf;
 
-use diffraction::color::Clip;
 use crate::colour::Colour;
+use diffraction::color::Clip;
 
 use crate::limits::{self, MAX_DEPTH, MAX_FRAMES, MAX_SIZE, MAX_SPP};
 

@@ -232,11 +232,9 @@ pub fn strategy(c: Colour) -> Result<Colour, String> {
         StrategyKind::Uniform { samples } if samples > MAX_UNIFORM_SAMPLES => Err(format!(
             "uniform:K takes at most {MAX_UNIFORM_SAMPLES} wavelengths"
         )),
-        StrategyKind::GaussLegendre { intervals } if intervals > MAX_GAUSS_INTERVALS => {
-            Err(format!(
-                "gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals"
-            ))
-        }
+        StrategyKind::GaussLegendre { intervals } if intervals > MAX_GAUSS_INTERVALS => Err(
+            format!("gauss:K takes at most {MAX_GAUSS_INTERVALS} intervals"),
+        ),
         StrategyKind::Auto { accuracy } if !AUTO_ACCURACY.contains(accuracy) => Err(format!(
             "auto:ACCURACY takes an accuracy in [{}, {}]",
             short(AUTO_ACCURACY.min),

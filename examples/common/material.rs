@@ -13,11 +13,11 @@ use diffraction::frame::{GratingField, Tile};
 use diffraction::Illumination;
 use glam::DVec3;
 
+use crate::colour::Colour;
 use crate::diagnostics::{Check, FieldError};
 use crate::files::Input;
 use crate::geometry::{Hit, Part};
 use crate::limits::{self, check, zero_or};
-use crate::colour::Colour;
 use crate::scene::{parse_strategy, vec3, Physics};
 use crate::schema::{RawField, RawGrating, RawKind, RawMaterial, RawTile, MODELS};
 use crate::texture::{ImageTexture, Wood};

@@ -26,8 +26,8 @@ use diffraction::spectrum::Spectral;
 use glam::DVec3;
 use toml::de::{DeTable, DeValue};
 
-use crate::colour::Colour;
 use crate::camera::Camera;
+use crate::colour::Colour;
 use crate::diagnostics::{
     line_of, locate, path_at, plain_message, value_at, Check, FieldError, SceneError,
 };
@@ -296,11 +296,9 @@ fn build<P: Physics>(raw: RawScene, name: &str, base: &Path) -> Check<Scene<P>> 
     let r = &raw.render;
     let illuminant = match r.illuminant.as_deref() {
         None => Illuminant::D65,
-        Some(s) => s
-            .parse()
-            .map_err(|e: diffraction::ParseError| {
-                FieldError::new("render.illuminant", format!("{e}, got \"{s}\""))
-            })?,
+        Some(s) => s.parse().map_err(|e: diffraction::ParseError| {
+            FieldError::new("render.illuminant", format!("{e}, got \"{s}\""))
+        })?,
     };
     let settings = Settings {
         width: count("render.width", r.width.unwrap_or(480), 1, limits::MAX_SIZE)?,

@@ -4,9 +4,9 @@
 
 use std::f64::consts::FRAC_1_PI;
 
+use crate::colour::Colour;
 use diffraction::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use diffraction::frame::ShadingFrame;
-use crate::colour::Colour;
 use diffraction::{Bsdf, DiffractionBrdf, GratingBsdf, SampledWavelengths};
 use glam::{DVec2, DVec3};
 

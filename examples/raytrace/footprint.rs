@@ -15,8 +15,8 @@ use std::str::FromStr;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use diffraction::frame::ShadingFrame;
 use crate::colour::Colour;
+use diffraction::frame::ShadingFrame;
 use diffraction::ColorTable;
 use glam::{DVec2, DVec3};
 

@@ -349,12 +349,7 @@ mod tests {
         let brightest = (0..=EXPOSURE_SCAN)
             .map(|i| -2.0 + 4.0 * i as f64 / EXPOSURE_SCAN as f64)
             .filter(|u: &f64| u.abs() > 0.2)
-            .map(|u| {
-                spectral
-                    .xyz(&g, u, Strategy::PEAK_SEARCH)
-                    .y
-                    * k
-            })
+            .map(|u| spectral.xyz(&g, u, Strategy::PEAK_SEARCH).y * k)
             .fold(0.0, f64::max);
         assert!((brightest - 1.0).abs() < 1e-9);
         let paper = exposure(&spectral, &g, Colour::Paper);
