@@ -40,12 +40,18 @@ DECIMALS = 6
 S_EDGE = 0.9999
 
 
+# Extra nodes near grazing incidence: there order 0 changes fastest (it tends to 1 at grazing,
+# and under a cover the TM specular passes a Brewster-like minimum near |s| = 0.9).
+EDGE_NODES = (0.95, 0.98)
+
+
 def s_grid(step: float) -> np.ndarray:
     n = round(1.0 / step)
     if abs(n * step - 1.0) > 1e-12:
         raise ValueError(f"sin-step: {step} must divide 1")
-    inner = [round(-1.0 + i * step, 12) for i in range(1, 2 * n)]
-    return np.array([-S_EDGE] + inner + [S_EDGE])
+    inner = {round(-1.0 + i * step, 12) for i in range(1, 2 * n)}
+    inner |= {e for e in EDGE_NODES} | {-e for e in EDGE_NODES}
+    return np.array([-S_EDGE] + sorted(inner) + [S_EDGE])
 
 
 def l_grid(lmin: float, lmax: float, step: float) -> np.ndarray:
@@ -75,6 +81,12 @@ def cos_theta_m(period_nm: float, m: int, s, lam):
 
 # ---------------------------------------------------------------- interpolation (the reference rule)
 
+# A corner closer than this to the order's Rayleigh line (cos^2(theta_m) <= 1e-6, cos(theta_m) <=
+# 1e-3) is treated as evanescent: its eta and cos(theta_m) are both tiny and their ratio is
+# dominated by rounding (a node that lies on the line up to float rounding holds the efficiency of a
+# solve nudged off the line, a few 1e-5, over a cos(theta_m) of 1e-8).
+GRAZING_CORNER = 1e-6
+
 
 def interpolate(table: dict, pol: str, m: int, s: float, lam: float) -> float:
     """eta_m(s, lambda) by the documented rule (docs/efficiency_tables.md):
@@ -82,7 +94,7 @@ def interpolate(table: dict, pol: str, m: int, s: float, lam: float) -> float:
     1. clamp s and lambda to the grid's range;
     2. 0 if the order is evanescent there (|s + m*lambda/d| >= 1);
     3. else, over the four corners of the grid cell holding (s, lambda), the corners where the order
-       propagates carry q = eta * cos(theta_i) / cos(theta_m) (= |r_m|^2, smooth through the order's
+       propagates (cos^2(theta_m) > GRAZING_CORNER) carry q = eta * cos(theta_i) / cos(theta_m) (= |r_m|^2, smooth through the order's
        Rayleigh line and through grazing incidence); bilinear weights, renormalised over those
        corners (0 if none), give q at (s, lambda), and eta = q * cos(theta_m) / cos(theta_i) there.
 
@@ -106,7 +118,7 @@ def interpolate(table: dict, pol: str, m: int, s: float, lam: float) -> float:
     for ii, jj, w in ((i, j, (1 - tx) * (1 - ty)), (i + 1, j, tx * (1 - ty)),
                       (i, j + 1, (1 - tx) * ty), (i + 1, j + 1, tx * ty)):
         c = 1.0 - (S[ii] + m * L[jj] / d) ** 2
-        if c > 0.0 and w > 0.0:
+        if c > GRAZING_CORNER and w > 0.0:
             num += w * eta[jj][ii] * math.sqrt(1.0 - S[ii] ** 2) / math.sqrt(c)
             den += w
     if den == 0.0:
@@ -195,15 +207,28 @@ def _row(args):
     largest efficiency zeroed on a Rayleigh node, largest count, largest last change)."""
     import fmm
 
-    g, lam, s_nodes, nh0, order_min, n_o, j = args
+    g, lam, s_nodes, nh0, order_min, n_o, j, known, fixed = args
     te = np.zeros((n_o, s_nodes.size))
     tm = np.zeros_like(te)
     dropped = [0.0, 0.0]
     zeroed, nh_max, change = 0.0, 0, 0.0
+    unconverged = []
     for i, s in enumerate(s_nodes):
-        c = fmm.solve_converged(g, lam, float(s), nh_start=nh0)
-        nh_max, change = max(nh_max, c.result.nh), max(change, c.change)
-        a = fmm.to_air(g, lam, float(s), c.result)
+        if float(s) in known:  # a node of an earlier table of the same grating
+            te[:, i], tm[:, i] = known[float(s)]
+            continue
+        try:
+            if fixed:
+                res, ch = fmm.solve_once(g, lam, float(s), nh0), 0.0
+            else:
+                c = fmm.solve_converged(g, lam, float(s), nh_start=nh0)
+                res, ch = c.result, c.change
+        except fmm.NotConverged as e:
+            # Kept at the cap's count and listed in the table (solver.unconverged_nodes).
+            res, ch = e.last, e.change
+            unconverged.append({"lambda_nm": lam, "sin_theta_i": float(s), "harmonics": res.nh, "change": ch})
+        nh_max, change = max(nh_max, res.nh), max(change, ch if ch == ch else 0.0)
+        a = fmm.to_air(g, lam, float(s), res)
         dropped = [max(dropped[0], a.dropped_te), max(dropped[1], a.dropped_tm)]
         for m, e_te, e_tm in zip(a.orders, a.te, a.tm):
             nominal = s + m * lam / g.period_nm
@@ -212,7 +237,7 @@ def _row(args):
                 continue
             te[m - order_min, i] = max(e_te, 0.0)
             tm[m - order_min, i] = max(e_tm, 0.0)
-    return j, te, tm, dropped, zeroed, nh_max, change
+    return j, te, tm, dropped, zeroed, nh_max, change, unconverged
 
 
 def _pool_map(fn, tasks, workers):
@@ -226,7 +251,13 @@ def _pool_map(fn, tasks, workers):
 
 def build(g, grid: Grid, name: str, description: str, command: str, workers: int = 2,
           nh: int | None = None, interp_points: int = 32, seed: int = 1,
-          log=print) -> dict:
+          log=print, reuse: dict | None = None, fixed_nh: int | None = None, check_points: int = 8) -> dict:
+    """The table of grating g on `grid`. `reuse`: an earlier table of the same grating (same
+    geometry, metal, cover, orders) whose nodes are copied instead of solved again; its solver
+    records (counts, unconverged nodes, dropped power) are carried over.
+
+    `fixed_nh`: solve every node at this one count instead of converging each (for costly tables),
+    then check `check_points` random nodes against NH_GROWTH times the count; the table records it."""
     import fmm
 
     t0 = time.perf_counter()
@@ -237,14 +268,35 @@ def build(g, grid: Grid, name: str, description: str, command: str, workers: int
     # nh: the starting count of every node's convergence (default: fmm.first_nh).
     sym = g.symmetric
     s_solve = S[S >= 0] if sym else S
-    tasks = [(g, float(lam), s_solve, nh, omin, n_o, j) for j, lam in enumerate(L)]
-    nh_max, worst_conv = 0, 0.0
+    known_rows = [{} for _ in L]
+    nh_max, worst_conv, unconverged = 0, 0.0, []
+    reused = 0
+    if reuse is not None:
+        rg = reuse["grating"]
+        same = all(rg[k] == v for k, v in (("profile", g.profile), ("period_nm", g.period_nm), ("depth_nm", g.depth_nm),
+                                              ("duty", g.duty), ("blaze_deg", g.blaze_deg), ("metal", g.metal), ("cover", g.cover)))
+        if not same or (reuse["order_min"], reuse["order_max"]) != (omin, omax):
+            raise ValueError("reuse: a table of another grating")
+        for jj, lam in enumerate(reuse["lambda_nm"]):
+            if lam in list(L):
+                j = list(L).index(lam)
+                for ii, s in enumerate(reuse["sin_theta_i"]):
+                    known_rows[j][float(s)] = (np.array([reuse["te"][k][jj][ii] for k in range(n_o)]),
+                                               np.array([reuse["tm"][k][jj][ii] for k in range(n_o)]))
+                    reused += 1
+        rs = reuse["solver"]
+        nh_max, worst_conv = rs["harmonics"], rs["convergence_max_last_change"]
+        unconverged = list(rs.get("unconverged_nodes", []))
+    if fixed_nh is not None:
+        nh = fixed_nh
+    tasks = [(g, float(lam), s_solve, nh, omin, n_o, j, known_rows[j], fixed_nh is not None) for j, lam in enumerate(L)]
     te = np.zeros((n_o, L.size, S.size))
     tm = np.zeros_like(te)
-    dropped = [0.0, 0.0]
-    zeroed = 0.0
-    for j, a_te, a_tm, dr, z, nhj, chj in _pool_map(_row, tasks, workers):
+    dropped = [0.0, 0.0] if reuse is None else [reuse["solver"]["cover_dropped_max"]["te"], reuse["solver"]["cover_dropped_max"]["tm"]]
+    zeroed = 0.0 if reuse is None else reuse["validation"]["rayleigh_node_zeroed_max"]
+    for j, a_te, a_tm, dr, z, nhj, chj, unc in _pool_map(_row, tasks, workers):
         nh_max, worst_conv = max(nh_max, nhj), max(worst_conv, chj)
+        unconverged += unc
         dropped = [max(dropped[0], dr[0]), max(dropped[1], dr[1])]
         zeroed = max(zeroed, z)
         if sym:
@@ -283,36 +335,33 @@ def build(g, grid: Grid, name: str, description: str, command: str, workers: int
         "tm": tm.tolist(),
     }
 
-    log(f"  every node converged: largest count {nh_max}, largest last change {worst_conv:.2e}")
+    fixed_check = None
+    if fixed_nh is not None:
+        rng0 = np.random.default_rng(seed + 1)
+        nh_max, worst_conv = fixed_nh, 0.0
+        for _ in range(check_points):
+            lam, s = float(rng0.choice(L)), float(rng0.choice(S))
+            a = fmm.solve_once(g, lam, s, fixed_nh)
+            b = fmm.solve_once(g, lam, s, fmm._odd(fixed_nh * fmm.NH_GROWTH))
+            worst_conv = max(worst_conv, fmm._max_change(a, b))
+        fixed_check = {"harmonics": fixed_nh, "checked_against": fmm._odd(fixed_nh * fmm.NH_GROWTH),
+                       "random_nodes": check_points, "max_change": worst_conv}
+        log(f"  fixed count {fixed_nh}: max change against {fixed_check['checked_against']} at {check_points} random nodes {worst_conv:.2e}")
+    unconverged.sort(key=lambda u: (u["lambda_nm"], u["sin_theta_i"]))
+    log(f"  nodes converged: largest count {nh_max}, largest last change {worst_conv:.2e}; "
+        f"{len(unconverged)} nodes not converged to 1e-3 by the cap (kept at the cap's count); {reused} nodes reused")
 
-    # Interpolation error: fresh solves at random points inside cells against the rule.
-    rng = np.random.default_rng(seed)
-    err_all, err_big, n_cmp = [], [], 0
-    for _ in range(interp_points):
-        i = int(rng.integers(0, S.size - 1))
-        j = int(rng.integers(0, L.size - 1))
-        s = float(S[i] + rng.uniform(0.2, 0.8) * (S[i + 1] - S[i]))
-        lam = float(L[j] + rng.uniform(0.2, 0.8) * (L[j + 1] - L[j]))
-        r = fmm.solve_converged(g, lam, s, nh_start=nh).result
-        a = fmm.to_air(g, lam, s, r)
-        for pol, eff in (("te", a.te), ("tm", a.tm)):
-            for m, e in zip(a.orders, eff):
-                if abs(s + m * lam / g.period_nm) >= 1:
-                    continue
-                d = abs(interpolate(table, pol, int(m), s, lam) - e)
-                err_all.append(d)
-                n_cmp += 1
-                if e >= 0.01:
-                    err_big.append(d / e)
-    err_all = np.array(err_all)
-    err_big = np.array(err_big) if err_big else np.zeros(1)
+    check = interpolation_check(g, table, interp_points, seed, nh, fixed_nh is not None)
     total_s = time.perf_counter() - t0
     table["solver"] = {
         "method": "nannos Fourier modal method, Li's rule (formulation tangent)" if g.profile == "lamellar"
         else "C method with Li's factorisation (python_ref/cmethod.py)",
         "harmonics": nh_max,
-        "convergence": "every node: the harmonic count raised x1.5 until no order (TE or TM) changed by 1e-3",
+        "convergence": ("every node: the harmonic count raised x1.5 until no order (TE or TM) changed by 1e-3"
+                        if fixed_check is None else "one fixed harmonic count for every node, checked at random nodes (fixed_count)"),
+        "fixed_count": fixed_check,
         "convergence_max_last_change": worst_conv,
+        "unconverged_nodes": unconverged,
         "rayleigh_nudge": fmm.RAYLEIGH_NUDGE,
         "cover_model": "none" if g.cover == "none" else
         "single pass through a flat air-polycarbonate surface (Sultanova 2009 Sellmeier), Fresnel "
@@ -324,18 +373,52 @@ def build(g, grid: Grid, name: str, description: str, command: str, workers: int
     table["validation"] = {
         "sum_tolerance": SUM_TOLERANCE,
         "max_sum": {"te": float(te.sum(axis=0).max()), "tm": float(tm.sum(axis=0).max())},
-        "interpolation_points": interp_points,
-        "interpolation_compared_orders": n_cmp,
-        "interpolation_abs_error_max": float(err_all.max()) if err_all.size else 0.0,
-        "interpolation_abs_error_p95": float(np.percentile(err_all, 95)) if err_all.size else 0.0,
-        "interpolation_rel_error_p95_eta_ge_0.01": float(np.percentile(err_big, 95)),
-        "interpolation_rel_error_max_eta_ge_0.01": float(err_big.max()),
+        **check,
         "rayleigh_node_zeroed_max": zeroed,
     }
     table["command"] = command
     log(f"  {name}: {n_o} orders, {L.size} x {S.size} nodes, up to {nh_max} harmonics, solves {solve_s:.0f} s, total {total_s:.0f} s; "
         f"interpolation |error| max {table['validation']['interpolation_abs_error_max']:.2e}, p95 {table['validation']['interpolation_abs_error_p95']:.2e}")
     return table
+
+
+def interpolation_check(g, table: dict, points: int, seed: int, nh: int | None, fixed: bool) -> dict:
+    """Fresh solves at random points inside grid cells against the interpolation rule."""
+    import fmm
+
+    S, L = np.asarray(table["sin_theta_i"]), np.asarray(table["lambda_nm"])
+    rng = np.random.default_rng(seed)
+    err_all, err_big, n_cmp = [], [], 0
+    for _ in range(points):
+        i = int(rng.integers(0, S.size - 1))
+        j = int(rng.integers(0, L.size - 1))
+        s = float(S[i] + rng.uniform(0.2, 0.8) * (S[i + 1] - S[i]))
+        lam = float(L[j] + rng.uniform(0.2, 0.8) * (L[j + 1] - L[j]))
+        try:
+            r = fmm.solve_once(g, lam, s, nh) if fixed else fmm.solve_converged(g, lam, s, nh_start=nh).result
+        except fmm.NotConverged as e:
+            r = e.last
+        a = fmm.to_air(g, lam, s, r)
+        for pol, eff in (("te", a.te), ("tm", a.tm)):
+            for m, e in zip(a.orders, eff):
+                if abs(s + m * lam / g.period_nm) >= 1:
+                    continue
+                d = abs(interpolate(table, pol, int(m), s, lam) - e)
+                err_all.append(d)
+                n_cmp += 1
+                if e >= 0.01:
+                    err_big.append(d / e)
+    err_all = np.array(err_all) if err_all else np.zeros(1)
+    err_big = np.array(err_big) if err_big else np.zeros(1)
+    return {
+        "interpolation_points": points,
+        "interpolation_compared_orders": n_cmp,
+        "interpolation_abs_error_max": float(err_all.max()),
+        "interpolation_abs_error_p95": float(np.percentile(err_all, 95)),
+        "interpolation_abs_error_median": float(np.median(err_all)),
+        "interpolation_rel_error_p95_eta_ge_0.01": float(np.percentile(err_big, 95)),
+        "interpolation_rel_error_max_eta_ge_0.01": float(err_big.max()),
+    }
 
 
 def _mirror(col: np.ndarray, omin: int, omax: int) -> np.ndarray:

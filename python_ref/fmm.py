@@ -86,7 +86,13 @@ def polycarbonate_n(lambda_nm: float) -> float:
 
 
 class NotConverged(RuntimeError):
-    pass
+    """Raised by solve_converged at the cap; `last` holds the result at the highest count reached
+    and `change` its change from the count before."""
+
+    def __init__(self, message, last=None, change=float("nan")):
+        super().__init__(message)
+        self.last = last
+        self.change = change
 
 
 @dataclass(frozen=True)
@@ -336,10 +342,12 @@ def solve_converged(g: Grating, lambda_nm: float, sin_theta_i: float, slabs: int
     nh = nh_start or first_nh(g, lambda_nm, n_in)
     prev = solve(g, lambda_nm, sin_theta_i, nh, slabs)
     seq = [prev.nh]
+    ch = float("nan")
     while True:
         nh = _odd(nh * NH_GROWTH)
         if nh > (NH_CAP if g.profile == "lamellar" else NH_CAP_CMETHOD):
-            raise NotConverged(f"{g} at {lambda_nm} nm, s = {sin_theta_i}: not converged to {tol} by {seq[-1]} harmonics")
+            raise NotConverged(f"{g} at {lambda_nm} nm, s = {sin_theta_i}: not converged to {tol} by {seq[-1]} harmonics",
+                               last=prev, change=ch)
         cur = solve(g, lambda_nm, sin_theta_i, nh, slabs)
         seq.append(cur.nh)
         ch = _max_change(prev, cur)

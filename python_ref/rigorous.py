@@ -197,10 +197,11 @@ DEPTHS = [15.0, 50.0, 120.0, 250.0]
 LAMBDAS = [450.0, 550.0, 650.0]
 THETAS = [0.0, 30.0, 60.0]
 GRID_METALS = ["Al", "Ag"]
-# (profile, duty, largest period): the second duty and the sawtooth stop earlier (cost).
-PROFILES = [("sinusoid", None, 10000.0), ("lamellar", 0.5, 5000.0), ("lamellar", 0.25, 1000.0),
-            ("sawtooth", None, 1600.0)]
-# The sawtooth is set by its blaze angle (depth d*sin(2*blaze)/2: 85-186 nm at 500 nm, 272-595 nm
+# (profile, duty, periods): the lamellar profiles and the sawtooth get fewer periods (their cases
+# take 10-30 s each on the shared machine, the sinusoid's about 1 s).
+PROFILES = [("sinusoid", None, PERIODS), ("lamellar", 0.5, PERIODS[:-1]), ("lamellar", 0.25, [1000.0]),
+            ("sawtooth", None, [740.0, 1000.0, 1600.0])]
+# The sawtooth is set by its blaze angle (depth d*sin(2*blaze)/2: 126-275 nm at 740 nm, 272-595 nm
 # at 1600 nm; at 2500 nm most cases did not converge by 401 harmonics). Small blaze angles make the
 # short facet nearly vertical, where the C method converges slowly (at 3 degrees TM still changed
 # by 2e-3 between 161 and 241 harmonics); the preset at 8.6 degrees converges (203 harmonics).
@@ -211,11 +212,9 @@ def grid_cases():
     import fmm
 
     cases = []
-    for profile, duty, dmax in PROFILES:
+    for profile, duty, periods in PROFILES:
         for metal in GRID_METALS:
-            for d in PERIODS:
-                if d > dmax:
-                    continue
+            for d in periods:
                 shapes = []
                 if profile == "sawtooth":
                     shapes = [fmm.sawtooth(d, b, metal) for b in BLAZES]
@@ -275,7 +274,10 @@ def write_with_hash(path: Path, comments: list[str], data_lines: list[str]) -> N
     path.write_text("\n".join(out + data_lines) + "\n", encoding="utf-8")
 
 
-def orders(limit: int | None = None) -> Path:
+def orders(limit: int | None = None, from_cache: bool = False) -> Path:
+    """The test grid. Cases run cheapest first and are cached as they finish (resumable);
+    `from_cache` writes the CSV from the cached cases only, listing the others in the header as
+    not computed."""
     import multiprocessing as mp
 
     import fmm
@@ -284,8 +286,8 @@ def orders(limit: int | None = None) -> Path:
     if limit:
         cases = cases[:: max(1, len(cases) // limit)]
     cache = _load_cache()
-    todo = [c for c in cases if _key(c) not in cache]
-    todo.sort(key=lambda c: -_cost(c))
+    todo = [] if from_cache else [c for c in cases if _key(c) not in cache]
+    todo.sort(key=_cost)
     t0 = time.perf_counter()
     CACHE.parent.mkdir(parents=True, exist_ok=True)
     print(f"  {len(cases)} cases, {len(cases) - len(todo)} from {CACHE.relative_to(REPO)}", flush=True)
@@ -304,9 +306,12 @@ def orders(limit: int | None = None) -> Path:
     wall = time.perf_counter() - t0
     import numpy as np
 
-    results, failed, cpu = {}, [], 0.0
+    results, failed, cpu, missing = {}, [], 0.0, []
     for case in cases:
-        rec = cache[_key(case)]
+        rec = cache.get(_key(case))
+        if rec is None:
+            missing.append(case)
+            continue
         cpu += rec["seconds"]
         if rec["error"]:
             failed.append(rec["error"])
@@ -359,8 +364,8 @@ def orders(limit: int | None = None) -> Path:
         "over the incident z-flux (evanescent orders are not listed; their efficiency is 0).",
         f"harmonics: the Fourier harmonic count of the reported values; the count was raised by x{fmm.NH_GROWTH} until no",
         f"order (TE or TM) changed by {fmm.CONVERGENCE_TOL} or more between the last two counts; nh_change = that change.",
-        f"Grid: profiles {', '.join((p if d is None else f'{p} duty {d}') + f' (d <= {dm:g} nm)' for p, d, dm in PROFILES)};",
-        f"metals {', '.join(GRID_METALS)}; periods {', '.join(f'{p:g}' for p in PERIODS)} nm; depths {', '.join(f'{h:g}' for h in DEPTHS)} nm",
+        "Grid: " + "; ".join((p if d is None else f"{p} duty {d}") + f" at d = {', '.join(f'{x:g}' for x in ps)} nm" for p, d, ps in PROFILES) + ";",
+        f"metals {', '.join(GRID_METALS)}; depths {', '.join(f'{h:g}' for h in DEPTHS)} nm",
         f"(sawtooth: blaze {', '.join(f'{b:g}' for b in BLAZES)} deg instead, depth = d sin(2 blaze)/2);",
         f"lambda {', '.join(f'{v:g}' for v in LAMBDAS)} nm; theta {', '.join(f'{v:g}' for v in THETAS)} deg; TE and TM.",
         f"Cases: {len(cases)} (geometry x lambda x theta), {len(results)} converged, {len(failed)} not converged by {fmm.NH_CAP} harmonics (left out):",
@@ -368,6 +373,14 @@ def orders(limit: int | None = None) -> Path:
     comments += ["  " + e for e in failed[:40]]
     if len(failed) > 40:
         comments.append(f"  ... and {len(failed) - 40} more")
+    if missing:
+        comments.append(f"Not computed in this run ({len(missing)} cases; `{ORDERS_CMD}` computes them, cheapest first):")
+        byclass: dict = {}
+        for g, lam, th in missing:
+            k = (g.profile, g.duty, g.metal, g.period_nm)
+            byclass[k] = byclass.get(k, 0) + 1
+        for (p, d, m, per), n in sorted(byclass.items(), key=str):
+            comments.append(f"  {p}{'' if d is None else f' duty {d}'} {m} d = {per:g} nm: {n} of its (depth or blaze) x lambda x theta cases")
     comments += [
         f"Rows: {rows}; largest harmonic count {max_nh}; largest nh_change {worst_change:.3g}; largest sum over orders {worst_sum:.6f}.",
     ]
@@ -428,6 +441,9 @@ def main() -> int:
     ap.add_argument("--presets", action="store_true")
     ap.add_argument("--all", action="store_true")
     ap.add_argument("--check", action="store_true")
+    ap.add_argument("--preset", action="append", help="with --presets: only this preset (repeatable)")
+    ap.add_argument("--reuse", action="store_true", help="with --presets: copy the nodes the committed JSON already has (same grating)")
+    ap.add_argument("--from-cache", action="store_true", help="with --orders: write the CSV from the cached cases only")
     ap.add_argument("--limit", type=int, help="(development) only about this many grid cases")
     args = ap.parse_args()
     if args.check:
@@ -442,11 +458,11 @@ def main() -> int:
         if args.validate or args.all:
             print(json.dumps(validate(), indent=1))
         if args.orders or args.all:
-            orders(args.limit)
+            orders(args.limit, args.from_cache)
         if args.presets or args.all:
             import presets
 
-            presets.build_all()
+            presets.build_all(only=args.preset, reuse_existing=args.reuse)
     except Failed as e:
         print(f"\nVALIDATION FAILED: {e}")
         return 1
