@@ -65,6 +65,7 @@ def main(argv=None) -> int:
     ap.add_argument("--lambda-step", type=_positive("--lambda-step"), default=20.0, help="nm (default 20; the last node is lambda-max)")
     ap.add_argument("--nh", type=int, help="starting harmonic count of each node's convergence (default: from d/lambda)")
     ap.add_argument("--workers", type=int, default=2, help="processes (default 2)")
+    ap.add_argument("--interp-points", type=int, default=32, help="random in-cell points solved to measure the interpolation error (default 32)")
     a = ap.parse_args(argv)
 
     try:
@@ -92,11 +93,14 @@ def main(argv=None) -> int:
             ap.error(f"--nh: must be in 3..{fmm.NH_CAP}")
         if a.workers < 1:
             ap.error("--workers: must be >= 1")
+        if a.interp_points < 1:
+            ap.error("--interp-points: must be >= 1")
     except ValueError as e:
         ap.error(str(e))
 
     cmd = "python3 python_ref/efficiencies.py " + " ".join(shlex.quote(x) for x in (argv if argv is not None else sys.argv[1:]))
-    t = et.build(g, grid, a.name or a.out.stem, a.description, cmd, workers=a.workers, nh=a.nh)
+    t = et.build(g, grid, a.name or a.out.stem, a.description, cmd, workers=a.workers, nh=a.nh,
+                 interp_points=a.interp_points)
     et.write_json(t, a.out)
     print(f"wrote {a.out} ({a.out.stat().st_size / 1e3:.0f} kB)")
     return 0
