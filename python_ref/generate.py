@@ -7,7 +7,10 @@
 
 Parts: tables (src/cie_data.rs), kernels (tests/data/kernels.csv), colour (cmf_interp.csv,
 xyz_to_srgb.csv, srgb_transfer.csv, lab_de2000.csv), spectral (spectral_xyz.csv; the slow one),
-stam (stam_orders.csv).
+stam (stam_orders.csv), metals (src/metals_data.rs, tests/data/metals.csv), rigorous
+(tests/data/rigorous_orders.csv and data/efficiencies/*.json: hours of solves, needs
+requirements-rigorous.txt; `--check` only verifies their hashes and validates the tables), presets
+(src/efficiency_presets_data.rs from data/efficiencies/*.json).
 """
 
 from __future__ import annotations
@@ -25,6 +28,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import colour_fixtures  # noqa: E402
 import kernels  # noqa: E402
+import metals  # noqa: E402
+import presets  # noqa: E402
+import rigorous  # noqa: E402
 import spectral  # noqa: E402
 import stam  # noqa: E402
 import tables  # noqa: E402
@@ -36,6 +42,15 @@ PARTS = {
     "colour": colour_fixtures.generate,
     "spectral": spectral.generate,
     "stam": stam.generate,
+    "metals": metals.generate,
+    "rigorous": rigorous.generate,
+    "presets": presets.generate,
+}
+
+# Parts too expensive to regenerate in `--check`: a cheap check of the committed files instead
+# (returns a list of problems).
+CHECK_ONLY = {
+    "rigorous": rigorous.check,
 }
 
 
@@ -92,6 +107,12 @@ def main() -> int:
         tmp = Path(tmp)
         for name in parts:
             t0 = time.perf_counter()
+            if name in CHECK_ONLY:
+                problems = CHECK_ONLY[name](REPO)
+                bad += problems
+                print(f"{name}: checked hashes and tables of the committed files in {time.perf_counter() - t0:.1f} s"
+                      + ("" if not problems else f" ({len(problems)} problems)"))
+                continue
             written = PARTS[name](tmp)
             for rel in written:
                 new, old = tmp / rel, REPO / rel
