@@ -130,10 +130,10 @@ impl Illumination {
     /// assert!((c - expected).abs().max_element() < 1e-15);
     /// // One channel and one light: the number `eval` gives at one wavelength.
     /// let m = AguHill::new(Grating::new(1600.0, 800.0, 500)?);
-    /// let (wi, wo) = (DVec3::Z, DVec3::new(0.3, 0.0, 0.91f64.sqrt()));
-    /// let value = m.eval(wi, wo, 480.0);
+    /// let (wo, wi) = (DVec3::new(0.3, 0.0, 0.91f64.sqrt()), DVec3::Z);
+    /// let value = m.eval(wo, wi, 480.0);
     /// let one = shading.shade(2.0, 1.0, [(1.5, wi.z, value)]);
-    /// assert_eq!(one, shading.eval(&m, wi, wo, 480.0, 2.0, 1.5));
+    /// assert_eq!(one, shading.eval(&m, wo, wi, 480.0, 2.0, 1.5));
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
