@@ -1,18 +1,16 @@
-//! Reproducers of failures that the extremes sweep (`tests/extremes.rs`) found in parts of the
-//! crate it does not vouch for yet: the radiometric grating BSDF and the strategy parser. Each
-//! is ignored until its part is fixed; each asserts what the fixed function must do, on the
-//! exact input that fails today. (`ColorTable::new`'s run time on huge inputs, the other known
-//! case, is a matter of time, which tests do not assert: its reproducers are in the docs of
-//! `TABLE_MAX_SLITS` in `tests/extremes.rs`.)
+//! Regression tests of failures that the extremes sweep (`tests/extremes.rs`) found in the
+//! radiometric grating BSDF and the strategy parser, on the exact inputs that failed: each
+//! asserts what the fixed function does. (`ColorTable::new`'s run time on huge inputs, the
+//! other known case, is a matter of time, which tests do not assert: its reproducers are in the
+//! docs of `TABLE_MAX_SLITS` in `tests/extremes.rs`.)
 
 use diffraction::spectrum::Strategy;
 use diffraction::{Grating, GratingBsdf, GrooveSpread, SpectralResponse};
 use glam::DVec3;
 
-/// `grating_response` returns u = wi.x + wo.x = ∞ where the sum overflows (directions far from
-/// unit, finite); `AguHill` returns `None` there.
+/// `grating_response` returned u = wi.x + wo.x = ∞ where the sum overflows (directions far
+/// from unit, finite); it returns `None` there, as `AguHill` does.
 #[test]
-#[ignore = "GratingBsdf::grating_response: u = inf where wi.x + wo.x overflows"]
 fn grating_response_u_is_finite() {
     let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100).unwrap())
         .with_groove(GrooveSpread::gaussian(0.05).unwrap());
