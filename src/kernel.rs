@@ -56,6 +56,18 @@ const SIN_PI_TAYLOR: [f64; 12] = [
     -1.0518471716932065e-11,
 ];
 
+/// (sin πt, cos πt) with exact reduction of t to [−½, ½].
+pub(crate) fn sincospi(t: f64) -> (f64, f64) {
+    let n = rint(t);
+    let r = t - n;
+    let (s, c) = (sinpi(r), sinpi(0.5 - r.abs()));
+    if rint(0.5 * n) * 2.0 == n {
+        (s, c)
+    } else {
+        (-s, -c)
+    }
+}
+
 /// sin(π·z) for |z| ≤ ½ (accurate to a few ulp; larger |z| is not expected).
 #[inline]
 pub(crate) fn sinpi(z: f64) -> f64 {

@@ -57,6 +57,13 @@
 //!   light's size), then [`color`]'s conversion and Hall's clipping.
 //! * **Real time**: the same table, or the slit kernels ([`kernel`], `f32` and `f64`) evaluated at
 //!   a few wavelengths.
+//! * **How bright each order of a real grating is** (a relief on a metal, TE and TM):
+//!   [`relief::ScalarRelief`] (a sinusoid, lamellar, sawtooth, Fourier or sampled profile on a
+//!   [`relief::Metal`]: Al, Ag, Au, Cu, Cr or n + ik) gives the order efficiencies η_m by scalar
+//!   diffraction, never above the metal's reflectance, and
+//!   [`is_valid`](relief::ScalarRelief::is_valid) says whether a query lies in the region where
+//!   they were measured within 10 % of rigorous electromagnetics (`docs/validity.md`); outside
+//!   it use rigorous tables (`python_ref/efficiencies.py`). `examples/efficiencies` prints them.
 //! * **Your own model**: implement [`DiffractionBrdf`] (and [`SpectralResponse`] to get its
 //!   colour, [`Bsdf`] to sample it); `ARCHITECTURE.md` in the repository says how.
 //!
@@ -81,6 +88,9 @@
 //!   wavelength sampling, regularisation).
 //! * [`SampledWavelengths`], [`visible`], [`SampledSpectrum`], [`SpectralFilm`], [`HeroMis`]: a
 //!   spectral path's four wavelengths, their values, the film's XYZ and the MIS weights.
+//! * [`relief`]: relief gratings on real metals: [`relief::Metal`] (n + ik, Fresnel),
+//!   [`relief::Relief`] (profile shapes and their phase screens), [`relief::ScalarRelief`]
+//!   (order efficiencies by scalar diffraction, with their measured valid region).
 //! * [`footprint`]: the interval of u a pixel sees, for footprint-filtered colour lookups.
 //! * [`SpectralResponse`], [`GratingResponse`], [`Envelope`], [`PeakSummary`]: what the colour
 //!   integrator needs of a model.
@@ -146,7 +156,6 @@ compile_error!("diffraction needs either the `std` (default) or the `libm` featu
 extern crate alloc;
 
 mod band;
-#[cfg(feature = "stam")]
 mod bessel;
 mod bxdf;
 pub mod cie;
@@ -164,10 +173,14 @@ pub mod groove;
 mod illumination;
 pub mod kernel;
 mod math;
+// Measured data: Cr's k = 3.14 at 451 nm (Johnson & Christy 1974) is a measurement, not π.
+#[allow(clippy::approx_constant)]
+mod metals_data;
 mod orders;
 mod parse;
 mod quadrature;
 mod random;
+pub mod relief;
 mod sampled_spectrum;
 mod special;
 pub mod spectrum;

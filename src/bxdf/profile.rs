@@ -6,7 +6,7 @@ use core::f64::consts::PI;
 use num_complex::Complex64;
 
 use crate::bessel::{bessel_j, bessel_j_bounded};
-use crate::kernel::sinpi;
+use crate::kernel::sincospi;
 use crate::math;
 
 /// The shape of one period of the surface height h(x), x across the grooves.
@@ -94,16 +94,4 @@ pub(crate) fn binary_coefficient(a: f64, m: i32, phase: f64) -> Complex64 {
     let (sn, cs) = sincospi(m as f64 * a);
     // a·sinc(m·a) = sin(πma)/(πm).
     step * Complex64::new(cs, -sn) * (sn / (PI * m as f64))
-}
-
-/// (sin πt, cos πt) with exact reduction of t to [−½, ½].
-fn sincospi(t: f64) -> (f64, f64) {
-    let n = math::rint(t);
-    let r = t - n;
-    let (s, c) = (sinpi(r), sinpi(0.5 - r.abs()));
-    if math::rint(0.5 * n) * 2.0 == n {
-        (s, c)
-    } else {
-        (-s, -c)
-    }
 }

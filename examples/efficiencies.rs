@@ -1,0 +1,485 @@
+//! The order efficiencies of a grating, one JSON object per propagating reflected order.
+//!
+//! ```text
+//! cargo run --release --example efficiencies -- --profile sinusoid|lamellar|sawtooth|amplitude \
+//!     --period NM --depth NM [--duty F] [--blaze DEG] --metal Al|Ag|Au|Cu|Cr|N+Ki \
+//!     --lambda NM --theta DEG [--polarisation te|tm|unpolarised]
+//! ```
+//!
+//! prints `{"order": m, "sin_theta": s, "efficiency": η, "te": η_TE, "tm": η_TM}` per order, with
+//! sin θm = sin θi + m·λ/d (θi measured so that order 0 is the mirror direction; the crate's
+//! u = wi.x + wo.x = m·λ/d), `efficiency` the chosen polarisation's (unpolarised = the mean of
+//! TE and TM, the default).
+//!
+//! * `sinusoid`, `lamellar`, `sawtooth`: the scalar relief model (`diffraction::relief`) on the
+//!   metal. `--depth` is the peak-to-valley depth of a sinusoid and the groove depth of a lamellar
+//!   profile, `--duty` (lamellar, default 0.5) the raised ridge's share of the period. A sawtooth
+//!   takes `--blaze` (its depth is then d·sin θB·cos θB) or `--depth` (then θB = ½·asin(2h/d),
+//!   below 45°), or both if they agree. A query outside the model's measured valid region
+//!   (`ScalarRelief::is_valid`, docs/validity.md) says so on stderr.
+//! * `amplitude`: `GratingBsdf`'s amplitude grating, η_m = ρ²·sinc²(ρm) with ρ = `--duty`
+//!   (default 0.5); it has no polarisation (no `te`, `tm` keys) and ignores `--depth` and
+//!   `--metal`.
+//!
+//! Bad input gets an error naming the flag and exit code 2.
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use diffraction::relief::{Metal, Relief, ScalarRelief};
+use diffraction::{Grating, GratingBsdf};
+
+/// The coherently lit periods of the amplitude model's `Grating` (its efficiencies do not depend
+/// on it).
+const AMPLITUDE_SLITS: u32 = 1000;
+/// How closely `--depth` and `--blaze` of a sawtooth must agree (relative).
+const SAWTOOTH_AGREEMENT: f64 = 1e-6;
+/// Below this magnitude numbers are printed in exponent form (`4.4e-30`, not thirty zeros).
+const EXPONENT_BELOW: f64 = 1e-4;
+
+/// A finite number as JSON: the shortest round-trip form, in exponent form when tiny.
+fn json(x: f64) -> String {
+    if x != 0.0 && x.abs() < EXPONENT_BELOW {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Profile {
+    Sinusoid,
+    Lamellar,
+    Sawtooth,
+    Amplitude,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Polarisation {
+    Te,
+    Tm,
+    Unpolarised,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct Options {
+    profile: Profile,
+    period_nm: f64,
+    depth_nm: Option<f64>,
+    duty: Option<f64>,
+    blaze_deg: Option<f64>,
+    metal: Metal,
+    lambda_nm: f64,
+    theta_deg: f64,
+    polarisation: Polarisation,
+}
+
+const USAGE: &str = "usage: efficiencies --profile sinusoid|lamellar|sawtooth|amplitude --period NM --depth NM [--duty F] [--blaze DEG] --metal Al|Ag|Au|Cu|Cr|N+Ki --lambda NM --theta DEG [--polarisation te|tm|unpolarised]";
+
+fn number(flag: &str, value: &str) -> Result<f64, String> {
+    match value.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("{flag}: expected a finite number, got {value:?}")),
+    }
+}
+
+/// `--profile`'s value.
+fn profile_named(value: &str) -> Result<Profile, String> {
+    Ok(match value {
+        "sinusoid" => Profile::Sinusoid,
+        "lamellar" => Profile::Lamellar,
+        "sawtooth" => Profile::Sawtooth,
+        "amplitude" => Profile::Amplitude,
+        other => {
+            let expected = "sinusoid, lamellar, sawtooth or amplitude";
+            return Err(format!("--profile: expected {expected}, got {other:?}"));
+        }
+    })
+}
+
+/// `--polarisation`'s value.
+fn polarisation_named(value: &str) -> Result<Polarisation, String> {
+    Ok(match value {
+        "te" => Polarisation::Te,
+        "tm" => Polarisation::Tm,
+        "unpolarised" => Polarisation::Unpolarised,
+        other => {
+            let expected = "te, tm or unpolarised";
+            return Err(format!(
+                "--polarisation: expected {expected}, got {other:?}"
+            ));
+        }
+    })
+}
+
+fn parse(args: &[String]) -> Result<Options, String> {
+    let mut seen: Vec<&str> = vec![];
+    let (mut profile, mut period, mut depth, mut duty, mut blaze) = (None, None, None, None, None);
+    let (mut metal, mut lambda, mut theta) = (None, None, None);
+    let mut polarisation = Polarisation::Unpolarised;
+    let mut it = args.iter();
+    while let Some(flag) = it.next() {
+        let flag = flag.as_str();
+        if flag == "--help" || flag == "-h" {
+            return Err(USAGE.to_string());
+        }
+        if !flag.starts_with("--") {
+            return Err(format!("unexpected argument {flag:?}\n{USAGE}"));
+        }
+        let value = it
+            .next()
+            .ok_or_else(|| format!("{flag}: missing its value"))?;
+        if seen.contains(&flag) {
+            return Err(format!("{flag}: given twice"));
+        }
+        seen.push(flag);
+        match flag {
+            "--profile" => profile = Some(profile_named(value)?),
+            "--period" => period = Some(number(flag, value)?),
+            "--depth" => depth = Some(number(flag, value)?),
+            "--duty" => duty = Some(number(flag, value)?),
+            "--blaze" => blaze = Some(number(flag, value)?),
+            "--metal" => {
+                metal = Some(
+                    value
+                        .parse::<Metal>()
+                        .map_err(|e| format!("--metal: {e} (got {value:?})"))?,
+                )
+            }
+            "--lambda" => lambda = Some(number(flag, value)?),
+            "--theta" => theta = Some(number(flag, value)?),
+            "--polarisation" => polarisation = polarisation_named(value)?,
+            // The tabulated model: `EfficiencyTable::from_json(FILE)` (docs/efficiency_tables.md)
+            // is wired here once it is in the library; until then the flag is refused.
+            "--table" => {
+                return Err(
+                    "--table: tabulated efficiency files are not supported by this build yet"
+                        .to_string(),
+                )
+            }
+            other => return Err(format!("{other}: unknown flag\n{USAGE}")),
+        }
+    }
+    let need = |v: Option<f64>, flag: &str| v.ok_or_else(|| format!("{flag}: required"));
+    let profile = profile.ok_or("--profile: required")?;
+    let metal = match (metal, profile) {
+        (Some(m), _) => m,
+        (None, Profile::Amplitude) => Metal::AL,
+        (None, _) => return Err("--metal: required".to_string()),
+    };
+    if duty.is_some() && !matches!(profile, Profile::Lamellar | Profile::Amplitude) {
+        return Err("--duty: only for --profile lamellar or amplitude".to_string());
+    }
+    if blaze.is_some() && profile != Profile::Sawtooth {
+        return Err("--blaze: only for --profile sawtooth".to_string());
+    }
+    if matches!(profile, Profile::Sinusoid | Profile::Lamellar) && depth.is_none() {
+        return Err("--depth: required".to_string());
+    }
+    if profile == Profile::Sawtooth && depth.is_none() && blaze.is_none() {
+        return Err("--blaze: required for a sawtooth (or --depth)".to_string());
+    }
+    Ok(Options {
+        profile,
+        period_nm: need(period, "--period")?,
+        depth_nm: depth,
+        duty,
+        blaze_deg: blaze,
+        metal,
+        lambda_nm: need(lambda, "--lambda")?,
+        theta_deg: need(theta, "--theta")?,
+        polarisation,
+    })
+}
+
+/// The sawtooth's blaze angle in radians from `--blaze` and/or `--depth`.
+fn blaze_rad(o: &Options) -> Result<f64, String> {
+    let from_depth = o
+        .depth_nm
+        .map(|h| {
+            let r = 2.0 * h / o.period_nm;
+            if !(0.0..=1.0).contains(&r) {
+                return Err(format!(
+                    "--depth: a 90°-apex sawtooth is at most half its period deep ({} nm), got {h}",
+                    0.5 * o.period_nm
+                ));
+            }
+            Ok(0.5 * r.asin())
+        })
+        .transpose()?;
+    match (o.blaze_deg, from_depth) {
+        (Some(b), None) => Ok(b.to_radians()),
+        (None, Some(b)) => Ok(b),
+        (Some(b), Some(_)) => {
+            let h = o.period_nm * b.to_radians().sin() * b.to_radians().cos();
+            let given = o.depth_nm.unwrap_or(h);
+            if (h - given).abs() <= SAWTOOTH_AGREEMENT * h.max(given) {
+                Ok(b.to_radians())
+            } else {
+                Err(format!(
+                    "--depth: {given} nm disagrees with --blaze {b}° (depth d·sin θB·cos θB = {h} nm)"
+                ))
+            }
+        }
+        (None, None) => Err("--blaze: required for a sawtooth (or --depth)".to_string()),
+    }
+}
+
+/// One JSON line per propagating order, and a note for stderr (`None` if none is due).
+fn run(o: &Options) -> Result<(Vec<String>, Option<String>), String> {
+    if !(o.theta_deg > -90.0 && o.theta_deg < 90.0) {
+        return Err(format!(
+            "--theta: expected an angle in (-90, 90) degrees, got {}",
+            o.theta_deg
+        ));
+    }
+    if o.lambda_nm <= 0.0 {
+        return Err(format!("--lambda: expected > 0 nm, got {}", o.lambda_nm));
+    }
+    let s = o.theta_deg.to_radians().sin();
+    let flag = |e: diffraction::Error| -> String {
+        let name = match e.parameter() {
+            "period_nm" => "--period",
+            "depth_nm" => "--depth",
+            "duty" | "slit_width_nm" => "--duty",
+            "blaze_rad" => "--blaze",
+            other => other,
+        };
+        format!("{name}: {e}")
+    };
+    let mut lines = vec![];
+    if o.profile == Profile::Amplitude {
+        let rho = o.duty.unwrap_or(0.5);
+        if !(rho > 0.0 && rho <= 1.0) {
+            return Err(format!("--duty: expected 0 < duty <= 1, got {rho}"));
+        }
+        let grating =
+            Grating::new(o.period_nm, rho * o.period_nm, AMPLITUDE_SLITS).map_err(flag)?;
+        let bsdf = GratingBsdf::new(grating);
+        let step = o.lambda_nm / o.period_nm;
+        let lo = ((-1.0 - s) / step).floor().max(-1e6) as i32;
+        let hi = ((1.0 - s) / step).ceil().min(1e6) as i32;
+        for m in lo..=hi {
+            let sm = s + f64::from(m) * step;
+            if sm.abs() < 1.0 {
+                lines.push(format!(
+                    "{{\"order\": {m}, \"sin_theta\": {}, \"efficiency\": {}}}",
+                    json(sm),
+                    json(bsdf.efficiency(m))
+                ));
+            }
+        }
+        return Ok((lines, None));
+    }
+    let relief = match o.profile {
+        Profile::Sinusoid => Relief::sinusoid(o.depth_nm.unwrap_or(0.0)),
+        Profile::Lamellar => Relief::lamellar(o.depth_nm.unwrap_or(0.0), o.duty.unwrap_or(0.5)),
+        _ => Relief::sawtooth(blaze_rad(o)?),
+    }
+    .map_err(flag)?;
+    let grating = ScalarRelief::new(relief, o.metal, o.period_nm).map_err(flag)?;
+    for order in grating.orders(s, o.lambda_nm) {
+        let e = order.efficiency;
+        let eta = match o.polarisation {
+            Polarisation::Te => e.te,
+            Polarisation::Tm => e.tm,
+            Polarisation::Unpolarised => e.unpolarised(),
+        };
+        lines.push(format!(
+            "{{\"order\": {}, \"sin_theta\": {}, \"efficiency\": {}, \"te\": {}, \"tm\": {}}}",
+            order.order,
+            json(order.sin_theta),
+            json(eta),
+            json(e.te),
+            json(e.tm)
+        ));
+    }
+    let note = (!grating.is_valid(s, o.lambda_nm)).then(|| {
+        "note: outside the scalar model's measured valid region (ScalarRelief::is_valid, docs/validity.md); use a rigorous table there".to_string()
+    });
+    Ok((lines, note))
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match parse(&args).and_then(|o| run(&o)) {
+        Ok((lines, note)) => {
+            if let Some(n) = note {
+                eprintln!("{n}");
+            }
+            let mut out = std::io::stdout().lock();
+            for l in lines {
+                // A closed pipe (`| head`) ends the output quietly.
+                if writeln!(out, "{l}").is_err() {
+                    break;
+                }
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(s: &str) -> Vec<String> {
+        s.split_whitespace().map(str::to_string).collect()
+    }
+
+    fn error(s: &str) -> String {
+        parse(&args(s)).and_then(|o| run(&o)).unwrap_err()
+    }
+
+    fn lines(s: &str) -> Vec<serde_json::Value> {
+        let (l, _) = run(&parse(&args(s)).unwrap()).unwrap();
+        l.iter().map(|x| serde_json::from_str(x).unwrap()).collect()
+    }
+
+    const FOIL: &str =
+        "--profile sinusoid --period 1000 --depth 100 --metal Al --lambda 550 --theta 0";
+
+    #[test]
+    fn prints_every_propagating_order_with_the_grating_equation() {
+        let out = lines(FOIL);
+        let orders: Vec<i64> = out.iter().map(|v| v["order"].as_i64().unwrap()).collect();
+        assert_eq!(orders, [-1, 0, 1]);
+        for v in &out {
+            let m = v["order"].as_f64().unwrap();
+            assert!((v["sin_theta"].as_f64().unwrap() - m * 0.55).abs() < 1e-15);
+            let (te, tm) = (v["te"].as_f64().unwrap(), v["tm"].as_f64().unwrap());
+            assert_eq!(v["efficiency"].as_f64().unwrap(), 0.5 * (te + tm));
+        }
+        // The same numbers as the library's.
+        let g = ScalarRelief::new(Relief::sinusoid(100.0).unwrap(), Metal::AL, 1000.0).unwrap();
+        let e = g.order(1, 0.0, 550.0).unwrap();
+        assert_eq!(out[2]["te"].as_f64().unwrap(), e.te);
+        let te = lines(&format!("{FOIL} --polarisation te"));
+        assert_eq!(te[2]["efficiency"].as_f64().unwrap(), e.te);
+    }
+
+    #[test]
+    fn every_profile_and_metal_prints() {
+        for metal in ["Al", "Ag", "Au", "Cu", "Cr", "1.5+7i"] {
+            for profile in [
+                "--profile sinusoid --depth 80",
+                "--profile lamellar --depth 110 --duty 0.3125",
+                "--profile sawtooth --blaze 8.627",
+                "--profile sawtooth --depth 200",
+                "--profile amplitude --duty 0.4",
+            ] {
+                let out = lines(&format!(
+                    "{profile} --period 1600 --metal {metal} --lambda 500 --theta 20"
+                ));
+                assert!(!out.is_empty(), "{profile} {metal}");
+                let total: f64 = out.iter().map(|v| v["efficiency"].as_f64().unwrap()).sum();
+                assert!(total > 0.0 && total <= 1.0, "{profile} {metal}: {total}");
+            }
+        }
+        // The amplitude model has no polarisation.
+        let amp = lines("--profile amplitude --period 1600 --lambda 500 --theta 0");
+        assert!(amp[0].get("te").is_none());
+        assert_eq!(amp.len(), 7); // |m·500/1600| < 1: m = −3 … 3
+    }
+
+    #[test]
+    fn errors_name_the_flag() {
+        let base = "--period 1000 --metal Al --lambda 550 --theta 0";
+        let cases = [
+            (format!("--profile sine --depth 10 {base}"), "--profile"),
+            (format!("--profile sinusoid {base}"), "--depth"),
+            (format!("--profile sinusoid --depth -5 {base}"), "--depth"),
+            (format!("--profile sinusoid --depth abc {base}"), "--depth"),
+            (
+                format!("--profile lamellar --depth 50 --duty 1.5 {base}"),
+                "--duty",
+            ),
+            (
+                format!("--profile sinusoid --depth 50 --duty 0.5 {base}"),
+                "--duty",
+            ),
+            (format!("--profile sawtooth {base}"), "--blaze"),
+            (format!("--profile sawtooth --blaze 120 {base}"), "--blaze"),
+            (
+                format!("--profile sawtooth --blaze 10 --depth 5 {base}"),
+                "--depth",
+            ),
+            (format!("--profile sawtooth --depth 900 {base}"), "--depth"),
+            (
+                format!("--profile sinusoid --depth 50 --blaze 10 {base}"),
+                "--blaze",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 0 --metal Al --lambda 550 --theta 0".into(),
+                "--period",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 1000 --metal gold --lambda 550 --theta 0"
+                    .into(),
+                "--metal",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 1000 --metal 0+1i --lambda 550 --theta 0"
+                    .into(),
+                "--metal",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 1000 --lambda 550 --theta 0".into(),
+                "--metal",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 1000 --metal Al --lambda -1 --theta 0"
+                    .into(),
+                "--lambda",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 1000 --metal Al --lambda 550 --theta 95"
+                    .into(),
+                "--theta",
+            ),
+            (
+                "--profile sinusoid --depth 50 --period 1000 --metal Al --lambda 550".into(),
+                "--theta",
+            ),
+            (
+                format!("--profile sinusoid --depth 50 {base} --polarisation s"),
+                "--polarisation",
+            ),
+            (
+                format!("--profile sinusoid --depth 50 {base} --table cd.json"),
+                "--table",
+            ),
+            (
+                format!("--profile sinusoid --depth 50 --depth 60 {base}"),
+                "--depth",
+            ),
+            (
+                format!("--profile sinusoid --depth 50 {base} --bogus 1"),
+                "--bogus",
+            ),
+            (
+                format!("--profile sinusoid --depth 50 {base} --period"),
+                "--period",
+            ),
+            (format!("--profile amplitude --duty 0 {base}"), "--duty"),
+        ];
+        for (line, flag) in cases {
+            let e = error(&line);
+            assert!(e.starts_with(flag), "{line}: {e}");
+        }
+    }
+
+    #[test]
+    fn notes_queries_outside_the_valid_region() {
+        let (_, note) = run(&parse(&args(FOIL)).unwrap()).unwrap();
+        assert!(note.is_some()); // the foil is too deep for its period
+        let shallow =
+            "--profile sinusoid --period 5000 --depth 120 --metal Al --lambda 550 --theta 30";
+        let (_, note) = run(&parse(&args(shallow)).unwrap()).unwrap();
+        assert!(note.is_none());
+    }
+}
