@@ -24,7 +24,7 @@ use std::time::Duration;
 #[path = "support/rng.rs"]
 mod rng;
 
-/// The accuracy report's 64 directions (examples/accuracy_report.rs).
+/// The accuracy report's 64 directions (examples/accuracy_report/main.rs).
 fn u_grid() -> Vec<f64> {
     let mut v: Vec<f64> = (0..6).map(|k| 10f64.powf(-8.0 + k as f64)).collect();
     let ratio = (0.15f64 / 0.002).powf(1.0 / 13.0);
