@@ -16,9 +16,8 @@
 //! the Monte-Carlo estimators), `ColorTable` (`new`, `lookup`, `mean`, with small inputs: see
 //! [`TABLE_MAX_SLITS`]) and the frames and fields.
 //!
-//! A failure in a part of the crate this file does not vouch for yet (see [`Owner`]) is
-//! collected and printed instead of failing the sweep; `EXTREMES_STRICT=1` makes every one
-//! fail. Each has a reproducer in `tests/extremes_handover.rs`.
+//! Every property fails the sweep at its first failure, printing a reproducer; the cases that
+//! failed once have reproducers of their own in `tests/extremes_handover.rs`.
 //!
 //! It covers the `stam` models too, so it is built with that feature (the README's test command
 //! enables every feature).
@@ -72,15 +71,6 @@ const TABLE_EVERY: u64 = 16;
 /// 10.7 s at 300-512 of them, by the measurement); the sweep calls it where 2·d/λ is
 /// at most this.
 const ALBEDO_MAX_ORDERS: f64 = 64.0;
-
-/// Who vouches for a property: failures of `Mine` fail the sweep; those of `Other` are
-/// collected (the parts rewritten elsewhere: the radiometric grating BSDF, the spectral
-/// strategies, the colour table) and fail it only with `EXTREMES_STRICT=1`.
-#[derive(Clone, Copy, PartialEq)]
-enum Owner {
-    Mine,
-    Other,
-}
 
 /// Inputs drawn from the tests' seeded generator, so that every run tries the same ones.
 struct Rng(rng::Rng);
@@ -191,26 +181,12 @@ struct Tally {
     max_bsdf_visits: u64,
     tables: u64,
     max_table_nodes: usize,
-    /// Failures of `Owner::Other` properties: (what, how many, the first reproducer).
-    findings: Vec<(String, u64, String)>,
 }
 
 impl Tally {
-    /// Checks `ok`; a failure panics for `Owner::Mine` (and under `EXTREMES_STRICT=1`), and is
-    /// recorded with `repro` for `Owner::Other`.
-    fn expect(&mut self, ok: bool, owner: Owner, what: &str, repro: impl FnOnce() -> String) {
-        if ok {
-            return;
-        }
-        let strict = std::env::var("EXTREMES_STRICT").is_ok_and(|v| v == "1");
-        if owner == Owner::Mine || strict {
-            panic!("{what}: {}", repro());
-        }
-        if let Some(f) = self.findings.iter_mut().find(|f| f.0 == what) {
-            f.1 += 1;
-        } else {
-            self.findings.push((what.to_string(), 1, repro()));
-        }
+    /// Checks `ok`; a failure panics with the case's reproducer.
+    fn expect(&mut self, ok: bool, what: &str, repro: impl FnOnce() -> String) {
+        assert!(ok, "{what}: {}", repro());
     }
 }
 
@@ -626,44 +602,32 @@ fn radiometric(
         |what: &str| format!("{what} of {model} at wo = {wo:?}, wi = {wi:?}, λ = {lambda:e}");
     let l4 = SampledWavelengths::sample_uniform(rng.real(), band);
     let f = b.eval(wo, wi, lambda);
-    tally.expect(is_ok(f), Owner::Other, "GratingBsdf::eval finite", || {
-        repro("eval")
-    });
+    tally.expect(is_ok(f), "GratingBsdf::eval finite", || repro("eval"));
     for v in b.eval4(wo, wi, &l4).into_iter().chain(b.pdf4(wo, wi, &l4)) {
-        tally.expect(
-            is_ok(v),
-            Owner::Other,
-            "GratingBsdf::eval4/pdf4 finite",
-            || repro("eval4/pdf4"),
-        );
+        tally.expect(is_ok(v), "GratingBsdf::eval4/pdf4 finite", || {
+            repro("eval4/pdf4")
+        });
     }
     let p = b.pdf(wo, wi, lambda);
-    tally.expect(is_ok(p), Owner::Other, "GratingBsdf::pdf finite", || {
-        repro("pdf")
-    });
+    tally.expect(is_ok(p), "GratingBsdf::pdf finite", || repro("pdf"));
     tally.expect(
         is_ok(b.response(wo, wi, lambda)),
-        Owner::Other,
         "GratingBsdf::response finite",
         || repro("response"),
     );
     let bound = b.sample_weight_bound(wo, lambda);
-    tally.expect(
-        is_ok(bound),
-        Owner::Other,
-        "sample_weight_bound finite",
-        || repro("sample_weight_bound"),
-    );
+    tally.expect(is_ok(bound), "sample_weight_bound finite", || {
+        repro("sample_weight_bound")
+    });
     let (uc, u2) = (rng.real(), DVec2::new(rng.real(), rng.real()));
     if let Some(x) = b.sample(wo, lambda, uc, u2) {
         let ok = x.wi.is_finite() && x.wi.z > 0.0 && is_ok(x.f) && x.pdf > 0.0 && x.pdf.is_finite();
-        tally.expect(ok, Owner::Other, "GratingBsdf::sample finite", || {
+        tally.expect(ok, "GratingBsdf::sample finite", || {
             format!("{} with uc = {uc:e}, u2 = {u2:?}: {x:?}", repro("sample"))
         });
         let w = x.weight();
         tally.expect(
             is_ok(w) && w <= bound * (1.0 + 1e-9),
-            Owner::Other,
             "GratingBsdf::sample weight within sample_weight_bound",
             || {
                 format!(
@@ -677,7 +641,6 @@ fn radiometric(
         if let Some(a) = b.albedo(wo, lambda) {
             tally.expect(
                 is_ok(a) && a <= 1.0 + 1e-6,
-                Owner::Other,
                 "GratingBsdf::albedo in [0, 1]",
                 || format!("{}: {a:e}", repro("albedo")),
             );
@@ -686,32 +649,24 @@ fn radiometric(
     let xi = rng.real();
     if let Some(ws) = b.sample_wavelength(wo, wi, band, xi) {
         let ok = band.contains(ws.lambda_nm) && ws.pdf > 0.0 && ws.pdf.is_finite();
-        tally.expect(
-            ok,
-            Owner::Other,
-            "sample_wavelength in the band, finite pdf",
-            || {
-                format!(
-                    "{} in {band:?}, xi = {xi:e}: {ws:?}",
-                    repro("sample_wavelength")
-                )
-            },
-        );
+        tally.expect(ok, "sample_wavelength in the band, finite pdf", || {
+            format!(
+                "{} in {band:?}, xi = {xi:e}: {ws:?}",
+                repro("sample_wavelength")
+            )
+        });
     }
     let wp = b.wavelength_pdf(wo, wi, band, lambda);
-    tally.expect(is_ok(wp), Owner::Other, "wavelength_pdf finite", || {
+    tally.expect(is_ok(wp), "wavelength_pdf finite", || {
         format!("{} in {band:?}: {wp:e}", repro("wavelength_pdf"))
     });
     for v in [
         b.efficiency(rng.pick(&[0, 1, -1, 7, i32::MAX, i32::MIN])),
         b.lobe_half_width(lambda),
     ] {
-        tally.expect(
-            is_ok(v),
-            Owner::Other,
-            "efficiency/lobe_half_width finite",
-            || repro("efficiency/lobe_half_width"),
-        );
+        tally.expect(is_ok(v), "efficiency/lobe_half_width finite", || {
+            repro("efficiency/lobe_half_width")
+        });
     }
     let _ = (
         b.is_near_specular(),
@@ -722,14 +677,12 @@ fn radiometric(
     if let Some(r) = b.grating_response(wo, wi) {
         tally.expect(
             r.u.is_finite() && is_ok(r.scale),
-            Owner::Other,
             "GratingBsdf::grating_response finite",
             || format!("{}: {r:?}", repro("grating_response")),
         );
         let c = spectral.xyz_response(&r, rng.pick(&strategies()));
         tally.expect(
             is_ok(c.x) && is_ok(c.y) && is_ok(c.z),
-            Owner::Other,
             "xyz_response finite",
             || format!("{}: {c:?}", repro("xyz_response")),
         );
@@ -748,16 +701,12 @@ fn radiometric(
             bad_peak = Some(p);
         }
     });
-    tally.expect(
-        bad_peak.is_none(),
-        Owner::Other,
-        "GratingBsdf::peaks finite",
-        || format!("{}: {bad_peak:?}", repro("peaks")),
-    );
+    tally.expect(bad_peak.is_none(), "GratingBsdf::peaks finite", || {
+        format!("{}: {bad_peak:?}", repro("peaks"))
+    });
     let visits = counting.visits.get();
     tally.expect(
         visits <= MAX_VISITS_PER_CALL && u64::from(summary.orders) == visits,
-        Owner::Other,
         "GratingBsdf::peaks within MAX_ORDERS",
         || format!("{}: {visits} visits", repro("peaks")),
     );
@@ -768,13 +717,11 @@ fn radiometric(
     let (evals, visits) = (counting.evals.get(), counting.visits.get());
     tally.expect(
         is_ok(c.x) && is_ok(c.y) && is_ok(c.z),
-        Owner::Other,
         "xyz_brdf of GratingBsdf finite",
         || format!("{} with {strategy}: {c:?}", repro("xyz_brdf")),
     );
     tally.expect(
         evals <= MAX_EVALS_PER_CALL && visits <= MAX_PASSES_PER_CALL * MAX_VISITS_PER_CALL,
-        Owner::Other,
         "xyz_brdf of GratingBsdf within its work caps",
         || {
             format!(
@@ -864,7 +811,6 @@ fn wavelengths_and_grooves(rng: &mut Rng, band: Band, lambda: f64, tally: &mut T
                 || sc == 0.0
                 || pdf > 0.0
                 || !(-300.0 * 10f64.ln()..f64::MAX.ln()).contains(&ln_pdf),
-            Owner::Mine,
             "GrooveSpread::pdf of its own sample is positive",
             || format!("{}: sample {x:e}, pdf {pdf:e}", repro()),
         );
@@ -882,7 +828,6 @@ fn table(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
     let t = ColorTable::new(spectral, &g, accuracy).unwrap();
     tally.expect(
         t.node_count() <= ColorTable::MAX_NODES,
-        Owner::Other,
         "ColorTable node budget",
         || format!("{g:?} at {accuracy}: {} nodes", t.node_count()),
     );
@@ -892,7 +837,7 @@ fn table(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
         let (u0, u1) = (rng.real(), rng.real());
         let (a, m) = (t.lookup(u0), t.mean(u0, u1));
         let ok = [a.x, a.y, a.z, m.x, m.y, m.z].into_iter().all(is_ok);
-        tally.expect(ok, Owner::Other, "ColorTable lookup/mean finite", || {
+        tally.expect(ok, "ColorTable lookup/mean finite", || {
             format!("{g:?} at {accuracy}, u0 = {u0:e}, u1 = {u1:e}: {a:?} {m:?}")
         });
     }
@@ -917,9 +862,6 @@ fn sweep_with(cases: usize, seed: u64) {
         tally.tables,
         tally.max_table_nodes,
     );
-    for (what, count, repro) in &tally.findings {
-        println!("FINDING ({count}×) {what}: {repro}");
-    }
 }
 
 #[test]
