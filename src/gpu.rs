@@ -12,9 +12,10 @@
 //! | [`TYPES_WGSL`] | the structs of [`GpuGrating`], [`GpuIllumination`], [`GpuTableHeader`], [`GpuTableBlock`], [`GpuTableNode`] | nothing |
 //! | [`COLOR_TABLE_WGSL`] | `diffraction_table_lookup(u) -> XYZ` | types, [`color_table_bindings`] |
 //! | [`SHADING_WGSL`] | `diffraction_shade` (eq. 12), `diffraction_shade_grating`, `diffraction_xyz_to_linear_srgb`, `diffraction_phase_u` | types, colour table |
+//! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
 //!
-//! [`shading_source`] is all of it with the table's bindings at a group and binding of your
-//! choice. The kernels are the f32 twins of [`kernel::single_slit_cycles`] and
+//! [`shading_source`] is all of it with the table's and the BSDF's bindings at a group and
+//! binding of your choice. The kernels are the f32 twins of [`kernel::single_slit_cycles`] and
 //! [`kernel::n_slit_cycles`] with the same exact phase reduction (N·r modulo 1 in 64-bit integer
 //! arithmetic on two `u32` words) and the same guarded limits; they use no built-in `sin`
 //! (WGSL allows it an absolute error of 2⁻¹¹). On any conforming WGSL implementation each
@@ -45,7 +46,9 @@ use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 
-use crate::{ColorTable, Grating, Illumination, Slits};
+use crate::grating_bsdf::DEFENSIVE_ORDER_SHARE;
+use crate::special::atan;
+use crate::{ColorTable, Grating, GratingBsdf, GrooveKind, Illumination, Slits};
 
 /// The slit kernels in f32, phases in cycles (see the [module docs](self)).
 pub const KERNEL_WGSL: &str = include_str!("gpu/kernel.wgsl");
@@ -81,17 +84,24 @@ pub fn color_table_bindings(group: u32, binding: u32) -> String {
     )
 }
 
+/// The radiometric [`GratingBsdf`]'s value f and sampling density pdf, from a [`GpuBsdf`];
+/// needs [`TYPES_WGSL`], [`KERNEL_WGSL`] and the binding of [`bsdf_bindings`].
+pub const BSDF_WGSL: &str = include_str!("gpu/bsdf.wgsl");
+
 /// Every source of this module with the colour table's bindings at `group`, `binding..=binding
-/// + 2` ([`color_table_bindings`]): the kernels, the types, the lookup and eq. 12.
+/// + 2` ([`color_table_bindings`]) and the BSDF's order data at `binding + 3`
+/// ([`bsdf_bindings`]): the kernels, the types, the lookup, eq. 12 and the BSDF.
 #[must_use]
 pub fn shading_source(group: u32, binding: u32) -> String {
     let mut s = String::new();
     for part in [
         TYPES_WGSL,
         &color_table_bindings(group, binding),
+        &bsdf_bindings(group, binding.saturating_add(3)),
         KERNEL_WGSL,
         COLOR_TABLE_WGSL,
         SHADING_WGSL,
+        BSDF_WGSL,
     ] {
         s.push_str(part);
         s.push('\n');
@@ -362,5 +372,165 @@ impl GpuColorTable {
             }
         }
         out
+    }
+}
+
+/// The radiometric [`GratingBsdf`] for the GPU, WGSL `DiffractionBsdf` (48 bytes), read by
+/// `diffraction_bsdf_f` and `diffraction_bsdf_pdf` together with its 65 rows of order data in
+/// the shared storage buffer `diffraction_bsdf_orders` ([`bsdf_bindings`]), from row
+/// `first_row` on (so that many gratings share one buffer).
+///
+/// The per-order data ([`order_rows`](Self::order_rows)) are the sampler's order weights
+/// w_m = η_m/ρ² + ε·U_m ([`GratingBsdf::efficiency`] over ρ², plus [`DEFENSIVE_ORDER_SHARE`]
+/// times the envelope bound U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²)) for |m| ≤ 64 and their prefix
+/// sums; beyond, the shader computes the amplitude reading's weights itself.
+///
+/// ```wgsl
+/// struct DiffractionBsdf {
+///     period_nm: f32, slit_width_nm: f32, slits: u32, groove: u32,
+///     groove_param: f32, scale: f32, atan_n: f32, rho: f32,
+///     first_row: u32, pad0: u32, pad1: u32, pad2: u32,
+/// }
+/// ```
+///
+/// ```
+/// use diffraction::gpu::{order_rows_bytes, GpuBsdf};
+/// use diffraction::{Grating, GratingBsdf};
+/// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 1000)?);
+/// let g = GpuBsdf::new(&b, 0);
+/// assert_eq!(g.to_bytes().len(), 48);
+/// assert_eq!(order_rows_bytes(&GpuBsdf::order_rows(&b)).len(), 65 * 16);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuBsdf {
+    /// d, nm.
+    pub period_nm: f32,
+    /// w, nm.
+    pub slit_width_nm: f32,
+    /// N (0 for N = ∞, then `groove` is 2).
+    pub slits: u32,
+    /// 0: a coherence length, 1: a Gaussian groove, 2: not glossy (an ideal groove or N = ∞:
+    /// delta lobes, f = pdf = 0 as on the CPU).
+    pub groove: u32,
+    /// L (nm) for a coherence length, σ for a Gaussian, 0 otherwise.
+    pub groove_param: f32,
+    /// ρ²·N·d.
+    pub scale: f32,
+    /// atan N.
+    pub atan_n: f32,
+    /// ρ = w/d.
+    pub rho: f32,
+    /// The first of the grating's 65 rows in `diffraction_bsdf_orders`.
+    pub first_row: u32,
+    /// Padding to 48 bytes (0).
+    pub pad: [u32; 3],
+}
+
+/// The rows of order data per grating in `diffraction_bsdf_orders`: |m| = 0..=64.
+pub const BSDF_ORDER_ROWS: usize = 65;
+
+/// The declaration of the BSDF's order data at `group`, `binding`: a read-only storage
+/// `array<vec4<f32>>` of [`BSDF_ORDER_ROWS`] rows per grating.
+///
+/// ```
+/// let b = diffraction::gpu::bsdf_bindings(0, 3);
+/// assert!(b.contains("@binding(3) var<storage, read> diffraction_bsdf_orders"));
+/// ```
+#[must_use]
+pub fn bsdf_bindings(group: u32, binding: u32) -> String {
+    format!(
+        "@group({group}) @binding({binding}) var<storage, read> diffraction_bsdf_orders: \
+         array<vec4<f32>>;\n"
+    )
+}
+
+/// The little-endian bytes of order rows ([`GpuBsdf::order_rows`], one grating's after
+/// another).
+#[must_use]
+pub fn order_rows_bytes(rows: &[[f32; 4]]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(16 * rows.len());
+    for row in rows {
+        for v in row {
+            out.extend_from_slice(&v.to_bits().to_le_bytes());
+        }
+    }
+    out
+}
+
+impl GpuBsdf {
+    /// The scalars of `bsdf`, its order rows starting at row `first_row` of the shared buffer.
+    #[must_use]
+    pub fn new(bsdf: &GratingBsdf, first_row: u32) -> GpuBsdf {
+        let g = bsdf.grating();
+        let rho = g.open_fraction();
+        let (slits, glossy) = match g.slits() {
+            Slits::Finite(n) => (n, true),
+            Slits::Infinite => (0, false),
+        };
+        let (groove, groove_param) = match bsdf.groove().kind() {
+            GrooveKind::CoherenceLength { length_nm } if glossy => (0, length_nm),
+            GrooveKind::Gaussian { sigma } if glossy => (1, sigma),
+            _ => (2, 0.0),
+        };
+        let nd = slits as f64 * g.period_nm();
+        GpuBsdf {
+            period_nm: g.period_nm() as f32,
+            slit_width_nm: g.slit_width_nm() as f32,
+            slits,
+            groove,
+            groove_param: groove_param as f32,
+            scale: (rho * rho * nd) as f32,
+            atan_n: atan(slits as f64) as f32,
+            rho: rho as f32,
+            first_row,
+            pad: [0; 3],
+        }
+    }
+
+    /// The 65 rows of order data of `bsdf`: (w_k, w_1 + … + w_k, 0, 0) for k = |m| = 0..=64
+    /// (see the type's docs).
+    #[must_use]
+    pub fn order_rows(bsdf: &GratingBsdf) -> [[f32; 4]; BSDF_ORDER_ROWS] {
+        let rho = bsdf.grating().open_fraction();
+        let mut rows = [[0.0f32; 4]; BSDF_ORDER_ROWS];
+        let mut prefix = 0.0f64;
+        for (k, row) in rows.iter_mut().enumerate() {
+            let a = (k as f64 - 0.5).max(0.0) * rho * core::f64::consts::PI;
+            let w = bsdf.efficiency(k as i32) / (rho * rho)
+                + DEFENSIVE_ORDER_SHARE * 3.0 / (3.0 + a * a);
+            if k > 0 {
+                prefix += w;
+            }
+            *row = [w as f32, prefix as f32, 0.0, 0.0];
+        }
+        rows
+    }
+
+    /// The 48 bytes to upload.
+    #[must_use]
+    pub fn to_bytes(&self) -> [u8; 48] {
+        let mut out = Vec::with_capacity(48);
+        words_to_bytes(
+            &[
+                self.period_nm.to_bits(),
+                self.slit_width_nm.to_bits(),
+                self.slits,
+                self.groove,
+                self.groove_param.to_bits(),
+                self.scale.to_bits(),
+                self.atan_n.to_bits(),
+                self.rho.to_bits(),
+                self.first_row,
+                self.pad[0],
+                self.pad[1],
+                self.pad[2],
+            ],
+            &mut out,
+        );
+        let mut b = [0u8; 48];
+        b.copy_from_slice(&out);
+        b
     }
 }

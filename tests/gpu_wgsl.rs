@@ -11,8 +11,9 @@ mod gpu_cases;
 mod gpu_tolerance;
 
 use diffraction::gpu::{
-    color_table_bindings, shading_source, GpuGrating, GpuIllumination, GpuTableBlock,
-    GpuTableHeader, GpuTableNode, COLOR_TABLE_WGSL, KERNEL_WGSL, SHADING_WGSL, TYPES_WGSL,
+    bsdf_bindings, color_table_bindings, shading_source, GpuBsdf, GpuGrating, GpuIllumination,
+    GpuTableBlock, GpuTableHeader, GpuTableNode, BSDF_WGSL, COLOR_TABLE_WGSL, KERNEL_WGSL,
+    SHADING_WGSL, TYPES_WGSL,
 };
 use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
 use gpu_cases::{stiff_phases, ulps, Mix, SLITS};
@@ -44,6 +45,10 @@ fn every_module_validates() {
     ]
     .join("\n");
     validate("SHADING_WGSL", &shading);
+    validate(
+        "BSDF_WGSL",
+        &[TYPES_WGSL, KERNEL_WGSL, &bsdf_bindings(0, 0), BSDF_WGSL].join("\n"),
+    );
     let all = validate("shading_source", &shading_source(1, 0));
     for f in [
         "diffraction_n_slit_cycles",
@@ -52,6 +57,8 @@ fn every_module_validates() {
         "diffraction_table_lookup",
         "diffraction_shade",
         "diffraction_shade_grating",
+        "diffraction_bsdf_f",
+        "diffraction_bsdf_pdf",
     ] {
         assert!(
             all.functions
@@ -134,6 +141,24 @@ fn structs_match_their_rust_twins() {
         ],
     );
     check(
+        "DiffractionBsdf",
+        size_of::<GpuBsdf>(),
+        &[
+            ("period_nm", offset_of!(GpuBsdf, period_nm)),
+            ("slit_width_nm", offset_of!(GpuBsdf, slit_width_nm)),
+            ("slits", offset_of!(GpuBsdf, slits)),
+            ("groove", offset_of!(GpuBsdf, groove)),
+            ("groove_param", offset_of!(GpuBsdf, groove_param)),
+            ("scale", offset_of!(GpuBsdf, scale)),
+            ("atan_n", offset_of!(GpuBsdf, atan_n)),
+            ("rho", offset_of!(GpuBsdf, rho)),
+            ("first_row", offset_of!(GpuBsdf, first_row)),
+            ("pad0", offset_of!(GpuBsdf, pad)),
+            ("pad1", offset_of!(GpuBsdf, pad) + 4),
+            ("pad2", offset_of!(GpuBsdf, pad) + 8),
+        ],
+    );
+    check(
         "DiffractionTableNode",
         size_of::<GpuTableNode>(),
         &[
@@ -141,6 +166,29 @@ fn structs_match_their_rust_twins() {
             ("d", offset_of!(GpuTableNode, d)),
         ],
     );
+}
+
+#[test]
+fn the_bsdf_upload_matches_the_model() {
+    use diffraction::{Grating, GratingBsdf};
+    let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 1000).unwrap());
+    let g = GpuBsdf::new(&b, 130);
+    assert_eq!(g.to_bytes().len(), core::mem::size_of::<GpuBsdf>());
+    assert_eq!(
+        (g.first_row, g.groove, g.groove_param),
+        (130, 0, 1000.0 * 1600.0)
+    );
+    let rows = GpuBsdf::order_rows(&b);
+    // ρ = ½: order 0's weight is S(0) = 1 plus the defensive share 0.125·U_0 = 0.125.
+    assert_eq!(rows[0][0], 1.125);
+    // η_2 = 0 (S(π) = 0) leaves only the defensive share 0.125·3/(3 + (1.5·π/2)²); the second
+    // column sums the weights of orders 1..=k.
+    let a = 1.5 * core::f64::consts::PI * 0.5;
+    assert!((rows[2][0] as f64 - 0.125 * 3.0 / (3.0 + a * a)).abs() < 1e-7);
+    let sum: f64 = rows[1..=64].iter().map(|r| r[0] as f64).sum();
+    assert!((rows[64][1] as f64 - sum).abs() < 1e-6 * sum);
+    let ideal = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap());
+    assert_eq!(GpuBsdf::new(&ideal, 0).groove, 2); // delta lobes: f = pdf = 0
 }
 
 /// The freedoms the WGSL spec leaves an implementation in the kernels, each pushed one way:

@@ -40,3 +40,23 @@ struct DiffractionTableNode {
     f: vec4<f32>,
     d: vec4<f32>,
 }
+
+// The radiometric `GratingBsdf` for the amplitude efficiencies (`GpuBsdf`, 48 bytes).
+// groove: 0 a coherence length (groove_param = L, nm), 1 a Gaussian (groove_param = sigma),
+// 2 not glossy (an ideal groove or N = infinity: f = pdf = 0). first_row: the first of the
+// grating's 65 rows in `diffraction_bsdf_orders` (row k = (w_k, w_1 + ... + w_k, 0, 0): the
+// sampler's order weight of |m| = k, eta/rho^2 plus the defensive share, and its prefix sum).
+struct DiffractionBsdf {
+    period_nm: f32,
+    slit_width_nm: f32,
+    slits: u32,
+    groove: u32,
+    groove_param: f32,
+    scale: f32,
+    atan_n: f32,
+    rho: f32,
+    first_row: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
