@@ -654,6 +654,27 @@ impl ColorTable {
         out
     }
 
+    /// The grid for `gpu::GpuColorTable`: the end of block 0, the u below which lookups are
+    /// `Exact` (−1 where the grid resolves order 0's lobe), every block's (u0, h, first node,
+    /// intervals) and every node's (value, derivative).
+    #[cfg(feature = "gpu")]
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn grid(
+        &self,
+    ) -> (
+        f64,
+        f64,
+        impl Iterator<Item = (f64, f64, u32, u32)> + '_,
+        impl Iterator<Item = ([f64; 3], [f64; 3])> + '_,
+    ) {
+        (
+            self.u_lo,
+            self.exact_below,
+            self.blocks.iter().map(|b| (b.u0, b.h, b.first, b.n)),
+            self.nodes.iter().map(|n| (n.f, n.d)),
+        )
+    }
+
     /// The node index, the fraction in [0, 1] and the spacing of the cell holding `a` ∈ [0, 2].
     #[inline]
     fn locate(&self, a: f64) -> (usize, f64, f64) {

@@ -172,6 +172,8 @@ mod film;
 mod float;
 pub mod footprint;
 pub mod frame;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 mod grating;
 pub mod groove;
 mod illumination;

@@ -1,0 +1,536 @@
+//! WGSL shaders of the kernels, the colour table's lookup and the paper's eq. 12, and the
+//! plain-data structs a renderer uploads for them (feature `gpu`, no dependency: the renderer
+//! brings its own wgpu or Bevy).
+//!
+//! WGSL has no modules: a renderer concatenates the sources it needs (in any order; WGSL
+//! declarations are order-independent) with its own code, or registers them with its shader
+//! composer. Every function and struct is prefixed `diffraction_` / `Diffraction`.
+//!
+//! | constant | functions | needs |
+//! |---|---|---|
+//! | [`KERNEL_WGSL`] | `diffraction_single_slit_cycles(y)`, `diffraction_n_slit_cycles(x, n)`, `diffraction_intensity_cycles(x, y, n)` | nothing |
+//! | [`TYPES_WGSL`] | the structs of [`GpuGrating`], [`GpuIllumination`], [`GpuTableHeader`], [`GpuTableBlock`], [`GpuTableNode`] | nothing |
+//! | [`COLOR_TABLE_WGSL`] | `diffraction_table_lookup(u) -> XYZ` | types, [`color_table_bindings`] |
+//! | [`SHADING_WGSL`] | `diffraction_shade` (eq. 12), `diffraction_shade_grating`, `diffraction_xyz_to_linear_srgb`, `diffraction_phase_u` | types, colour table |
+//! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
+//!
+//! [`shading_source`] is all of it with the table's and the BSDF's bindings at a group and
+//! binding of your choice. The kernels are the f32 twins of [`kernel::single_slit_cycles`] and
+//! [`kernel::n_slit_cycles`] with the same exact phase reduction (N·r modulo 1 in 64-bit integer
+//! arithmetic on two `u32` words) and the same guarded limits; they use no built-in `sin`
+//! (WGSL allows it an absolute error of 2⁻¹¹). On any conforming WGSL implementation each
+//! factor is within 1·10⁻⁵ (absolute) of the exact value at its f32 argument; measured on Mesa
+//! lavapipe 2.3·10⁻⁷. The derivation and the measurements are in `docs/gpu.md`.
+//!
+//! ```
+//! use diffraction::gpu::{GpuColorTable, GpuGrating, shading_source};
+//! use diffraction::spectrum::{Illuminant, Spectral};
+//! use diffraction::{ColorTable, Grating};
+//! let g = Grating::new(1600.0, 800.0, 300)?;
+//! let table = ColorTable::new(&Spectral::new(Illuminant::D65), &g, 1e-3)?;
+//! let gpu = GpuColorTable::new(&table);
+//! // Upload: the header as a uniform, the blocks and nodes as read-only storage buffers.
+//! assert_eq!(gpu.header_bytes().len(), 16);
+//! assert_eq!(gpu.blocks_bytes().len(), 20 * gpu.blocks.len());
+//! assert_eq!(gpu.nodes_bytes().len(), 32 * gpu.nodes.len());
+//! assert_eq!(GpuGrating::from(&g).to_bytes().len(), 16);
+//! let wgsl = shading_source(1, 0); // bindings 0, 1, 2 of group 1
+//! assert!(wgsl.contains("fn diffraction_shade_grating("));
+//! # Ok::<(), diffraction::Error>(())
+//! ```
+//!
+//! [`kernel::single_slit_cycles`]: crate::kernel::single_slit_cycles
+//! [`kernel::n_slit_cycles`]: crate::kernel::n_slit_cycles
+
+use alloc::format;
+use alloc::string::String;
+use alloc::vec::Vec;
+
+use crate::grating_bsdf::DEFENSIVE_ORDER_SHARE;
+use crate::special::atan;
+use crate::{ColorTable, Grating, GratingBsdf, GrooveKind, Illumination, Slits};
+
+/// The slit kernels in f32, phases in cycles (see the [module docs](self)).
+pub const KERNEL_WGSL: &str = include_str!("gpu/kernel.wgsl");
+/// The WGSL structs matching [`GpuGrating`], [`GpuIllumination`], [`GpuTableHeader`],
+/// [`GpuTableBlock`] and [`GpuTableNode`].
+pub const TYPES_WGSL: &str = include_str!("gpu/types.wgsl");
+/// The colour table's lookup, `diffraction_table_lookup(u) -> vec3<f32>` (XYZ); needs
+/// [`TYPES_WGSL`] and the bindings of [`color_table_bindings`].
+pub const COLOR_TABLE_WGSL: &str = include_str!("gpu/color_table.wgsl");
+/// The paper's eq. 12 and a grating pixel shaded from its colour table; needs
+/// [`TYPES_WGSL`] and [`COLOR_TABLE_WGSL`].
+pub const SHADING_WGSL: &str = include_str!("gpu/shading.wgsl");
+
+/// The declarations of the colour table's three buffers at `group`, bindings `binding`
+/// (the header, a uniform [`GpuTableHeader`]), `binding + 1` (the blocks, read-only storage)
+/// and `binding + 2` (the nodes, read-only storage).
+///
+/// ```
+/// let b = diffraction::gpu::color_table_bindings(2, 5);
+/// assert!(b.contains("@group(2) @binding(7) var<storage, read> diffraction_table_nodes"));
+/// ```
+#[must_use]
+pub fn color_table_bindings(group: u32, binding: u32) -> String {
+    format!(
+        "@group({group}) @binding({b0}) var<uniform> diffraction_table: DiffractionTableHeader;\n\
+         @group({group}) @binding({b1}) var<storage, read> diffraction_table_blocks: \
+         array<DiffractionTableBlock>;\n\
+         @group({group}) @binding({b2}) var<storage, read> diffraction_table_nodes: \
+         array<DiffractionTableNode>;\n",
+        b0 = binding,
+        b1 = binding.saturating_add(1),
+        b2 = binding.saturating_add(2),
+    )
+}
+
+/// The radiometric [`GratingBsdf`]'s value f and sampling density pdf, from a [`GpuBsdf`];
+/// needs [`TYPES_WGSL`], [`KERNEL_WGSL`] and the binding of [`bsdf_bindings`].
+pub const BSDF_WGSL: &str = include_str!("gpu/bsdf.wgsl");
+
+/// Every source of this module with the colour table's bindings at `group`, `binding..=binding
+/// + 2` ([`color_table_bindings`]) and the BSDF's order data at `binding + 3`
+/// ([`bsdf_bindings`]): the kernels, the types, the lookup, eq. 12 and the BSDF.
+#[must_use]
+pub fn shading_source(group: u32, binding: u32) -> String {
+    let mut s = String::new();
+    for part in [
+        TYPES_WGSL,
+        &color_table_bindings(group, binding),
+        &bsdf_bindings(group, binding.saturating_add(3)),
+        KERNEL_WGSL,
+        COLOR_TABLE_WGSL,
+        SHADING_WGSL,
+        BSDF_WGSL,
+    ] {
+        s.push_str(part);
+        s.push('\n');
+    }
+    s
+}
+
+/// Little-endian bytes of a list of 4-byte words (what every struct here is made of).
+fn words_to_bytes(words: &[u32], out: &mut Vec<u8>) {
+    for w in words {
+        out.extend_from_slice(&w.to_le_bytes());
+    }
+}
+
+/// A grating for the GPU, WGSL `DiffractionGrating` (16 bytes): d and w in nm as f32, N as
+/// u32 (`u32::MAX` for [`Slits::Infinite`]).
+///
+/// ```wgsl
+/// struct DiffractionGrating { period_nm: f32, slit_width_nm: f32, slits: u32, pad: u32 }
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuGrating {
+    /// d, nm.
+    pub period_nm: f32,
+    /// w, nm.
+    pub slit_width_nm: f32,
+    /// N (`u32::MAX` for an infinite grating).
+    pub slits: u32,
+    /// Padding to 16 bytes (0).
+    pub pad: u32,
+}
+
+impl From<&Grating> for GpuGrating {
+    fn from(g: &Grating) -> GpuGrating {
+        GpuGrating {
+            period_nm: g.period_nm() as f32,
+            slit_width_nm: g.slit_width_nm() as f32,
+            slits: match g.slits() {
+                Slits::Finite(n) => n,
+                Slits::Infinite => u32::MAX,
+            },
+            pad: 0,
+        }
+    }
+}
+
+impl GpuGrating {
+    /// The 16 bytes to upload (little-endian, as every wgpu backend reads them).
+    #[must_use]
+    pub fn to_bytes(&self) -> [u8; 16] {
+        let mut out = Vec::with_capacity(16);
+        words_to_bytes(
+            &[
+                self.period_nm.to_bits(),
+                self.slit_width_nm.to_bits(),
+                self.slits,
+                self.pad,
+            ],
+            &mut out,
+        );
+        let mut b = [0u8; 16];
+        b.copy_from_slice(&out);
+        b
+    }
+}
+
+/// The coefficients of the paper's eq. 12 for the GPU, WGSL `DiffractionIllumination`.
+///
+/// ```wgsl
+/// struct DiffractionIllumination { ambient: f32, diffuse: f32, diffraction: f32, pad: f32 }
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuIllumination {
+    /// k_a.
+    pub ambient: f32,
+    /// k_d.
+    pub diffuse: f32,
+    /// The diffraction coefficient.
+    pub diffraction: f32,
+    /// Padding to 16 bytes (0).
+    pub pad: f32,
+}
+
+impl From<&Illumination> for GpuIllumination {
+    fn from(i: &Illumination) -> GpuIllumination {
+        let (ambient, diffuse, diffraction) = i.coefficients();
+        GpuIllumination {
+            ambient: ambient as f32,
+            diffuse: diffuse as f32,
+            diffraction: diffraction as f32,
+            pad: 0.0,
+        }
+    }
+}
+
+impl GpuIllumination {
+    /// The 16 bytes to upload.
+    #[must_use]
+    pub fn to_bytes(&self) -> [u8; 16] {
+        let mut out = Vec::with_capacity(16);
+        words_to_bytes(
+            &[
+                self.ambient.to_bits(),
+                self.diffuse.to_bits(),
+                self.diffraction.to_bits(),
+                self.pad.to_bits(),
+            ],
+            &mut out,
+        );
+        let mut b = [0u8; 16];
+        b.copy_from_slice(&out);
+        b
+    }
+}
+
+/// A colour table's header, WGSL `DiffractionTableHeader` (a uniform, 16 bytes).
+///
+/// ```wgsl
+/// struct DiffractionTableHeader { u_lo: f32, base_key: u32, block_count: u32, node_count: u32 }
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuTableHeader {
+    /// The end of block 0 (a power of two).
+    pub u_lo: f32,
+    /// The key (f32 bits >> 20) of block 1: `u_lo.to_bits() >> 20`.
+    pub base_key: u32,
+    /// The number of blocks.
+    pub block_count: u32,
+    /// The number of nodes.
+    pub node_count: u32,
+}
+
+/// One uniform block of a colour table's grid, WGSL `DiffractionTableBlock` (20 bytes).
+///
+/// ```wgsl
+/// struct DiffractionTableBlock { u0: f32, h: f32, inv_h: f32, first: u32, n: u32 }
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuTableBlock {
+    /// The first u of the block.
+    pub u0: f32,
+    /// The node spacing (a power of two).
+    pub h: f32,
+    /// 1/h (exact).
+    pub inv_h: f32,
+    /// The index of the block's first node.
+    pub first: u32,
+    /// The number of intervals (≥ 1).
+    pub n: u32,
+}
+
+/// One node of a colour table, WGSL `DiffractionTableNode` (32 bytes): XYZ and its derivative in
+/// u, the fourth components 0.
+///
+/// ```wgsl
+/// struct DiffractionTableNode { f: vec4<f32>, d: vec4<f32> }
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuTableNode {
+    /// X, Y, Z, 0.
+    pub f: [f32; 4],
+    /// dX/du, dY/du, dZ/du, 0.
+    pub d: [f32; 4],
+}
+
+/// A [`ColorTable`] for the GPU: its grid in f32, uploaded as one uniform (the header) and two
+/// read-only storage buffers (blocks, nodes) and read by `diffraction_table_lookup`.
+///
+/// The lookup is the CPU's algorithm in f32 (same blocks, same Hermite cells): within a few f32
+/// roundings of the nodes' scale of [`ColorTable::lookup`] (docs/gpu.md). Where the table does
+/// not resolve order 0's lobe (N·d > 3.3·10²⁰ nm, [`resolved`](Self::resolved) false) the CPU
+/// computes lookups with |u| < 2⁻⁶⁴ exactly; the GPU interpolates its three values there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GpuColorTable {
+    /// The header (uniform).
+    pub header: GpuTableHeader,
+    /// The blocks (storage).
+    pub blocks: Vec<GpuTableBlock>,
+    /// The nodes (storage).
+    pub nodes: Vec<GpuTableNode>,
+    resolved: bool,
+}
+
+impl GpuColorTable {
+    /// The grid of `table` in f32.
+    #[must_use]
+    pub fn new(table: &ColorTable) -> GpuColorTable {
+        let (u_lo, exact_below, blocks, nodes) = table.grid();
+        let blocks: Vec<GpuTableBlock> = blocks
+            .map(|(u0, h, first, n)| GpuTableBlock {
+                u0: u0 as f32,
+                h: h as f32,
+                inv_h: (1.0 / h) as f32,
+                first,
+                n,
+            })
+            .collect();
+        let nodes: Vec<GpuTableNode> = nodes
+            .map(|(f, d)| GpuTableNode {
+                f: [f[0] as f32, f[1] as f32, f[2] as f32, 0.0],
+                d: [d[0] as f32, d[1] as f32, d[2] as f32, 0.0],
+            })
+            .collect();
+        let u_lo = u_lo as f32;
+        GpuColorTable {
+            header: GpuTableHeader {
+                u_lo,
+                base_key: u_lo.to_bits() >> 20,
+                block_count: blocks.len() as u32,
+                node_count: nodes.len() as u32,
+            },
+            blocks,
+            nodes,
+            resolved: exact_below <= 0.0,
+        }
+    }
+
+    /// Whether the grid resolves order 0's lobe (false where N·d > 3.3·10²⁰ nm: see the type's
+    /// docs).
+    #[must_use]
+    pub fn resolved(&self) -> bool {
+        self.resolved
+    }
+
+    /// The header's 16 bytes (the uniform).
+    #[must_use]
+    pub fn header_bytes(&self) -> Vec<u8> {
+        let h = &self.header;
+        let mut out = Vec::with_capacity(16);
+        words_to_bytes(
+            &[h.u_lo.to_bits(), h.base_key, h.block_count, h.node_count],
+            &mut out,
+        );
+        out
+    }
+
+    /// The blocks' bytes (20 each, the storage buffer's array).
+    #[must_use]
+    pub fn blocks_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(20 * self.blocks.len());
+        for b in &self.blocks {
+            words_to_bytes(
+                &[
+                    b.u0.to_bits(),
+                    b.h.to_bits(),
+                    b.inv_h.to_bits(),
+                    b.first,
+                    b.n,
+                ],
+                &mut out,
+            );
+        }
+        out
+    }
+
+    /// The nodes' bytes (32 each, the storage buffer's array).
+    #[must_use]
+    pub fn nodes_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(32 * self.nodes.len());
+        for n in &self.nodes {
+            for v in n.f.iter().chain(&n.d) {
+                out.extend_from_slice(&v.to_bits().to_le_bytes());
+            }
+        }
+        out
+    }
+}
+
+/// The radiometric [`GratingBsdf`] for the GPU, WGSL `DiffractionBsdf` (48 bytes), read by
+/// `diffraction_bsdf_f` and `diffraction_bsdf_pdf` together with its 65 rows of order data in
+/// the shared storage buffer `diffraction_bsdf_orders` ([`bsdf_bindings`]), from row
+/// `first_row` on (so that many gratings share one buffer).
+///
+/// The per-order data ([`order_rows`](Self::order_rows)) are the sampler's order weights
+/// w_m = η_m/ρ² + ε·U_m ([`GratingBsdf::efficiency`] over ρ², plus [`DEFENSIVE_ORDER_SHARE`]
+/// times the envelope bound U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²)) for |m| ≤ 64 and their prefix
+/// sums; beyond, the shader computes the amplitude reading's weights itself.
+///
+/// ```wgsl
+/// struct DiffractionBsdf {
+///     period_nm: f32, slit_width_nm: f32, slits: u32, groove: u32,
+///     groove_param: f32, scale: f32, atan_n: f32, rho: f32,
+///     first_row: u32, pad0: u32, pad1: u32, pad2: u32,
+/// }
+/// ```
+///
+/// ```
+/// use diffraction::gpu::{order_rows_bytes, GpuBsdf};
+/// use diffraction::{Grating, GratingBsdf};
+/// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 1000)?);
+/// let g = GpuBsdf::new(&b, 0);
+/// assert_eq!(g.to_bytes().len(), 48);
+/// assert_eq!(order_rows_bytes(&GpuBsdf::order_rows(&b)).len(), 65 * 16);
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GpuBsdf {
+    /// d, nm.
+    pub period_nm: f32,
+    /// w, nm.
+    pub slit_width_nm: f32,
+    /// N (0 for N = ∞, then `groove` is 2).
+    pub slits: u32,
+    /// 0: a coherence length, 1: a Gaussian groove, 2: not glossy (an ideal groove or N = ∞:
+    /// delta lobes, f = pdf = 0 as on the CPU).
+    pub groove: u32,
+    /// L (nm) for a coherence length, σ for a Gaussian, 0 otherwise.
+    pub groove_param: f32,
+    /// ρ²·N·d.
+    pub scale: f32,
+    /// atan N.
+    pub atan_n: f32,
+    /// ρ = w/d.
+    pub rho: f32,
+    /// The first of the grating's 65 rows in `diffraction_bsdf_orders`.
+    pub first_row: u32,
+    /// Padding to 48 bytes (0).
+    pub pad: [u32; 3],
+}
+
+/// The rows of order data per grating in `diffraction_bsdf_orders`: |m| = 0..=64.
+pub const BSDF_ORDER_ROWS: usize = 65;
+
+/// The declaration of the BSDF's order data at `group`, `binding`: a read-only storage
+/// `array<vec4<f32>>` of [`BSDF_ORDER_ROWS`] rows per grating.
+///
+/// ```
+/// let b = diffraction::gpu::bsdf_bindings(0, 3);
+/// assert!(b.contains("@binding(3) var<storage, read> diffraction_bsdf_orders"));
+/// ```
+#[must_use]
+pub fn bsdf_bindings(group: u32, binding: u32) -> String {
+    format!(
+        "@group({group}) @binding({binding}) var<storage, read> diffraction_bsdf_orders: \
+         array<vec4<f32>>;\n"
+    )
+}
+
+/// The little-endian bytes of order rows ([`GpuBsdf::order_rows`], one grating's after
+/// another).
+#[must_use]
+pub fn order_rows_bytes(rows: &[[f32; 4]]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(16 * rows.len());
+    for row in rows {
+        for v in row {
+            out.extend_from_slice(&v.to_bits().to_le_bytes());
+        }
+    }
+    out
+}
+
+impl GpuBsdf {
+    /// The scalars of `bsdf`, its order rows starting at row `first_row` of the shared buffer.
+    #[must_use]
+    pub fn new(bsdf: &GratingBsdf, first_row: u32) -> GpuBsdf {
+        let g = bsdf.grating();
+        let rho = g.open_fraction();
+        let (slits, glossy) = match g.slits() {
+            Slits::Finite(n) => (n, true),
+            Slits::Infinite => (0, false),
+        };
+        let (groove, groove_param) = match bsdf.groove().kind() {
+            GrooveKind::CoherenceLength { length_nm } if glossy => (0, length_nm),
+            GrooveKind::Gaussian { sigma } if glossy => (1, sigma),
+            _ => (2, 0.0),
+        };
+        let nd = slits as f64 * g.period_nm();
+        GpuBsdf {
+            period_nm: g.period_nm() as f32,
+            slit_width_nm: g.slit_width_nm() as f32,
+            slits,
+            groove,
+            groove_param: groove_param as f32,
+            scale: (rho * rho * nd) as f32,
+            atan_n: atan(slits as f64) as f32,
+            rho: rho as f32,
+            first_row,
+            pad: [0; 3],
+        }
+    }
+
+    /// The 65 rows of order data of `bsdf`: (w_k, w_1 + … + w_k, 0, 0) for k = |m| = 0..=64
+    /// (see the type's docs).
+    #[must_use]
+    pub fn order_rows(bsdf: &GratingBsdf) -> [[f32; 4]; BSDF_ORDER_ROWS] {
+        let rho = bsdf.grating().open_fraction();
+        let mut rows = [[0.0f32; 4]; BSDF_ORDER_ROWS];
+        let mut prefix = 0.0f64;
+        for (k, row) in rows.iter_mut().enumerate() {
+            let a = (k as f64 - 0.5).max(0.0) * rho * core::f64::consts::PI;
+            let w = bsdf.efficiency(k as i32) / (rho * rho)
+                + DEFENSIVE_ORDER_SHARE * 3.0 / (3.0 + a * a);
+            if k > 0 {
+                prefix += w;
+            }
+            *row = [w as f32, prefix as f32, 0.0, 0.0];
+        }
+        rows
+    }
+
+    /// The 48 bytes to upload.
+    #[must_use]
+    pub fn to_bytes(&self) -> [u8; 48] {
+        let mut out = Vec::with_capacity(48);
+        words_to_bytes(
+            &[
+                self.period_nm.to_bits(),
+                self.slit_width_nm.to_bits(),
+                self.slits,
+                self.groove,
+                self.groove_param.to_bits(),
+                self.scale.to_bits(),
+                self.atan_n.to_bits(),
+                self.rho.to_bits(),
+                self.first_row,
+                self.pad[0],
+                self.pad[1],
+                self.pad[2],
+            ],
+            &mut out,
+        );
+        let mut b = [0u8; 48];
+        b.copy_from_slice(&out);
+        b
+    }
+}

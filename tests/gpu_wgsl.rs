@@ -1,0 +1,344 @@
+//! The WGSL sources of `diffraction::gpu`: every module parses and validates (naga, no device),
+//! the WGSL structs have the sizes and offsets of their Rust twins, and the kernels' algorithm,
+//! emulated in Rust f32 with every operation the WGSL spec leaves free pushed to its worst
+//! case, stays inside the bound derived in docs/gpu.md. The reference values are the crate's
+//! f64 kernels (tested against 100-digit mpmath in tests/kernel_reference.rs, 1e-12).
+#![cfg(feature = "gpu")]
+
+#[path = "support/gpu_cases.rs"]
+mod gpu_cases;
+#[path = "support/gpu_tolerance.rs"]
+mod gpu_tolerance;
+
+use diffraction::gpu::{
+    bsdf_bindings, color_table_bindings, shading_source, GpuBsdf, GpuGrating, GpuIllumination,
+    GpuTableBlock, GpuTableHeader, GpuTableNode, BSDF_WGSL, COLOR_TABLE_WGSL, KERNEL_WGSL,
+    SHADING_WGSL, TYPES_WGSL,
+};
+use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
+use gpu_cases::{stiff_phases, ulps, Mix, SLITS};
+use gpu_tolerance::*;
+
+fn validate(name: &str, source: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(source)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+    module
+}
+
+#[test]
+fn every_module_validates() {
+    validate("KERNEL_WGSL", KERNEL_WGSL);
+    validate("TYPES_WGSL", TYPES_WGSL);
+    let table = [TYPES_WGSL, &color_table_bindings(0, 0), COLOR_TABLE_WGSL].join("\n");
+    validate("COLOR_TABLE_WGSL", &table);
+    let shading = [
+        TYPES_WGSL,
+        &color_table_bindings(3, 4),
+        COLOR_TABLE_WGSL,
+        SHADING_WGSL,
+    ]
+    .join("\n");
+    validate("SHADING_WGSL", &shading);
+    validate(
+        "BSDF_WGSL",
+        &[TYPES_WGSL, KERNEL_WGSL, &bsdf_bindings(0, 0), BSDF_WGSL].join("\n"),
+    );
+    let all = validate("shading_source", &shading_source(1, 0));
+    for f in [
+        "diffraction_n_slit_cycles",
+        "diffraction_single_slit_cycles",
+        "diffraction_intensity_cycles",
+        "diffraction_table_lookup",
+        "diffraction_shade",
+        "diffraction_shade_grating",
+        "diffraction_bsdf_f",
+        "diffraction_bsdf_pdf",
+    ] {
+        assert!(
+            all.functions
+                .iter()
+                .any(|(_, g)| g.name.as_deref() == Some(f)),
+            "{f} missing"
+        );
+    }
+}
+
+/// (size, member offsets) of the WGSL struct `name`.
+fn wgsl_layout(module: &naga::Module, name: &str) -> (usize, Vec<(String, usize)>) {
+    let ty = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no struct {name}"))
+        .1;
+    match &ty.inner {
+        naga::TypeInner::Struct { members, span } => (
+            *span as usize,
+            members
+                .iter()
+                .map(|m| (m.name.clone().unwrap(), m.offset as usize))
+                .collect(),
+        ),
+        other => panic!("{name} is {other:?}"),
+    }
+}
+
+#[test]
+fn structs_match_their_rust_twins() {
+    use core::mem::{offset_of, size_of};
+    let module = validate("TYPES_WGSL", TYPES_WGSL);
+    let check = |name: &str, size: usize, offsets: &[(&str, usize)]| {
+        let (wsize, woffsets) = wgsl_layout(&module, name);
+        assert_eq!(wsize, size, "{name}: size");
+        let want: Vec<(String, usize)> = offsets.iter().map(|(n, o)| (n.to_string(), *o)).collect();
+        assert_eq!(woffsets, want, "{name}: members");
+    };
+    check(
+        "DiffractionGrating",
+        size_of::<GpuGrating>(),
+        &[
+            ("period_nm", offset_of!(GpuGrating, period_nm)),
+            ("slit_width_nm", offset_of!(GpuGrating, slit_width_nm)),
+            ("slits", offset_of!(GpuGrating, slits)),
+            ("pad", offset_of!(GpuGrating, pad)),
+        ],
+    );
+    check(
+        "DiffractionIllumination",
+        size_of::<GpuIllumination>(),
+        &[
+            ("ambient", offset_of!(GpuIllumination, ambient)),
+            ("diffuse", offset_of!(GpuIllumination, diffuse)),
+            ("diffraction", offset_of!(GpuIllumination, diffraction)),
+            ("pad", offset_of!(GpuIllumination, pad)),
+        ],
+    );
+    check(
+        "DiffractionTableHeader",
+        size_of::<GpuTableHeader>(),
+        &[
+            ("u_lo", offset_of!(GpuTableHeader, u_lo)),
+            ("base_key", offset_of!(GpuTableHeader, base_key)),
+            ("block_count", offset_of!(GpuTableHeader, block_count)),
+            ("node_count", offset_of!(GpuTableHeader, node_count)),
+        ],
+    );
+    check(
+        "DiffractionTableBlock",
+        size_of::<GpuTableBlock>(),
+        &[
+            ("u0", offset_of!(GpuTableBlock, u0)),
+            ("h", offset_of!(GpuTableBlock, h)),
+            ("inv_h", offset_of!(GpuTableBlock, inv_h)),
+            ("first", offset_of!(GpuTableBlock, first)),
+            ("n", offset_of!(GpuTableBlock, n)),
+        ],
+    );
+    check(
+        "DiffractionBsdf",
+        size_of::<GpuBsdf>(),
+        &[
+            ("period_nm", offset_of!(GpuBsdf, period_nm)),
+            ("slit_width_nm", offset_of!(GpuBsdf, slit_width_nm)),
+            ("slits", offset_of!(GpuBsdf, slits)),
+            ("groove", offset_of!(GpuBsdf, groove)),
+            ("groove_param", offset_of!(GpuBsdf, groove_param)),
+            ("scale", offset_of!(GpuBsdf, scale)),
+            ("atan_n", offset_of!(GpuBsdf, atan_n)),
+            ("rho", offset_of!(GpuBsdf, rho)),
+            ("first_row", offset_of!(GpuBsdf, first_row)),
+            ("pad0", offset_of!(GpuBsdf, pad)),
+            ("pad1", offset_of!(GpuBsdf, pad) + 4),
+            ("pad2", offset_of!(GpuBsdf, pad) + 8),
+        ],
+    );
+    check(
+        "DiffractionTableNode",
+        size_of::<GpuTableNode>(),
+        &[
+            ("f", offset_of!(GpuTableNode, f)),
+            ("d", offset_of!(GpuTableNode, d)),
+        ],
+    );
+}
+
+#[test]
+fn the_bsdf_upload_matches_the_model() {
+    use diffraction::{Grating, GratingBsdf};
+    let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 1000).unwrap());
+    let g = GpuBsdf::new(&b, 130);
+    assert_eq!(g.to_bytes().len(), core::mem::size_of::<GpuBsdf>());
+    assert_eq!(
+        (g.first_row, g.groove, g.groove_param),
+        (130, 0, 1000.0 * 1600.0)
+    );
+    let rows = GpuBsdf::order_rows(&b);
+    // ρ = ½: order 0's weight is S(0) = 1 plus the defensive share 0.125·U_0 = 0.125.
+    assert_eq!(rows[0][0], 1.125);
+    // η_2 = 0 (S(π) = 0) leaves only the defensive share 0.125·3/(3 + (1.5·π/2)²); the second
+    // column sums the weights of orders 1..=k.
+    let a = 1.5 * core::f64::consts::PI * 0.5;
+    assert!((rows[2][0] as f64 - 0.125 * 3.0 / (3.0 + a * a)).abs() < 1e-7);
+    let sum: f64 = rows[1..=64].iter().map(|r| r[0] as f64).sum();
+    assert!((rows[64][1] as f64 - sum).abs() < 1e-6 * sum);
+    let ideal = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap());
+    assert_eq!(GpuBsdf::new(&ideal, 0).groove, 2); // delta lobes: f = pdf = 0
+}
+
+/// The freedoms the WGSL spec leaves an implementation in the kernels, each pushed one way:
+/// a division's result `div` ulps off the correctly rounded one (|div| ≤ 2: within 2.5 ulp), an
+/// inexact integer-to-float conversion `conv` ulps off (|conv| ≤ 1), Horner steps fused or not.
+#[derive(Clone, Copy)]
+struct Freedom {
+    div: i32,
+    conv: i32,
+    fused: bool,
+}
+
+impl Freedom {
+    fn all() -> Vec<Freedom> {
+        let mut out = Vec::new();
+        for div in [-2, 0, 2] {
+            for conv in [-1, 0, 1] {
+                for fused in [false, true] {
+                    out.push(Freedom { div, conv, fused });
+                }
+            }
+        }
+        out
+    }
+    fn div(&self, a: f32, b: f32) -> f32 {
+        ulps(a / b, self.div)
+    }
+    fn conv(&self, v: u32) -> f32 {
+        let f = v as f32;
+        if f as f64 == v as f64 {
+            f
+        } else {
+            ulps(f, self.conv)
+        }
+    }
+    fn step(&self, p: f32, t: f32, c: f32) -> f32 {
+        if self.fused {
+            p.mul_add(t, c)
+        } else {
+            p * t + c
+        }
+    }
+    // The WGSL functions of src/gpu/kernel.wgsl, line by line.
+    fn sinpi_over(&self, t: f32) -> f32 {
+        // The literals of kernel.wgsl, (-1)^k π^(2k+1)/(2k+1)!, rounded to f32.
+        const C: [f64; 7] = [
+            0.000_466_302_805_767_612_3,
+            -0.007_370_430_945_714_348,
+            0.082_145_886_611_128_19,
+            -0.599_264_529_320_791_9,
+            2.550_164_039_877_345,
+            -5.167_712_780_049_969,
+            core::f64::consts::PI,
+        ];
+        let mut p = C[0] as f32;
+        for c in &C[1..] {
+            p = self.step(p, t, *c as f32);
+        }
+        p
+    }
+    fn sinpi(&self, z: f32) -> f32 {
+        z * self.sinpi_over(z * z)
+    }
+    fn single_slit(&self, y: f32) -> f32 {
+        let q = if y.abs() <= 0.5 {
+            self.sinpi_over(y * y) * core::f32::consts::FRAC_1_PI
+        } else {
+            let r = y - y.round_ties_even();
+            self.div(self.sinpi(r), core::f32::consts::PI * y)
+        };
+        (q * q).min(1.0)
+    }
+    fn n_phase(&self, r: f32, n: u32) -> f32 {
+        let bits = r.to_bits();
+        let m = (bits & 0x7f_ffff) | 0x80_0000;
+        let k = 150 - ((bits >> 23) & 0xff);
+        let p = n as u64 * m as u64; // the two u32 words of the WGSL code
+        let (lo, hi) = (p as u32, (p >> 32) as u32);
+        let ldexp = |v: f32, e: i32| (v as f64 * 2f64.powi(e)) as f32; // exact here
+        if k >= 32 {
+            let hi_m = hi & ((1u32 << (k - 32)) - 1);
+            ldexp(self.conv(hi_m), 32 - k as i32) + ldexp(self.conv(lo), -(k as i32))
+        } else {
+            let lo_m = lo & ((1u32 << k) - 1);
+            ldexp(self.conv(lo_m), -(k as i32))
+        }
+    }
+    fn n_slit(&self, x: f32, n: u32) -> f32 {
+        if n <= 1 {
+            return n as f32;
+        }
+        let r = x - x.round_ties_even();
+        let nf = self.conv(n);
+        let q = if nf * r.abs() <= 0.5 {
+            let s = nf * r;
+            self.div(self.sinpi_over(s * s), self.sinpi_over(r * r))
+        } else {
+            let f = self.n_phase(r, n);
+            let s = f - f.round_ties_even();
+            self.div(self.sinpi(s), nf * self.sinpi(r.abs()))
+        };
+        (q * q).min(1.0)
+    }
+}
+
+#[test]
+fn kernels_stay_inside_the_spec_bound_in_the_worst_case() {
+    let mut rng = Mix(7);
+    let freedoms = Freedom::all();
+    let mut worst_f: f64 = 0.0;
+    for n in SLITS {
+        for x in stiff_phases(n, 6000, &mut rng) {
+            let exact = n_slit_cycles(x as f64, n);
+            for fr in &freedoms {
+                let e = (fr.n_slit(x, n) as f64 - exact).abs();
+                assert!(
+                    e <= N_SLIT_SPEC,
+                    "F_N x={x} n={n}: {e:e} > the spec bound {N_SLIT_SPEC:e}"
+                );
+                worst_f = worst_f.max(e);
+            }
+        }
+    }
+    let mut worst_s: f64 = 0.0;
+    for y in stiff_phases(1000, 40_000, &mut rng) {
+        let exact = single_slit_cycles(y as f64);
+        for fr in &freedoms {
+            let e = (fr.single_slit(y) as f64 - exact).abs();
+            assert!(e <= SINGLE_SLIT_SPEC, "S y={y}: {e:e}");
+            worst_s = worst_s.max(e);
+        }
+    }
+    println!(
+        "worst case over the spec's freedoms: F_N {worst_f:.2e} (spec bound {N_SLIT_SPEC:.2e}), \
+         S {worst_s:.2e} (spec bound {SINGLE_SLIT_SPEC:.2e})"
+    );
+    assert!(worst_f <= N_SLIT_WORST_MEASURED, "F_N {worst_f:e}");
+    assert!(worst_s <= SINGLE_SLIT_WORST_MEASURED, "S {worst_s:e}");
+}
+
+#[test]
+fn the_builtin_sin_would_not_do() {
+    // Why the kernels carry their own sin(πz): WGSL allows `sin` an absolute error of 2⁻¹¹ on
+    // [−π, π]. Near a peak the ratio sin(πNr)/(N·sin(πr)) divides two small sines, so that error
+    // is amplified: at N = 1000, r = 10⁻⁵ (s = N·r = 0.01) the textbook formula with a sine
+    // perturbed by 2⁻¹¹ is off by far more than the whole bound of the polynomial kernel.
+    let (n, r) = (1000u32, 1e-5f32);
+    let s = n as f32 * r;
+    let sin_worst = (core::f32::consts::PI * s).sin() + 2f32.powi(-11);
+    let naive = sin_worst / (n as f32 * (core::f32::consts::PI * r).sin());
+    let e = (naive as f64 * naive as f64 - n_slit_cycles(r as f64, n)).abs();
+    assert!(e > 100.0 * N_SLIT_SPEC, "{e:e}");
+}

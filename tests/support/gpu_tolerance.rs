@@ -1,0 +1,32 @@
+//! Tolerances of the WGSL shaders (src/gpu/*.wgsl): the bounds any conforming WGSL
+//! implementation must meet, derived from the WGSL accuracy rules in docs/gpu.md, and the
+//! worst errors measured by the spec-worst-case emulation (tests/gpu_wgsl.rs) with their margin.
+//! Shared by tests/gpu_wgsl.rs and the device tests of gpu-tests/ (`#[path]`).
+#![allow(dead_code)]
+
+/// The unit roundoff of f32, 2⁻²⁴.
+pub const U: f64 = 1.0 / 16_777_216.0;
+
+/// The derived bound of `diffraction_n_slit_cycles` (absolute, at the exact f32 argument) on
+/// any conforming implementation: 169·u = 1.0e-5 (docs/gpu.md: 2·(2·33u + 9u) from the
+/// polynomial, the products and the division's 2.5 ulp, plus 2π·3u from the phase's
+/// conversion).
+pub const N_SLIT_SPEC: f64 = 169.0 * U;
+/// The derived bound of `diffraction_single_slit_cycles`: 2·42u = 84u = 5.0e-6.
+pub const SINGLE_SLIT_SPEC: f64 = 84.0 * U;
+/// The derived bound of `diffraction_intensity_cycles` (the product: both plus one rounding).
+pub const INTENSITY_SPEC: f64 = N_SLIT_SPEC + SINGLE_SLIT_SPEC + U;
+
+/// The worst error of the emulation of `diffraction_n_slit_cycles` with every operation the
+/// spec leaves free pushed to its limit (divisions 2.5 ulp either way, integer-to-float
+/// conversions 1 ulp either way, Horner steps fused or not): measured 4.4e-7 (printed by
+/// `gpu_wgsl -- --nocapture`); margin 2×. On Mesa lavapipe the device test measured 2.3e-7.
+pub const N_SLIT_WORST_MEASURED: f64 = 9e-7;
+/// The same for `diffraction_single_slit_cycles`: measured 2.4e-7; margin 2× (lavapipe 1.8e-7).
+pub const SINGLE_SLIT_WORST_MEASURED: f64 = 5e-7;
+
+/// The colour table's lookup: per channel, |GPU − CPU| ≤ `TABLE_ROUNDINGS`·u·M + 2u·|u|·D, with
+/// M the sum of the magnitudes of the four Hermite terms and D twice the largest slope of the
+/// cell (docs/gpu.md: the nodes rounded to f32, the cubic basis and the sum, and the rounding of
+/// the position in the cell).
+pub const TABLE_ROUNDINGS: f64 = 16.0;
