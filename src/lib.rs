@@ -163,6 +163,8 @@ mod cie_data;
 pub mod color;
 #[cfg(feature = "alloc")]
 mod color_table;
+#[allow(dead_code, clippy::approx_constant)]
+mod efficiency_presets_data;
 mod error;
 mod film;
 mod float;

@@ -30,6 +30,7 @@ mod fresnel;
 mod metal;
 mod scalar;
 mod shape;
+mod table_standin;
 mod validity;
 
 pub use metal::{Metal, MAX_INDEX};
@@ -37,3 +38,4 @@ pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES, QUADRATURE_NODES};
+pub use table_standin::{EfficiencyTable, Preset};
