@@ -397,8 +397,23 @@ impl GratingBsdf {
         (total > 0.0 && total.is_finite()).then_some(o)
     }
 
-    /// η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) of a tabulated model (see the module docs);
-    /// the amplitude reading's η_m otherwise.
+    /// η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) of a tabulated model (see the
+    /// [module docs](super)), unpolarised; the amplitude reading's η_m otherwise. Symmetric in
+    /// (wo, wi) and ≥ 0; 0 for orders the table does not store and for non-finite input.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// use diffraction::GratingBsdf;
+    /// use glam::DVec3;
+    /// let cd = GratingBsdf::preset(Preset::Cd, diffraction::Slits::Infinite)?;
+    /// // Order 1 of 550 nm from normal incidence leaves at wi.x = λ/d.
+    /// let (wo, x) = (DVec3::Z, 550.0 / 1600.0);
+    /// let wi = DVec3::new(x, 0.0, (1.0 - x * x).sqrt());
+    /// let e = cd.efficiency_at(1, wo, wi, 550.0);
+    /// assert!(e > 0.0 && e < 1.0);
+    /// assert_eq!(e, cd.efficiency_at(1, wi, wo, 550.0)); // reciprocal
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
     #[must_use]
     pub fn efficiency_at(&self, order: i32, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
         match self.table() {
