@@ -4,6 +4,8 @@
 //! cargo run --release --example efficiencies -- --profile sinusoid|lamellar|sawtooth|amplitude \
 //!     --period NM --depth NM [--duty F] [--blaze DEG] --metal Al|Ag|Au|Cu|Cr|N+Ki \
 //!     --lambda NM --theta DEG [--polarisation te|tm|unpolarised]
+//! cargo run --release --example efficiencies -- --table FILE.json|--preset cd|dvd|blazed600|foil \
+//!     --lambda NM --theta DEG [--polarisation te|tm|unpolarised]
 //! ```
 //!
 //! prints `{"order": m, "sin_theta": s, "efficiency": η, "te": η_TE, "tm": η_TM}` per order, with
@@ -20,13 +22,18 @@
 //! * `amplitude`: `GratingBsdf`'s amplitude grating, η_m = ρ²·sinc²(ρm) with ρ = `--duty`
 //!   (default 0.5); it has no polarisation (no `te`, `tm` keys) and ignores `--depth` and
 //!   `--metal`.
+//! * `--table FILE`: a tabulated efficiency file (the JSON of `docs/efficiency_tables.md`, read
+//!   with serde_json into `diffraction::relief::EfficiencyTable`), and `--preset NAME`: one of
+//!   the crate's rigorous presets. Both print the table's interpolated orders that propagate at
+//!   the query (normalised as `EfficiencyTable::efficiency` is: each polarisation's sum ≤ 1);
+//!   the grating's flags (`--profile`, `--period`, …) do not go with them.
 //!
 //! Bad input gets an error naming the flag and exit code 2.
 
 use std::io::Write;
 use std::process::ExitCode;
 
-use diffraction::relief::{Metal, Relief, ScalarRelief};
+use diffraction::relief::{EfficiencyTable, Metal, Preset, Relief, ScalarRelief};
 use diffraction::{Grating, GratingBsdf};
 
 /// The coherently lit periods of the amplitude model's `Grating` (its efficiencies do not depend
@@ -36,6 +43,8 @@ const AMPLITUDE_SLITS: u32 = 1000;
 const SAWTOOTH_AGREEMENT: f64 = 1e-6;
 /// Below this magnitude numbers are printed in exponent form (`4.4e-30`, not thirty zeros).
 const EXPONENT_BELOW: f64 = 1e-4;
+/// The largest `--table` file read (the shipped presets' are 31-124 kB).
+const MAX_TABLE_BYTES: u64 = 256 << 20;
 
 /// A finite number as JSON: the shortest round-trip form, in exponent form when tiny.
 fn json(x: f64) -> String {
@@ -52,6 +61,15 @@ enum Profile {
     Lamellar,
     Sawtooth,
     Amplitude,
+    /// `--table` or `--preset`: the grating is the table's.
+    Table,
+}
+
+/// Where a tabulated model comes from.
+#[derive(Debug, Clone, PartialEq)]
+enum Tabulated {
+    Preset(Preset),
+    File(String),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,9 +90,10 @@ struct Options {
     lambda_nm: f64,
     theta_deg: f64,
     polarisation: Polarisation,
+    tabulated: Option<Tabulated>,
 }
 
-const USAGE: &str = "usage: efficiencies --profile sinusoid|lamellar|sawtooth|amplitude --period NM --depth NM [--duty F] [--blaze DEG] --metal Al|Ag|Au|Cu|Cr|N+Ki --lambda NM --theta DEG [--polarisation te|tm|unpolarised]";
+const USAGE: &str = "usage: efficiencies --profile sinusoid|lamellar|sawtooth|amplitude --period NM --depth NM [--duty F] [--blaze DEG] --metal Al|Ag|Au|Cu|Cr|N+Ki --lambda NM --theta DEG [--polarisation te|tm|unpolarised]\n   or: efficiencies --table FILE.json|--preset cd|dvd|blazed600|foil --lambda NM --theta DEG [--polarisation te|tm|unpolarised]";
 
 fn number(flag: &str, value: &str) -> Result<f64, String> {
     match value.parse::<f64>() {
@@ -117,6 +136,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
     let (mut profile, mut period, mut depth, mut duty, mut blaze) = (None, None, None, None, None);
     let (mut metal, mut lambda, mut theta) = (None, None, None);
     let mut polarisation = Polarisation::Unpolarised;
+    let mut tabulated = None;
     let mut it = args.iter();
     while let Some(flag) = it.next() {
         let flag = flag.as_str();
@@ -149,18 +169,51 @@ fn parse(args: &[String]) -> Result<Options, String> {
             "--lambda" => lambda = Some(number(flag, value)?),
             "--theta" => theta = Some(number(flag, value)?),
             "--polarisation" => polarisation = polarisation_named(value)?,
-            // The tabulated model: `EfficiencyTable::from_json(FILE)` (docs/efficiency_tables.md)
-            // is wired here once it is in the library; until then the flag is refused.
-            "--table" => {
-                return Err(
-                    "--table: tabulated efficiency files are not supported by this build yet"
-                        .to_string(),
-                )
+            "--table" => tabulated = Some(Tabulated::File(value.clone())),
+            "--preset" => {
+                let p = value
+                    .parse::<Preset>()
+                    .map_err(|e| format!("--preset: {e} (got {value:?})"))?;
+                tabulated = Some(Tabulated::Preset(p));
             }
             other => return Err(format!("{other}: unknown flag\n{USAGE}")),
         }
     }
     let need = |v: Option<f64>, flag: &str| v.ok_or_else(|| format!("{flag}: required"));
+    if let Some(t) = tabulated {
+        let flag = match t {
+            Tabulated::File(_) => "--table",
+            Tabulated::Preset(_) => "--preset",
+        };
+        if seen.contains(&"--table") && seen.contains(&"--preset") {
+            return Err("--table: not with --preset (one tabulated model)".to_string());
+        }
+        let grating_flags = [
+            "--profile",
+            "--period",
+            "--depth",
+            "--duty",
+            "--blaze",
+            "--metal",
+        ];
+        if let Some(g) = grating_flags.iter().find(|g| seen.contains(g)) {
+            return Err(format!(
+                "{flag}: not with {g} (the table holds the grating)"
+            ));
+        }
+        return Ok(Options {
+            profile: Profile::Table,
+            period_nm: 0.0,
+            depth_nm: None,
+            duty: None,
+            blaze_deg: None,
+            metal: Metal::AL,
+            lambda_nm: need(lambda, "--lambda")?,
+            theta_deg: need(theta, "--theta")?,
+            polarisation,
+            tabulated: Some(t),
+        });
+    }
     let profile = profile.ok_or("--profile: required")?;
     let metal = match (metal, profile) {
         (Some(m), _) => m,
@@ -189,7 +242,62 @@ fn parse(args: &[String]) -> Result<Options, String> {
         lambda_nm: need(lambda, "--lambda")?,
         theta_deg: need(theta, "--theta")?,
         polarisation,
+        tabulated: None,
     })
+}
+
+/// The table of `--table FILE` or `--preset NAME`.
+fn load_table(t: &Tabulated) -> Result<std::borrow::Cow<'static, EfficiencyTable>, String> {
+    let file = match t {
+        Tabulated::Preset(p) => return Ok(std::borrow::Cow::Borrowed(p.table())),
+        Tabulated::File(f) => f,
+    };
+    let size = std::fs::metadata(file)
+        .map_err(|e| format!("--table: cannot read {file:?}: {e}"))?
+        .len();
+    if size > MAX_TABLE_BYTES {
+        return Err(format!(
+            "--table: {file:?} has {size} bytes, more than the {MAX_TABLE_BYTES} this reads"
+        ));
+    }
+    let text =
+        std::fs::read_to_string(file).map_err(|e| format!("--table: cannot read {file:?}: {e}"))?;
+    parse_table(file, &text).map(std::borrow::Cow::Owned)
+}
+
+/// A JSON table (`EfficiencyTable`'s `Deserialize`, feature `serde`).
+#[cfg(feature = "serde")]
+fn parse_table(file: &str, text: &str) -> Result<EfficiencyTable, String> {
+    serde_json::from_str::<EfficiencyTable>(text).map_err(|e| format!("--table: {file:?}: {e}"))
+}
+
+/// Without the `serde` feature the library has no JSON reader.
+#[cfg(not(feature = "serde"))]
+fn parse_table(file: &str, _text: &str) -> Result<EfficiencyTable, String> {
+    Err(format!(
+        "--table: {file:?}: reading a JSON table needs the crate's `serde` feature (--features serde)"
+    ))
+}
+
+/// The JSON line of one order.
+fn order_line(
+    order: i32,
+    sin_theta: f64,
+    e: diffraction::relief::Polarised,
+    p: Polarisation,
+) -> String {
+    let eta = match p {
+        Polarisation::Te => e.te,
+        Polarisation::Tm => e.tm,
+        Polarisation::Unpolarised => e.unpolarised(),
+    };
+    format!(
+        "{{\"order\": {order}, \"sin_theta\": {}, \"efficiency\": {}, \"te\": {}, \"tm\": {}}}",
+        json(sin_theta),
+        json(eta),
+        json(e.te),
+        json(e.tm)
+    )
 }
 
 /// The sawtooth's blaze angle in radians from `--blaze` and/or `--depth`.
@@ -248,6 +356,18 @@ fn run(o: &Options) -> Result<(Vec<String>, Option<String>), String> {
         format!("{name}: {e}")
     };
     let mut lines = vec![];
+    if let Some(t) = &o.tabulated {
+        let table = load_table(t)?;
+        let mut out = vec![diffraction::relief::Polarised::default(); table.order_count()];
+        table.efficiencies(s, o.lambda_nm, &mut out);
+        for (m, e) in table.orders().zip(out) {
+            let sm = s + f64::from(m) * o.lambda_nm / table.period_nm();
+            if sm.abs() < 1.0 {
+                lines.push(order_line(m, sm, e, o.polarisation));
+            }
+        }
+        return Ok((lines, None));
+    }
     if o.profile == Profile::Amplitude {
         let rho = o.duty.unwrap_or(0.5);
         if !(rho > 0.0 && rho <= 1.0) {
@@ -279,19 +399,11 @@ fn run(o: &Options) -> Result<(Vec<String>, Option<String>), String> {
     .map_err(flag)?;
     let grating = ScalarRelief::new(relief, o.metal, o.period_nm).map_err(flag)?;
     for order in grating.orders(s, o.lambda_nm) {
-        let e = order.efficiency;
-        let eta = match o.polarisation {
-            Polarisation::Te => e.te,
-            Polarisation::Tm => e.tm,
-            Polarisation::Unpolarised => e.unpolarised(),
-        };
-        lines.push(format!(
-            "{{\"order\": {}, \"sin_theta\": {}, \"efficiency\": {}, \"te\": {}, \"tm\": {}}}",
+        lines.push(order_line(
             order.order,
-            json(order.sin_theta),
-            json(eta),
-            json(e.te),
-            json(e.tm)
+            order.sin_theta,
+            order.efficiency,
+            o.polarisation,
         ));
     }
     let note = (!grating.is_valid(s, o.lambda_nm)).then(|| {
@@ -471,6 +583,58 @@ mod tests {
             let e = error(&line);
             assert!(e.starts_with(flag), "{line}: {e}");
         }
+    }
+
+    #[test]
+    fn tables_and_presets_print_their_interpolated_orders() {
+        let q = "--lambda 550 --theta 20";
+        let preset = lines(&format!("--preset cd {q}"));
+        let file = concat!(env!("CARGO_MANIFEST_DIR"), "/data/efficiencies/cd.json");
+        let table = if cfg!(feature = "serde") {
+            lines(&format!("--table {file} {q}"))
+        } else {
+            assert!(error(&format!("--table {file} {q}")).starts_with("--table"));
+            preset.clone()
+        };
+        assert_eq!(preset.len(), table.len());
+        let cd = Preset::Cd.table();
+        let s = 20f64.to_radians().sin();
+        for (p, t) in preset.iter().zip(&table) {
+            let m = p["order"].as_i64().unwrap() as i32;
+            assert_eq!(m, t["order"].as_i64().unwrap() as i32);
+            let sm = p["sin_theta"].as_f64().unwrap();
+            assert!((sm - (s + f64::from(m) * 550.0 / 1600.0)).abs() < 1e-15 && sm.abs() < 1.0);
+            let e = cd.efficiency(m, s, 550.0);
+            // serde_json's default float parsing may be one unit in the last place off.
+            let close = |key: &str, want: f64| (p[key].as_f64().unwrap() - want).abs() <= 1e-15;
+            assert!(close("te", e.te) && close("tm", e.tm), "{m}");
+            assert!(close("efficiency", e.unpolarised()), "{m}");
+            // The JSON file's 6 decimals against the preset's 5 (and f32).
+            assert!((t["te"].as_f64().unwrap() - e.te).abs() < 2e-5, "{m}");
+        }
+        let te = lines(&format!("--preset foil {q} --polarisation tm"));
+        assert_eq!(te[0]["efficiency"], te[0]["tm"]);
+        let q = "--lambda 550 --theta 0";
+        for (line, flag) in [
+            (format!("--preset bluray {q}"), "--preset"),
+            (format!("--table /nonexistent/t.json {q}"), "--table"),
+            (
+                format!("--table {} {q}", env!("CARGO_MANIFEST_DIR")),
+                "--table",
+            ),
+            (
+                format!("--table {}/Cargo.toml {q}", env!("CARGO_MANIFEST_DIR")),
+                "--table",
+            ),
+            (format!("--preset cd --table {file} {q}"), "--table"),
+            (format!("--preset cd --metal Al {q}"), "--preset"),
+            ("--preset cd --theta 0".to_string(), "--lambda"),
+            ("--preset cd --lambda 550 --theta 90".to_string(), "--theta"),
+        ] {
+            let e = error(&line);
+            assert!(e.starts_with(flag), "{line}: {e}");
+        }
+        assert!(error(&format!("--table /nonexistent/t.json {q}")).contains("/nonexistent/t.json"));
     }
 
     #[test]

@@ -126,6 +126,19 @@ def interpolate(table: dict, pol: str, m: int, s: float, lam: float) -> float:
     return math.sqrt(1.0 - sm * sm) / math.sqrt(1.0 - s * s) * num / den
 
 
+def interpolate_normalised(table: dict, m: int, s: float, lam: float) -> tuple[float, float]:
+    """(TE, TM) of order m at (s, lambda) as the crate returns them: `interpolate` for every stored
+    order, then, per polarisation, every order scaled by 1/sum where the sum over the stored orders
+    exceeds 1 (bilinear interpolation can overshoot between nodes), so sum eta <= 1 at every query."""
+    out = []
+    for pol in ("te", "tm"):
+        etas = {k: interpolate(table, pol, k, s, lam) for k in range(table["order_min"], table["order_max"] + 1)}
+        total = sum(etas.values())
+        eta = etas.get(m, 0.0)
+        out.append(eta / total if total > 1.0 else eta)
+    return out[0], out[1]
+
+
 # ---------------------------------------------------------------- validation on load and write
 
 

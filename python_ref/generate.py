@@ -27,6 +27,7 @@ sys.dont_write_bytecode = True  # keep python_ref/ free of __pycache__
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import colour_fixtures  # noqa: E402
+import efficiency_interp  # noqa: E402
 import kernels  # noqa: E402
 import metals  # noqa: E402
 import presets  # noqa: E402
@@ -45,6 +46,7 @@ PARTS = {
     "metals": metals.generate,
     "rigorous": rigorous.generate,
     "presets": presets.generate,
+    "efficiency_interp": efficiency_interp.generate,
 }
 
 # Parts too expensive to regenerate in `--check`: a cheap check of the committed files instead

@@ -82,6 +82,33 @@ pub enum Requirement {
         /// Upper end.
         max: f64,
     },
+    /// Each element of a sequence above the one before it (the value is the first that is not).
+    StrictlyIncreasing,
+    /// A sequence with `min` to `max` elements (the value is the count it has).
+    Count {
+        /// The fewest elements accepted.
+        min: usize,
+        /// The most elements accepted.
+        max: usize,
+    },
+    /// A sequence whose length is a multiple of `slice` (one slice per order), with 1 to
+    /// `max_slices` slices (the value is the length it has).
+    Slices {
+        /// The length of one slice.
+        slice: usize,
+        /// The most slices accepted.
+        max_slices: usize,
+    },
+    /// A sum over orders at most `bound` (the value is the largest sum found).
+    SumAtMost {
+        /// The largest sum accepted.
+        bound: f64,
+    },
+    /// Zero where the given order is evanescent (the value is the nonzero one found).
+    ZeroWhereEvanescent {
+        /// The diffraction order.
+        order: i32,
+    },
 }
 
 impl Error {
@@ -126,6 +153,27 @@ impl fmt::Display for Error {
         match self {
             Error::InvalidParameter {
                 name,
+                value: count,
+                requirement: Requirement::Count { min, max },
+            } => {
+                write!(f, "invalid {name}: has {count} values, must have ")?;
+                if min == max {
+                    write!(f, "{min}")
+                } else {
+                    write!(f, "{min} to {max}")
+                }
+            }
+            Error::InvalidParameter {
+                name,
+                value: len,
+                requirement: Requirement::Slices { slice, max_slices },
+            } => write!(
+                f,
+                "invalid {name}: has {len} values, must have a multiple of {slice} \
+                 (one [lambda][sin_theta_i] slice per order), 1 to {max_slices} slices"
+            ),
+            Error::InvalidParameter {
+                name,
                 value,
                 requirement,
             } => {
@@ -147,6 +195,18 @@ impl fmt::Display for Error {
                     Requirement::Within { min, max } => {
                         write!(f, "lie in [{}, {}]", Num(*min), Num(*max))
                     }
+                    Requirement::StrictlyIncreasing => {
+                        write!(f, "be strictly increasing (above the value before it)")
+                    }
+                    Requirement::SumAtMost { bound } => {
+                        write!(f, "be a sum over orders <= {}", Num(*bound))
+                    }
+                    Requirement::ZeroWhereEvanescent { order } => write!(
+                        f,
+                        "be 0: order {order} is evanescent there (|sin_theta_i + m lambda/d| >= 1)"
+                    ),
+                    // Printed by the arms above.
+                    Requirement::Count { .. } | Requirement::Slices { .. } => Ok(()),
                 }
             }
         }

@@ -163,6 +163,8 @@ mod cie_data;
 pub mod color;
 #[cfg(feature = "alloc")]
 mod color_table;
+// The presets' tables; their grating descriptions (profile, depth, metal, cover) are not read.
+// Measured efficiencies such as 0.3183 and 0.4342 are data, not 1/π or log10(e).
 #[allow(dead_code, clippy::approx_constant)]
 mod efficiency_presets_data;
 mod error;

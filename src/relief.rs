@@ -30,7 +30,7 @@ mod fresnel;
 mod metal;
 mod scalar;
 mod shape;
-mod table_standin;
+mod table;
 mod validity;
 
 pub use metal::{Metal, MAX_INDEX};
@@ -38,4 +38,6 @@ pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES, QUADRATURE_NODES};
-pub use table_standin::{EfficiencyTable, Preset};
+pub use table::{EfficiencyTable, Preset};
+#[cfg(feature = "alloc")]
+pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE};

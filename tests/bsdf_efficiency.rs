@@ -6,18 +6,18 @@
 
 #[path = "support/bsdf_check.rs"]
 mod bsdf_check;
-#[path = "support/efficiency_tolerance.rs"]
-mod efficiency_tolerance;
+#[path = "support/bsdf_efficiency_tolerance.rs"]
+mod bsdf_efficiency_tolerance;
 
 use std::sync::Arc;
 
 use bsdf_check::{chi2_grating, dir, furnace, sidak, Rng, CHI2_SIGNIFICANCE, FURNACE_SIGMAS};
+use bsdf_efficiency_tolerance::*;
 use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::{EfficiencyTable, Metal, Preset, Relief, ScalarRelief};
 use diffraction::{
     Bsdf, DiffractionBrdf, Grating, GratingBsdf, GrooveSpread, Slits, SpectralResponse,
 };
-use efficiency_tolerance::*;
 use glam::{DVec2, DVec3};
 
 const PRESETS: [Preset; 4] = [Preset::Cd, Preset::Dvd, Preset::Blazed600, Preset::Foil];

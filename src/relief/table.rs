@@ -1,0 +1,638 @@
+//! Tabulated order efficiencies: η_m on a grid in (sin θi, λ), interpolated by the rule of
+//! `docs/efficiency_tables.md`, with the crate's rigorous presets as static tables.
+
+use core::fmt;
+use core::ops::RangeInclusive;
+use core::str::FromStr;
+
+#[cfg(feature = "alloc")]
+use alloc::vec::Vec;
+
+use super::scalar::Polarised;
+use crate::efficiency_presets_data as data;
+use crate::math;
+use crate::ParseError;
+
+#[cfg(feature = "alloc")]
+mod load;
+
+#[cfg(feature = "alloc")]
+pub use load::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE};
+
+/// A corner of the interpolation cell closer than this to its order's Rayleigh line
+/// (cos² θm ≤ 10⁻⁶, cos θm ≤ 10⁻³) counts as evanescent: there η and cos θm are both tiny and
+/// their ratio is rounding (`docs/efficiency_tables.md`, "Interpolation", step 4).
+const GRAZING_CORNER: f64 = 1e-6;
+
+/// Order efficiencies η_m (TE and TM) of a grating on a grid of (sin θi, λ) nodes, the crate's
+/// tabulated efficiency model (`docs/efficiency_tables.md`).
+///
+/// A table holds the grating's period, the consecutive orders `order_min ..= order_max` and, for
+/// each, TE and TM efficiencies at every node. The four rigorous presets ([`Preset`]) are static
+/// data (no allocation); user tables come from [`EfficiencyTable::new`], from a JSON file
+/// (`serde` and `alloc`: `Deserialize`) or from the scalar model
+/// ([`EfficiencyTable::from_scalar`]), all checked on load.
+///
+/// Queries follow the documented rule: s = sin θi and λ clamped to the grid; 0 where the order
+/// is evanescent (|s + m·λ/d| ≥ 1) or not stored; otherwise q = η·cos θi/cos θm is bilinearly
+/// interpolated over the cell's corners where the order propagates and η = q·cos θm/cos θi at
+/// the query, so each order appears exactly on its Rayleigh line with its square-root onset.
+/// Then, **per polarisation**, if the sum over the stored orders at the query exceeds 1 (bilinear
+/// interpolation can overshoot between nodes) every order is scaled by 1/Σ: Σ_m η_m ≤ 1 holds
+/// for TE and for TM (and so for unpolarised light) at every query.
+///
+/// ```
+/// use diffraction::relief::Preset;
+/// let cd = Preset::Cd.table();
+/// assert_eq!(cd.orders(), -8..=8);
+/// let first = cd.efficiency(1, 0.0, 550.0);
+/// assert!(first.te > 0.0 && first.tm > 0.0);
+/// // Order 3 at normal incidence: sin θ3 = 3·550/1600 > 1, evanescent.
+/// assert_eq!(cd.efficiency(3, 0.0, 550.0).te, 0.0);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct EfficiencyTable {
+    period_nm: f64,
+    order_min: i32,
+    order_count: usize,
+    storage: Storage,
+}
+
+/// The nodes and values: static f32 data of the presets, or owned f64 data of user tables.
+#[derive(Debug, Clone, PartialEq)]
+enum Storage {
+    Static {
+        sin_theta_i: &'static [f32],
+        lambda_nm: &'static [f32],
+        te: &'static [f32],
+        tm: &'static [f32],
+    },
+    #[cfg(feature = "alloc")]
+    Owned {
+        sin_theta_i: Vec<f64>,
+        lambda_nm: Vec<f64>,
+        te: Vec<f64>,
+        tm: Vec<f64>,
+    },
+}
+
+/// Read access to one axis or value array, f32 or f64, as f64.
+trait Values {
+    fn at(&self, i: usize) -> f64;
+    fn count(&self) -> usize;
+}
+
+impl Values for [f32] {
+    #[inline]
+    fn at(&self, i: usize) -> f64 {
+        f64::from(self[i])
+    }
+    fn count(&self) -> usize {
+        self.len()
+    }
+}
+
+impl Values for [f64] {
+    #[inline]
+    fn at(&self, i: usize) -> f64 {
+        self[i]
+    }
+    fn count(&self) -> usize {
+        self.len()
+    }
+}
+
+/// One query's interpolation cell, shared by every order.
+struct Cell {
+    s: f64,
+    lambda_nm: f64,
+    cos_i: f64,
+    /// Per corner: bilinear weight, s and λ of the node, cos θi of the node, flat index j·n_s + i.
+    w: [f64; 4],
+    s_c: [f64; 4],
+    l_c: [f64; 4],
+    cos_c: [f64; 4],
+    index: [usize; 4],
+}
+
+/// The index i of the grid interval [x_i, x_{i+1}] holding `x` (clamped to the grid), as
+/// numpy's `searchsorted(side="right") - 1` clamped to [0, n - 2].
+fn interval<T: Values + ?Sized>(nodes: &T, x: f64) -> usize {
+    let n = nodes.count();
+    let (mut lo, mut hi) = (0usize, n);
+    // Binary search for the first node above x.
+    while lo < hi {
+        let mid = (lo + hi) / 2;
+        if nodes.at(mid) <= x {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    lo.saturating_sub(1).min(n - 2)
+}
+
+impl Cell {
+    /// The cell of (s, λ), `None` for a non-finite query or one at grazing incidence (no flux).
+    fn find<T: Values + ?Sized>(sin: &T, lam: &T, s: f64, lambda_nm: f64) -> Option<Cell> {
+        if !(s.is_finite() && lambda_nm.is_finite()) {
+            return None;
+        }
+        let (n_s, n_l) = (sin.count(), lam.count());
+        let s = s.max(sin.at(0)).min(sin.at(n_s - 1));
+        let lambda_nm = lambda_nm.max(lam.at(0)).min(lam.at(n_l - 1));
+        let cos_i = math::sqrt(1.0 - s * s);
+        if cos_i <= 0.0 {
+            return None;
+        }
+        let i = interval(sin, s);
+        let j = interval(lam, lambda_nm);
+        let (s0, s1, l0, l1) = (sin.at(i), sin.at(i + 1), lam.at(j), lam.at(j + 1));
+        let tx = (s - s0) / (s1 - s0);
+        let ty = (lambda_nm - l0) / (l1 - l0);
+        let (c0, c1) = (math::sqrt(1.0 - s0 * s0), math::sqrt(1.0 - s1 * s1));
+        Some(Cell {
+            s,
+            lambda_nm,
+            cos_i,
+            w: [
+                (1.0 - tx) * (1.0 - ty),
+                tx * (1.0 - ty),
+                (1.0 - tx) * ty,
+                tx * ty,
+            ],
+            s_c: [s0, s1, s0, s1],
+            l_c: [l0, l0, l1, l1],
+            cos_c: [c0, c1, c0, c1],
+            index: [
+                j * n_s + i,
+                j * n_s + i + 1,
+                (j + 1) * n_s + i,
+                (j + 1) * n_s + i + 1,
+            ],
+        })
+    }
+
+    /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
+    /// starting at `base` of `te` and `tm`.
+    #[inline]
+    fn order<T: Values + ?Sized>(
+        &self,
+        period_nm: f64,
+        m: i32,
+        base: usize,
+        te: &T,
+        tm: &T,
+    ) -> Polarised {
+        let mf = f64::from(m);
+        let sm = self.s + mf * self.lambda_nm / period_nm;
+        if sm.abs() >= 1.0 {
+            return Polarised::default();
+        }
+        let (mut num_te, mut num_tm, mut den) = (0.0, 0.0, 0.0);
+        for c in 0..4 {
+            let w = self.w[c];
+            if w <= 0.0 {
+                continue;
+            }
+            let smc = self.s_c[c] + mf * self.l_c[c] / period_nm;
+            let cm2 = 1.0 - smc * smc;
+            if cm2 > GRAZING_CORNER {
+                let f = w * self.cos_c[c] / math::sqrt(cm2);
+                num_te += f * te.at(base + self.index[c]);
+                num_tm += f * tm.at(base + self.index[c]);
+                den += w;
+            }
+        }
+        if den <= 0.0 {
+            return Polarised::default();
+        }
+        let k = math::sqrt(1.0 - sm * sm) / self.cos_i / den;
+        Polarised {
+            te: num_te * k,
+            tm: num_tm * k,
+        }
+    }
+}
+
+impl EfficiencyTable {
+    /// The grating period d, nm.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Dvd.table().period_nm(), 740.0);
+    /// ```
+    #[must_use]
+    pub fn period_nm(&self) -> f64 {
+        self.period_nm
+    }
+
+    /// The stored orders, `order_min ..= order_max` (every other order has η = 0).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Foil.table().orders(), -5..=5);
+    /// ```
+    #[must_use]
+    pub fn orders(&self) -> RangeInclusive<i32> {
+        // The count is checked on load: order_min + count − 1 fits an i32.
+        self.order_min..=self.order_min + (self.order_count as i32 - 1)
+    }
+
+    /// The number of stored orders (the length [`efficiencies`](Self::efficiencies) fills).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Blazed600.table().order_count(), 19);
+    /// ```
+    #[must_use]
+    pub fn order_count(&self) -> usize {
+        self.order_count
+    }
+
+    /// The efficiencies of order `order` for light arriving with s = sin θi = `sin_theta_i`
+    /// (= −wi.x) at `lambda_nm`, by the interpolation rule of the type's docs: 0 where the order
+    /// is evanescent or not stored, and scaled with every other order so that each
+    /// polarisation's sum over the stored orders at the query is at most 1. A non-finite query,
+    /// and grazing incidence (|s| = 1, clamped to a grid reaching it), give 0. Computes every
+    /// stored order (the normalisation needs their sum): use
+    /// [`efficiencies`](Self::efficiencies) for all of them.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// let foil = Preset::Foil.table();
+    /// // Order −1 appears at s − λ/d = −1: just inside it propagates, just beyond it does not.
+    /// let s = -1.0 + 500.0 / 1000.0;
+    /// assert_eq!(foil.efficiency(-1, s - 1e-9, 500.0).te, 0.0);
+    /// assert!(foil.efficiency(-1, s + 1e-3, 500.0).te > 0.0);
+    /// assert_eq!(foil.efficiency(0, f64::NAN, 500.0).te, 0.0);
+    /// ```
+    #[must_use]
+    pub fn efficiency(&self, order: i32, sin_theta_i: f64, lambda_nm: f64) -> Polarised {
+        if !self.orders().contains(&order) {
+            return Polarised::default();
+        }
+        let mut wanted = Polarised::default();
+        let (sum_te, sum_tm) = self.each(sin_theta_i, lambda_nm, |m, e| {
+            if m == order {
+                wanted = e;
+            }
+        });
+        Polarised {
+            te: wanted.te * scale(sum_te),
+            tm: wanted.tm * scale(sum_tm),
+        }
+    }
+
+    /// Every stored order's efficiencies at once, written to `out[k]` for order
+    /// `order_min + k` (`out` should have [`order_count`](Self::order_count) elements; a
+    /// shorter one gets the first orders, the rest of a longer one is set to 0), with the
+    /// normalisation of [`efficiency`](Self::efficiency) applied. Returns the unpolarised sum
+    /// Σ_m (TE + TM)/2 over the stored orders, at most 1. One cell search for all orders and no
+    /// allocation: the hot path of a BSDF.
+    ///
+    /// ```
+    /// use diffraction::relief::{Polarised, Preset};
+    /// let cd = Preset::Cd.table();
+    /// let mut out = [Polarised::default(); 17];
+    /// let total = cd.efficiencies(0.3, 600.0, &mut out);
+    /// assert!(total > 0.5 && total <= 1.0);
+    /// assert_eq!(out[8 + 1], cd.efficiency(1, 0.3, 600.0)); // order 1
+    /// ```
+    pub fn efficiencies(&self, sin_theta_i: f64, lambda_nm: f64, out: &mut [Polarised]) -> f64 {
+        for o in out.iter_mut() {
+            *o = Polarised::default();
+        }
+        let first = self.order_min;
+        let (sum_te, sum_tm) = self.each(sin_theta_i, lambda_nm, |m, e| {
+            // m − order_min is in 0..order_count.
+            if let Some(o) = out.get_mut((m - first) as usize) {
+                *o = e;
+            }
+        });
+        let (k_te, k_tm) = (scale(sum_te), scale(sum_tm));
+        for o in out.iter_mut() {
+            o.te *= k_te;
+            o.tm *= k_tm;
+        }
+        0.5 * (sum_te * k_te + sum_tm * k_tm)
+    }
+
+    /// Calls `f(m, η_m)` for every stored order before the normalisation and returns the TE
+    /// and TM sums.
+    fn each(&self, s: f64, lambda_nm: f64, f: impl FnMut(i32, Polarised)) -> (f64, f64) {
+        match &self.storage {
+            Storage::Static {
+                sin_theta_i,
+                lambda_nm: lam,
+                te,
+                tm,
+            } => self.each_in(*sin_theta_i, *lam, *te, *tm, s, lambda_nm, f),
+            #[cfg(feature = "alloc")]
+            Storage::Owned {
+                sin_theta_i,
+                lambda_nm: lam,
+                te,
+                tm,
+            } => self.each_in(
+                sin_theta_i.as_slice(),
+                lam.as_slice(),
+                te.as_slice(),
+                tm.as_slice(),
+                s,
+                lambda_nm,
+                f,
+            ),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn each_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+        s: f64,
+        lambda_nm: f64,
+        mut f: impl FnMut(i32, Polarised),
+    ) -> (f64, f64) {
+        let Some(cell) = Cell::find(sin, lam, s, lambda_nm) else {
+            return (0.0, 0.0);
+        };
+        let slice = sin.count() * lam.count();
+        let (mut sum_te, mut sum_tm) = (0.0, 0.0);
+        let mut m = self.order_min;
+        for k in 0..self.order_count {
+            let e = cell.order(self.period_nm, m, k * slice, te, tm);
+            sum_te += e.te;
+            sum_tm += e.tm;
+            f(m, e);
+            m = m.wrapping_add(1);
+        }
+        (sum_te, sum_tm)
+    }
+
+    /// The table's sin θi nodes as f64 (the presets' f32 nodes widened exactly).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// let s: Vec<f64> = Preset::Cd.table().sin_theta_i().collect();
+    /// assert_eq!(s.len(), 25);
+    /// assert_eq!(s[12], 0.0);
+    /// ```
+    pub fn sin_theta_i(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.axis(true)
+    }
+
+    /// The table's wavelength nodes, nm, as f64.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// let l: Vec<f64> = Preset::Blazed600.table().lambda_nm().collect();
+    /// assert_eq!((l[0], l[8]), (360.0, 830.0));
+    /// ```
+    pub fn lambda_nm(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.axis(false)
+    }
+
+    fn axis(&self, sin: bool) -> Axis<'_> {
+        match &self.storage {
+            Storage::Static {
+                sin_theta_i,
+                lambda_nm,
+                ..
+            } => Axis::F32(if sin { sin_theta_i } else { lambda_nm }.iter()),
+            #[cfg(feature = "alloc")]
+            Storage::Owned {
+                sin_theta_i,
+                lambda_nm,
+                ..
+            } => Axis::F64(if sin { sin_theta_i } else { lambda_nm }.iter()),
+        }
+    }
+}
+
+/// The factor that brings a sum over orders down to 1 where it exceeds 1.
+#[inline]
+fn scale(sum: f64) -> f64 {
+    if sum > 1.0 {
+        1.0 / sum
+    } else {
+        1.0
+    }
+}
+
+/// The nodes of one axis of a table.
+enum Axis<'a> {
+    F32(core::slice::Iter<'a, f32>),
+    #[cfg(feature = "alloc")]
+    F64(core::slice::Iter<'a, f64>),
+}
+
+impl Iterator for Axis<'_> {
+    type Item = f64;
+    fn next(&mut self) -> Option<f64> {
+        match self {
+            Axis::F32(it) => it.next().map(|&v| f64::from(v)),
+            #[cfg(feature = "alloc")]
+            Axis::F64(it) => it.next().copied(),
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        match self {
+            Axis::F32(it) => it.size_hint(),
+            #[cfg(feature = "alloc")]
+            Axis::F64(it) => it.size_hint(),
+        }
+    }
+}
+
+impl ExactSizeIterator for Axis<'_> {}
+
+// ---------------------------------------------------------------- the presets
+
+/// The crate's rigorous efficiency presets (`docs/efficiency_tables.md`, "The shipped
+/// presets"): tables solved offline by a rigorous electromagnetic solver, shipped as static
+/// data.
+///
+/// ```
+/// use diffraction::relief::Preset;
+/// let p: Preset = "blazed600".parse()?;
+/// assert_eq!(p, Preset::Blazed600);
+/// assert_eq!(p.to_string(), "blazed600");
+/// assert_eq!(Preset::ALL.len(), 4);
+/// assert!("bluray".parse::<Preset>().is_err());
+/// # Ok::<(), diffraction::ParseError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Preset {
+    /// A pressed CD read through its polycarbonate: lamellar Al ridges, d = 1600 nm,
+    /// 110 nm high, duty 0.3125.
+    Cd,
+    /// A DVD read through its polycarbonate: lamellar Al ridges, d = 740 nm, 105 nm high,
+    /// duty 0.4324.
+    Dvd,
+    /// A ruled aluminium grating, 600 lines/mm, blazed for 500 nm in first-order Littrow.
+    Blazed600,
+    /// An embossed holographic foil: an aluminium sinusoid of 1000 lines/mm, 100 nm deep.
+    Foil,
+}
+
+static CD: EfficiencyTable = EfficiencyTable {
+    period_nm: data::CD_PERIOD_NM,
+    order_min: data::CD_ORDER_MIN,
+    order_count: data::CD_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::CD_SIN_THETA_I,
+        lambda_nm: &data::CD_LAMBDA_NM,
+        te: &data::CD_TE,
+        tm: &data::CD_TM,
+    },
+};
+
+static DVD: EfficiencyTable = EfficiencyTable {
+    period_nm: data::DVD_PERIOD_NM,
+    order_min: data::DVD_ORDER_MIN,
+    order_count: data::DVD_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::DVD_SIN_THETA_I,
+        lambda_nm: &data::DVD_LAMBDA_NM,
+        te: &data::DVD_TE,
+        tm: &data::DVD_TM,
+    },
+};
+
+static BLAZED600: EfficiencyTable = EfficiencyTable {
+    period_nm: data::BLAZED600_PERIOD_NM,
+    order_min: data::BLAZED600_ORDER_MIN,
+    order_count: data::BLAZED600_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::BLAZED600_SIN_THETA_I,
+        lambda_nm: &data::BLAZED600_LAMBDA_NM,
+        te: &data::BLAZED600_TE,
+        tm: &data::BLAZED600_TM,
+    },
+};
+
+static FOIL: EfficiencyTable = EfficiencyTable {
+    period_nm: data::FOIL_PERIOD_NM,
+    order_min: data::FOIL_ORDER_MIN,
+    order_count: data::FOIL_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::FOIL_SIN_THETA_I,
+        lambda_nm: &data::FOIL_LAMBDA_NM,
+        te: &data::FOIL_TE,
+        tm: &data::FOIL_TM,
+    },
+};
+
+/// The spellings [`Preset`]'s `FromStr` accepts.
+const PRESET_SPELLINGS: &str = "one of cd, dvd, blazed600, foil";
+
+impl Preset {
+    /// Every preset.
+    pub const ALL: [Preset; 4] = [Preset::Cd, Preset::Dvd, Preset::Blazed600, Preset::Foil];
+
+    /// The preset's static table (no allocation).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert!(core::ptr::eq(Preset::Cd.table(), Preset::Cd.table()));
+    /// ```
+    #[must_use]
+    pub fn table(self) -> &'static EfficiencyTable {
+        match self {
+            Preset::Cd => &CD,
+            Preset::Dvd => &DVD,
+            Preset::Blazed600 => &BLAZED600,
+            Preset::Foil => &FOIL,
+        }
+    }
+
+    /// The name `FromStr` and `Display` use (`"cd"`, `"dvd"`, `"blazed600"`, `"foil"`, the
+    /// JSON files' names in `data/efficiencies/`).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Foil.name(), "foil");
+    /// ```
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Cd => "cd",
+            Preset::Dvd => "dvd",
+            Preset::Blazed600 => "blazed600",
+            Preset::Foil => "foil",
+        }
+    }
+
+    /// What the preset models, in one sentence.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert!(Preset::Cd.description().contains("1600 nm"));
+    /// ```
+    #[must_use]
+    pub fn description(self) -> &'static str {
+        match self {
+            Preset::Cd => {
+                "a pressed CD seen through its polycarbonate: lamellar aluminium ridges, \
+                 period 1600 nm, 500 nm wide, 110 nm high"
+            }
+            Preset::Dvd => {
+                "a DVD seen through its polycarbonate: lamellar aluminium ridges, \
+                 period 740 nm, 320 nm wide, 105 nm high"
+            }
+            Preset::Blazed600 => {
+                "a ruled aluminium grating of 600 lines/mm (period 1666.67 nm), blazed for \
+                 500 nm in first-order Littrow (blaze 8.627 degrees)"
+            }
+            Preset::Foil => {
+                "an embossed holographic foil: an aluminium sinusoid of 1000 lines/mm \
+                 (period 1000 nm), 100 nm peak-to-valley"
+            }
+        }
+    }
+
+    /// The grating period d, nm (the table's [`period_nm`](EfficiencyTable::period_nm)).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Cd.period_nm(), 1600.0);
+    /// ```
+    #[must_use]
+    pub fn period_nm(self) -> f64 {
+        self.table().period_nm
+    }
+}
+
+impl fmt::Display for Preset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Preset {
+    type Err = ParseError;
+
+    /// `cd`, `dvd`, `blazed600` or `foil` (lower case, the names of `data/efficiencies/`).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!("dvd".parse::<Preset>()?, Preset::Dvd);
+    /// assert_eq!(
+    ///     "CD".parse::<Preset>().unwrap_err().to_string(),
+    ///     "unknown efficiency preset: expected one of cd, dvd, blazed600, foil"
+    /// );
+    /// # Ok::<(), diffraction::ParseError>(())
+    /// ```
+    fn from_str(s: &str) -> Result<Preset, ParseError> {
+        Preset::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or(ParseError::new("efficiency preset", PRESET_SPELLINGS))
+    }
+}
