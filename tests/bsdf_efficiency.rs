@@ -343,3 +343,36 @@ fn constructors_and_errors() {
         .with_efficiency(OrderEfficiency::Amplitude);
     assert_eq!(back, a);
 }
+
+/// The colour capability: `peaks` reports each order with its response at the peak's λ (η̃ at
+/// that λ), so the generic colour path sees the tabulated value; `grating_response` is `None`.
+#[test]
+fn peaks_report_the_response_at_their_wavelength() {
+    use diffraction::Band;
+    let b = GratingBsdf::preset(Preset::Cd, 30).unwrap();
+    let mut rng = Rng::new(31);
+    let mut seen = 0;
+    for _ in 0..300 {
+        let (wo, wi) = (rng.direction(0.05), rng.direction(0.05));
+        let wi = DVec3::new(
+            wi.x,
+            -wo.y,
+            (1.0 - wi.x * wi.x - wo.y * wo.y).max(0.0).sqrt(),
+        );
+        if wi.z <= 0.05 {
+            continue;
+        }
+        assert!(b.grating_response(wo, wi).is_none());
+        b.peaks(wo, wi, Band::VISIBLE, &mut |p| {
+            let want = b.response(wo, wi, p.wavelength_nm);
+            assert!(
+                (p.intensity - want).abs() <= 1e-9 * want.max(1e-300),
+                "order {}: peak {} vs response {want}",
+                p.order,
+                p.intensity
+            );
+            seen += 1;
+        });
+    }
+    assert!(seen > 100, "{seen} peaks");
+}
