@@ -376,3 +376,39 @@ fn peaks_report_the_response_at_their_wavelength() {
     }
     assert!(seen > 100, "{seen} peaks");
 }
+
+// The colour reference and the BSDF harness both include the shared Gauss-Legendre nodes.
+#[allow(clippy::duplicate_mod)]
+#[path = "support/fine_quadrature.rs"]
+mod fine_quadrature;
+
+/// The generic colour path (`grating_response` is `None`) on a tabulated model against the
+/// independent 0.01 nm quadrature of its response.
+#[test]
+fn generic_colour_path_matches_the_fine_quadrature() {
+    use diffraction::cie::Illuminant;
+    use diffraction::spectrum::{GenericStrategy, Spectral};
+    let s = Spectral::new(Illuminant::D65);
+    let mut worst = 0.0f64;
+    for n in [30u32, 1000] {
+        let b = GratingBsdf::preset(Preset::Cd, n).unwrap();
+        for (wo, wi) in [
+            (dir(0.0, 0.0), dir(0.3, 0.0)),
+            (dir(0.2, 0.1), dir(0.35, -0.1)),
+            (dir(-0.5, 0.0), dir(0.9, 0.0)),
+            (dir(0.1, 0.0), dir(-0.1, 0.0)),
+        ] {
+            let got = s.xyz_brdf(&b, wo, wi, GenericStrategy::WINDOWS);
+            let want = fine_quadrature::reference_xyz(&b, wo, wi, Illuminant::D65);
+            let rel = (got.y - want.y).abs() / want.y.max(1e-300);
+            assert!(
+                rel <= TAB_WINDOWS_COLOUR,
+                "N={n} wo={wo} wi={wi}: WINDOWS Y {} vs {} ({rel:.1e})",
+                got.y,
+                want.y
+            );
+            worst = worst.max(rel);
+        }
+    }
+    println!("tabulated colour, WINDOWS against the fine quadrature: worst {worst:.1e}");
+}
