@@ -195,6 +195,8 @@ impl Cell {
             if w <= 0.0 {
                 continue;
             }
+            // The same formula as the query's sin θm: at a node the two cancel exactly, which
+            // matters near a Rayleigh line (cos θm small).
             let smc = self.s_c[c] + mf * self.l_c[c] / period_nm;
             let cm2 = 1.0 - smc * smc;
             if cm2 > GRAZING_CORNER {

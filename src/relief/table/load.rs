@@ -127,14 +127,14 @@ impl EfficiencyTable {
     /// A table of order efficiencies (feature `alloc`): the grating period `period_nm`, the
     /// first stored order `order_min`, the strictly increasing nodes `sin_theta_i` (inside
     /// [−1, 1]) and `lambda_nm` (positive, nm), and the TE and TM efficiencies, each flattened
-    /// [order][λ][sin θi]: `te[(k·n_λ + j)·n_s + i]` is order `order_min + k` at λ =
+    /// `[order][λ][sin θi]`: `te[(k·n_λ + j)·n_s + i]` is order `order_min + k` at λ =
     /// `lambda_nm[j]`, s = `sin_theta_i[i]`. The number of orders is `te.len() / (n_λ·n_s)`.
     ///
     /// Checked as `docs/efficiency_tables.md` ("Checks on load") says, each error naming the
     /// field: `period_nm` finite, > 0 and at most [`MAX_PERIOD_NM`]; each axis 2 to
     /// [`MAX_TABLE_NODES`] finite nodes, strictly increasing, s in [−1, 1], λ > 0; `te` a whole
     /// number (1 to [`MAX_TABLE_ORDERS`], at most [`MAX_TABLE_VALUES`] values) of
-    /// [λ][sin θi] slices and `tm` as long; the last order fits an `i32`; every η finite and
+    /// `[λ][sin θi]` slices and `tm` as long; the last order fits an `i32`; every η finite and
     /// ≥ 0, each node's sum over orders at most 1 + [`SUM_TOLERANCE`], and η = 0 wherever the
     /// order is evanescent at the node (|s + m·λ/d| ≥ 1).
     ///
@@ -321,7 +321,7 @@ mod json {
         period_nm: f64,
     }
 
-    /// Flattens one polarisation's [order][λ][sin θi] array, checking its shape.
+    /// Flattens one polarisation's `[order][λ][sin θi]` array, checking its shape.
     fn flatten(
         name: &str,
         a: Vec<Vec<Vec<f64>>>,
@@ -420,7 +420,7 @@ mod json {
     /// The JSON table of `docs/efficiency_tables.md` (features `serde` and `alloc`), checked as
     /// [`EfficiencyTable::new`] checks (and `format` = `"diffraction-efficiency-table"`,
     /// `version` = 1, `order_max` ≥ `order_min`, `te` and `tm` of shape
-    /// [order_max − order_min + 1][n_λ][n_s]); each error names the field. Fields the crate does
+    /// `[order_max − order_min + 1][n_λ][n_s]`); each error names the field. Fields the crate does
     /// not use (`name`, `description`, `symmetric`, `solver`, `validation`, `command`, `sha256`,
     /// the grating's other fields) are accepted and ignored. The whole file is read before the
     /// checks: bound its size where it comes from an untrusted source.
