@@ -5,9 +5,12 @@
 //!
 //! Each iteration runs a fixed batch of 1024 inputs (half of them within a few lobes of a peak,
 //! from the benches' shared generator), so criterion's per-element figure is ns per call.
-//! Targets: `sample` + `pdf` within 4× of `eval`; `f4` within 2× of one `f`.
+//! Targets: `sample` + `pdf` within 4× of `eval`; `f4` within 2× of one `f`. Beside them the
+//! CD preset's tabulated efficiencies (`cd_f`, `cd_sample_and_pdf`, period 1600 nm as well):
+//! target within 1.5× of the amplitude model's `f` and `sample_and_pdf`.
 
 use criterion::{black_box, BenchmarkId, Criterion, Throughput};
+use diffraction::relief::Preset;
 use diffraction::{AguHill, Band, Bsdf, DiffractionBrdf, Grating, GratingBsdf, SampledWavelengths};
 use glam::DVec2;
 use std::time::Duration;
@@ -29,6 +32,7 @@ fn bench(c: &mut Criterion) {
         let grating = Grating::new(PERIOD, PERIOD / 2.0, n).expect("valid grating");
         let paper = AguHill::new(grating);
         let bsdf = GratingBsdf::new(grating);
+        let cd = GratingBsdf::preset(Preset::Cd, n).expect("valid preset");
         let inputs = rng::near_peak_samples(PERIOD, n, BATCH);
         let mut r = rng::Rng(0x5eed ^ u64::from(n));
         let randoms: Vec<(f64, DVec2)> = (0..BATCH).map(|_| (r.next_f64(), r.u2())).collect();
@@ -52,6 +56,15 @@ fn bench(c: &mut Criterion) {
                 let mut acc = 0.0;
                 for &(wi, wo, l) in s {
                     acc += bsdf.eval(black_box(wo), black_box(wi), l);
+                }
+                acc
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("cd_f", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &(wi, wo, l) in s {
+                    acc += cd.eval(black_box(wo), black_box(wi), l);
                 }
                 acc
             })
@@ -100,6 +113,17 @@ fn bench(c: &mut Criterion) {
                 for (&(_, wo, l), &(uc, u2)) in s.iter().zip(&randoms) {
                     if let Some(x) = bsdf.sample(black_box(wo), l, uc, u2) {
                         acc += bsdf.pdf(wo, black_box(x.wi), l);
+                    }
+                }
+                acc
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("cd_sample_and_pdf", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for (&(_, wo, l), &(uc, u2)) in s.iter().zip(&randoms) {
+                    if let Some(x) = cd.sample(black_box(wo), l, uc, u2) {
+                        acc += cd.pdf(wo, black_box(x.wi), l);
                     }
                 }
                 acc

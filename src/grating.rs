@@ -34,6 +34,18 @@ pub enum Slits {
     Infinite,
 }
 
+impl From<u32> for Slits {
+    /// `Slits::Finite(n)`.
+    ///
+    /// ```
+    /// use diffraction::Slits;
+    /// assert_eq!(Slits::from(30), Slits::Finite(30));
+    /// ```
+    fn from(n: u32) -> Slits {
+        Slits::Finite(n)
+    }
+}
+
 impl Slits {
     /// N as a float, `f64::INFINITY` for the limit.
     ///

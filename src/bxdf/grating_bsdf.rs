@@ -22,6 +22,17 @@
 //! (SPECULAR; `eval` and `pdf` are 0, `sample` returns them with their discrete probabilities).
 //! N = 1: a single slit, f = ρ·(w/λ)·S·g. An ideal groove (g = δ) makes the lobes specular in v.
 //!
+//! # Physical order efficiencies
+//!
+//! [`GratingBsdf::preset`] and [`GratingBsdf::with_efficiency`] replace the amplitude reading by
+//! tabulated efficiencies of a relief grating on a metal ([`OrderEfficiency::Tabulated`]):
+//! f = η̃_m·ℓ_m(u, v) with ℓ_m = (N·d/λ)·F_N·g the order's unit-integral lobe and
+//! η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) (unpolarised), exactly reciprocal; the sampler
+//! picks m ∝ η_m(−wo.x, λ) (the weight is then at most Σ η·2·atan N·sup g/q_v), and the albedo
+//! is at most Σ_m η_m(−wo.x, λ) ≤ 1. Off the plane across the grooves (v ≠ 0) the tables are
+//! still read at sin θi = −wi.x: the classical-mount approximation. `efficiency.rs` has the
+//! details and `docs/radiometry.md` the measurements.
+//!
 //! # Sampling, with its exact density
 //!
 //! 1. **Order** (the order distribution, `orders.rs`). The candidate orders are those whose
@@ -123,7 +134,7 @@ mod regularize;
 mod wavelength;
 
 pub use albedo::{ALBEDO_CUT_MARGIN, MAX_ALBEDO_ORDERS};
-pub use efficiency::OrderEfficiency;
+pub use efficiency::{OrderEfficiency, Tabulated, MAX_TABULATED_ORDERS};
 use lobe::{lorentz_q, lorentz_r, GrooveFactor, Lobe};
 use orders::{Candidates, OrderDistribution};
 pub use orders::{DEFENSIVE_ORDER_SHARE, MAX_WEIGHTED_ORDERS};
@@ -193,17 +204,27 @@ impl GratingBsdf {
     /// The model and everything derived from it.
     fn build(grating: Grating, groove: GrooveSpread, efficiency: OrderEfficiency) -> GratingBsdf {
         let rho = grating.open_fraction();
+        // A tabulated model's lobe is the unit-integral (N·d/λ)·F_N·g alone (w = 0: S = 1).
+        let tabulated = efficiency.is_tabulated();
         let (n, nd) = match grating.slits() {
             Slits::Finite(n) => (n, n as f64 * grating.period_nm()),
             Slits::Infinite => (0, 0.0),
         };
         GratingBsdf {
-            orders: OrderDistribution::new(&grating, efficiency),
+            orders: OrderDistribution::new(&grating, &efficiency),
             lobe: Lobe {
                 d: grating.period_nm(),
-                w: grating.slit_width_nm(),
+                w: if tabulated {
+                    0.0
+                } else {
+                    grating.slit_width_nm()
+                },
                 n,
-                scale: (rho * rho * nd).min(f64::MAX),
+                scale: if tabulated {
+                    nd.min(f64::MAX)
+                } else {
+                    (rho * rho * nd).min(f64::MAX)
+                },
                 groove,
             },
             atan_n: atan(grating.slits().as_f64()),
@@ -246,7 +267,7 @@ impl GratingBsdf {
     /// ```
     #[must_use]
     pub fn with_groove(&self, groove: GrooveSpread) -> GratingBsdf {
-        GratingBsdf::build(self.grating, groove, self.efficiency)
+        GratingBsdf::build(self.grating, groove, self.efficiency.clone())
     }
 
     /// The grating.
@@ -273,38 +294,6 @@ impl GratingBsdf {
     #[must_use]
     pub fn groove(&self) -> GrooveSpread {
         self.groove
-    }
-
-    /// Where the order efficiencies come from.
-    ///
-    /// ```
-    /// use diffraction::grating_bsdf::OrderEfficiency;
-    /// use diffraction::{Grating, GratingBsdf};
-    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
-    /// assert_eq!(b.order_efficiency(), OrderEfficiency::Amplitude);
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn order_efficiency(&self) -> OrderEfficiency {
-        self.efficiency
-    }
-
-    /// The efficiency η_m of order m: the share of the incident power it carries over the whole
-    /// (u, v) plane; for the amplitude reading η_m = ρ²·S(π·ρ·m) and Σ_m η_m = ρ (Parseval).
-    ///
-    /// ```
-    /// use diffraction::{Grating, GratingBsdf};
-    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
-    /// assert_eq!(b.efficiency(0), 0.25);
-    /// assert!(b.efficiency(2) < 1e-30); // w = d/2: even orders are missing
-    /// let total: f64 = (-20000..=20000).map(|m| b.efficiency(m)).sum();
-    /// assert!((total - 0.5).abs() < 1e-5); // Parseval, to the 1/m² tail
-    /// # Ok::<(), diffraction::Error>(())
-    /// ```
-    #[must_use]
-    pub fn efficiency(&self, order: i32) -> f64 {
-        self.efficiency
-            .efficiency(self.grating.open_fraction(), order as i64)
     }
 
     /// The half-width λ/(N·d) in u of every lobe (the distance from a peak to the first zero of
@@ -350,6 +339,9 @@ impl GratingBsdf {
         let Some(c) = self.orders.candidates(wo, step) else {
             return 0.0;
         };
+        if let Some(t) = self.table() {
+            return self.tab_weight_bound(t, wo, lambda_nm, &c).min(f64::MAX);
+        }
         let rho = self.grating.open_fraction();
         let gv = self.groove.proxy_bound();
         let b = match self.grating.slits() {
@@ -374,6 +366,9 @@ impl DiffractionBrdf for GratingBsdf {
         if !self.is_glossy() {
             return 0.0;
         }
+        if let Some(t) = self.table() {
+            return self.tab_value(t, wo, wi, lambda_nm);
+        }
         self.lobe.value(wi.x + wo.x, wi.y + wo.y, lambda_nm)
     }
 
@@ -384,6 +379,9 @@ impl DiffractionBrdf for GratingBsdf {
         let out = [0.0; 4];
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
+        }
+        if self.table().is_some() {
+            return lambdas.lambda().map(|l| self.eval(wo, wi, l));
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let l = lambdas.lambda();
@@ -457,7 +455,7 @@ impl SpectralResponse for GratingBsdf {
         let mut orders = 0;
         for p in peaks.take(MAX_ORDERS as usize) {
             let l = p.wavelength_nm;
-            let eta = self.efficiency(p.order);
+            let eta = self.efficiency_at(p.order, wo, wi, l);
             let am = p.order.unsigned_abs() as f64;
             let (intensity, width) = match self.grating.slits() {
                 Slits::Finite(n) => (
@@ -494,6 +492,10 @@ impl SpectralResponse for GratingBsdf {
         let Slits::Finite(n) = self.grating.slits() else {
             return None;
         };
+        if self.table().is_some() {
+            // η̃ depends on λ, which the envelope cannot express: the generic colour path.
+            return None;
+        }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         if !(u.is_finite() && v.is_finite()) {
             // Components beyond unit vectors whose sum overflows: no finite phase.
@@ -527,6 +529,9 @@ impl Bsdf for GratingBsdf {
         let (uc, ux, uy) = (unit_random(uc), unit_random(u2.x), unit_random(u2.y));
         let step = lambda_nm / self.grating.period_nm();
         let c = self.orders.candidates(wo, step)?;
+        if let Some(t) = self.table() {
+            return self.tab_sample(t, wo, lambda_nm, &c, [uc, ux, uy]);
+        }
         let (m, pm) = self.orders.choose(&c, uc);
         let (u, r) = match self.grating.slits() {
             Slits::Finite(n) => {
@@ -662,6 +667,17 @@ impl GratingBsdf {
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let x = self.lobe.phase(u, lambda_nm);
+        if let Some(t) = self.table() {
+            let Some(o) = self.tab_orders(t, wo, lambda_nm, &c) else {
+                return 0.0;
+            };
+            let m = math::rint(x);
+            if !m.is_finite() {
+                return 0.0;
+            }
+            let w = o.weight(m as i64);
+            return self.pdf_w(w, o.total, self.lobe.n as f64, x, v, wi.z, lambda_nm);
+        }
         self.pdf_x(&c, self.lobe.n as f64, x, v, wi.z, lambda_nm)
     }
 
@@ -671,18 +687,36 @@ impl GratingBsdf {
     /// factors (q_v = (1/s)/(π·(1 + (v/s)²)), [`GrooveSpread::pdf`] to rounding).
     #[inline(always)]
     fn pdf_x(&self, c: &Candidates, n: f64, x: f64, v: f64, cos_i: f64, lambda_nm: f64) -> f64 {
-        let m = math::rint(x);
-        let r = x - m;
-        let mi = m as i64;
+        let mi = math::rint(x) as i64;
         if mi < c.lo || mi > c.hi {
             return 0.0;
         }
         let w = self.orders.candidate_weight(c, mi);
+        self.pdf_w(w, c.total, n, x, v, cos_i, lambda_nm)
+    }
+
+    /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi with P(m) = w/total (see [`pdf_x`](Self::pdf_x)).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn pdf_w(
+        &self,
+        w: f64,
+        total: f64,
+        n: f64,
+        x: f64,
+        v: f64,
+        cos_i: f64,
+        lambda_nm: f64,
+    ) -> f64 {
+        if w == 0.0 {
+            return 0.0;
+        }
+        let r = x - math::rint(x);
         let t = 2.0 * n * r;
         let inv_s = self.groove.proxy_inverse_scale(lambda_nm);
         let tv = v * inv_s;
-        let a = (w * n * self.grating.period_nm())
-            / (c.total * (1.0 + t * t) * self.atan_n * lambda_nm);
+        let a =
+            (w * n * self.grating.period_nm()) / (total * (1.0 + t * t) * self.atan_n * lambda_nm);
         let b = (inv_s * cos_i) / (PI * (1.0 + tv * tv));
         let p = a * b;
         if p.is_finite() {

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::efficiency::eta;
 use super::GratingBsdf;
 use crate::bxdf::MIN_COS_THETA;
 use crate::groove::GrooveKind;
@@ -53,6 +54,12 @@ impl GratingBsdf {
     /// about 10⁻⁶ (tests compare with an independent quadrature of `f`, and the 16-point rule
     /// with the lobe-by-lobe rule on every period).
     ///
+    /// A tabulated model ([`OrderEfficiency::Tabulated`](super::OrderEfficiency)): the same
+    /// rules with ρ²·S replaced by η̃_m(u) = min(η_m(wo.x − u, λ), η_m(−wo.x, λ)), every period
+    /// lobe by lobe (η̃ has the table's kinks); at most Σ_m η_m(−wo.x, λ) ≤ 1. For N = ∞:
+    /// Σ_m η̃_m·∫ g over the chord. Measured against the Monte-Carlo furnace within 1.6
+    /// standard errors (`tests/bsdf_efficiency.rs`).
+    ///
     /// ```
     /// use diffraction::{Grating, GratingBsdf};
     /// use glam::DVec3;
@@ -81,6 +88,28 @@ impl GratingBsdf {
             return None;
         }
         let rho = self.grating.open_fraction();
+        // A tabulated model: η_m(−wo.x, λ) of the candidates, and η̃_m at u (the min with
+        // η_m(−wi.x, λ), wi.x = u − wo.x); every period lobe by lobe (η̃ has the table's kinks).
+        let table = self.table();
+        let tab = match table {
+            Some(t) => match self.tab_orders(t, wo, lambda_nm, &c) {
+                Some(o) => Some((t, o)),
+                None => return Some(0.0),
+            },
+            None => None,
+        };
+        let moments = moments && tab.is_none();
+        let eta_at = |m: i64, u: f64| match &tab {
+            Some((t, o)) => {
+                let w = o.weight(m);
+                if w == 0.0 {
+                    0.0
+                } else {
+                    w.min(eta(t, m, wo.x - u, lambda_nm))
+                }
+            }
+            None => 0.0,
+        };
         // ∫ g over the chord of D at u.
         let chord = |u: f64| {
             let a = u - wo.x;
@@ -95,7 +124,13 @@ impl GratingBsdf {
         match self.grating.slits() {
             Slits::Infinite => {
                 for m in c.lo..=c.hi {
-                    sum += self.efficiency.efficiency(rho, m) * chord(m as f64 * step);
+                    let u = m as f64 * step;
+                    let e = if tab.is_some() {
+                        eta_at(m, u)
+                    } else {
+                        self.efficiency.efficiency(rho, m)
+                    };
+                    sum += e * chord(u);
                 }
             }
             Slits::Finite(n) => {
@@ -120,9 +155,18 @@ impl GratingBsdf {
                 ];
                 let mut rule: Option<MomentRule> = None;
                 for m in c.lo..=c.hi {
+                    if tab.as_ref().is_some_and(|(_, o)| o.weight(m) == 0.0) {
+                        // f = 0 on the period (η̃ ≤ η_m(−wo.x) = 0).
+                        continue;
+                    }
                     let h = |r: f64| {
                         let x = m as f64 + r;
-                        rho * rho * single_slit_cycles(rho * x) * chord(x * step)
+                        if tab.is_some() {
+                            let u = x * step;
+                            eta_at(m, u) * chord(u)
+                        } else {
+                            rho * rho * single_slit_cycles(rho * x) * chord(x * step)
+                        }
                     };
                     let mut cuts = [f64::NAN; 4];
                     let mut near = false;
@@ -151,7 +195,11 @@ impl GratingBsdf {
                 }
             }
         }
-        Some(sum.clamp(0.0, rho))
+        let cap = match &tab {
+            Some((_, o)) => o.total.min(1.0),
+            None => rho,
+        };
+        Some(sum.clamp(0.0, cap))
     }
 }
 

@@ -1,46 +1,553 @@
 //! The order efficiencies η_m of a grating: the share of the incident power each diffraction
 //! order carries. A concept of its own beside the shape of the orders' lobes (the N-slit factor
 //! and the groove spread), so that a physical efficiency model can replace the amplitude reading
-//! without touching the lobes or the sampler.
+//! without touching the lobes.
+//!
+//! Two models: the amplitude reading (η_m = ρ²·S(π·ρ·m), the same at every angle and λ) and
+//! tabulated efficiencies of relief gratings on metals ([`EfficiencyTable`]), which depend on
+//! the incidence and the wavelength. For a tabulated model the value of the pair (wo, wi) in the
+//! order m owning u = wi.x + wo.x is
+//!
+//! ```text
+//! η̃_m(wo, wi, λ) = min(η_m(−wi.x, λ), η_m(−wo.x, λ))        (unpolarised: (TE + TM)/2)
+//! ```
+//!
+//! The reciprocity theorem of gratings makes both readings equal in exact theory (the reversed
+//! path, light arriving from wo, is the same order m with incidence sin θ = −wo.x), so the min
+//! changes nothing there; between the table's nodes the interpolation breaks that equality by
+//! its error, and the min keeps f exactly reciprocal and below the sampler's weight
+//! η_m(−wo.x, λ) (bounded weights, albedo ≤ Σ_m η_m(−wo.x, λ) ≤ 1).
+//!
+//! Off the plane across the grooves (v = wi.y + wo.y ≠ 0, conical diffraction) the tables are
+//! still read at sin θi = −wi.x and −wo.x: the classical-mount approximation (the tables hold
+//! the plane of incidence across the grooves only).
+//!
+//! **The sampler** of a tabulated model: the candidate orders are those of the amplitude model
+//! (periods meeting the disk's u-range), clipped to the table's orders; order m is chosen with
+//! P(m) = η_m(−wo.x, λ)/Σ η, every stored order's efficiency read once per call into a stack
+//! buffer of [`MAX_TABULATED_ORDERS`] entries (no allocation). No defensive share is needed: f
+//! vanishes wherever η_m(−wo.x, λ) does (the min), so P(m) > 0 wherever f > 0. The rest (u from
+//! the Lorentzian proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and
+//! the weight f·cos θi/pdf = (η̃_m/η_m)·Σ η·N·F_N/q·g/q_v ≤ Σ η·2·atan N·sup g/q_v < 2π·1.53.
+//!
+//! **The albedo** of a tabulated model integrates η̃_m(u)·ℓ_m over the disk period by period
+//! with the lobe-by-lobe rule (η̃ varies along u through −wi.x = wo.x − u and has the
+//! bilinear table's kinks, so the moment rule is not used); for N = ∞ it is Σ η̃_m times the
+//! groove's chord mass. Its error is that of the quadrature across the kinks, measured far
+//! below the Monte-Carlo furnace's standard error (`tests/bsdf_efficiency.rs`).
+//!
+//! **Colour**: η̃ depends on λ, which a [`GratingResponse`](crate::GratingResponse) envelope
+//! cannot express, so `grating_response` is `None` and the colour integrators take the generic
+//! path (response + peaks); `peaks` reports each order with η̃ at the peak's λ, and the
+//! wavelength sampler weighs peak m by η̃_m(λ_m)·(d/|m|)·g.
 
+#[cfg(feature = "alloc")]
+use alloc::sync::Arc;
+
+use glam::DVec3;
+
+use super::lobe::{lorentz_q, lorentz_r, GrooveFactor};
+use super::orders::Candidates;
+use super::GratingBsdf;
+use crate::bxdf::bsdf::{BsdfFlags, BsdfSample};
+use crate::bxdf::MIN_COS_THETA;
+use crate::error::{Error, Requirement};
 use crate::kernel::single_slit_cycles;
+use crate::math;
+use crate::relief::{EfficiencyTable, Polarised, Preset};
+use crate::{Grating, Slits};
+
+/// The most orders a tabulated model's table may store: the sampler reads every order's
+/// efficiency for `wo` into a buffer of this many entries on the stack (no allocation). The
+/// shipped presets store 9-19; a baked scalar relief stores about 4·d/λ_min + 1 (d up to about
+/// 11 µm at 360 nm).
+pub const MAX_TABULATED_ORDERS: usize = 128;
 
 /// Where a grating's order efficiencies come from.
 ///
-/// Today one model: [`Amplitude`](Self::Amplitude), the paper's grating read as an amplitude
-/// grating (reflecting strips of width w on an absorbing background, open fraction ρ = w/d):
-/// η_m = ρ²·S(π·ρ·m), Σ_m η_m = ρ (Parseval), the same at every angle and wavelength.
+/// * [`Amplitude`](Self::Amplitude), the paper's grating read as an amplitude grating
+///   (reflecting strips of width w on an absorbing background, open fraction ρ = w/d):
+///   η_m = ρ²·S(π·ρ·m), Σ_m η_m = ρ (Parseval), the same at every angle and wavelength.
+/// * [`Tabulated`](Self::Tabulated): the efficiencies of a relief grating on a metal read from
+///   an [`EfficiencyTable`] at the incidence and the wavelength (a shipped [`Preset`], a
+///   `&'static` table, or with feature `alloc` a shared table such as a baked scalar relief):
+///   see [`OrderEfficiency::preset`] and the [module docs](super) for the value
+///   min(η_m(−wi.x), η_m(−wo.x)).
+///
+/// Equality compares tables by address. A tabulated model is not serialised (serde skips the
+/// variant: serialising one is an error).
 ///
 /// ```
 /// use diffraction::grating_bsdf::OrderEfficiency;
+/// use diffraction::relief::Preset;
 /// use diffraction::{Grating, GratingBsdf};
 /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
 /// assert_eq!(b.order_efficiency(), OrderEfficiency::Amplitude);
 /// assert_eq!(b.efficiency(0), 0.25); // ρ² with ρ = ½
+/// assert!(OrderEfficiency::preset(Preset::Cd).is_tabulated());
 /// # Ok::<(), diffraction::Error>(())
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum OrderEfficiency {
     /// η_m = ρ²·S(π·ρ·m): an amplitude grating of open fraction ρ (the paper's reading).
     #[default]
     Amplitude,
+    /// η_m(sin θi, λ) from a table (built by [`OrderEfficiency::preset`],
+    /// [`OrderEfficiency::from_static`] or [`OrderEfficiency::from_table`]).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    Tabulated(Tabulated),
+}
+
+/// A table of order efficiencies held by an [`OrderEfficiency::Tabulated`]: `&'static` (the
+/// presets; no allocation, `no_std`) or shared (`Arc`, feature `alloc`).
+#[derive(Debug, Clone)]
+pub struct Tabulated(Held);
+
+#[derive(Debug, Clone)]
+enum Held {
+    Static(&'static EfficiencyTable),
+    #[cfg(feature = "alloc")]
+    Shared(Arc<EfficiencyTable>),
+}
+
+impl Tabulated {
+    /// The table.
+    #[must_use]
+    pub fn table(&self) -> &EfficiencyTable {
+        match &self.0 {
+            Held::Static(t) => t,
+            #[cfg(feature = "alloc")]
+            Held::Shared(t) => t,
+        }
+    }
+}
+
+impl PartialEq for Tabulated {
+    fn eq(&self, other: &Tabulated) -> bool {
+        core::ptr::eq(self.table(), other.table())
+    }
+}
+
+/// A table's order count within [`MAX_TABULATED_ORDERS`], or the error naming `table`.
+fn checked(t: &EfficiencyTable) -> Result<(), Error> {
+    let count = t.orders().count();
+    if count > MAX_TABULATED_ORDERS {
+        return Err(Error::invalid(
+            "table",
+            count as f64,
+            Requirement::AtMost {
+                bound_name: "MAX_TABULATED_ORDERS",
+                bound: MAX_TABULATED_ORDERS as f64,
+            },
+        ));
+    }
+    Ok(())
 }
 
 impl OrderEfficiency {
-    /// η_m for a grating of open fraction `rho`.
+    /// A shipped preset's rigorous efficiencies (no allocation).
+    ///
+    /// ```
+    /// use diffraction::grating_bsdf::OrderEfficiency;
+    /// use diffraction::relief::Preset;
+    /// let e = OrderEfficiency::preset(Preset::Foil);
+    /// assert_eq!(e.table().unwrap().period_nm(), Preset::Foil.period_nm());
+    /// ```
+    #[must_use]
+    pub fn preset(preset: Preset) -> OrderEfficiency {
+        OrderEfficiency::Tabulated(Tabulated(Held::Static(preset.table())))
+    }
+
+    /// The efficiencies of a `&'static` table; an error naming `table` when it stores more than
+    /// [`MAX_TABULATED_ORDERS`] orders.
+    pub fn from_static(table: &'static EfficiencyTable) -> Result<OrderEfficiency, Error> {
+        checked(table)?;
+        Ok(OrderEfficiency::Tabulated(Tabulated(Held::Static(table))))
+    }
+
+    /// The efficiencies of a shared table (for instance a baked
+    /// [`ScalarRelief`](crate::relief::ScalarRelief)); an error naming `table` when it stores
+    /// more than [`MAX_TABULATED_ORDERS`] orders.
+    #[cfg(feature = "alloc")]
+    pub fn from_table(table: Arc<EfficiencyTable>) -> Result<OrderEfficiency, Error> {
+        checked(&table)?;
+        Ok(OrderEfficiency::Tabulated(Tabulated(Held::Shared(table))))
+    }
+
+    /// The table of a tabulated model.
+    #[must_use]
+    pub fn table(&self) -> Option<&EfficiencyTable> {
+        match self {
+            OrderEfficiency::Amplitude => None,
+            OrderEfficiency::Tabulated(t) => Some(t.table()),
+        }
+    }
+
+    /// Whether the efficiencies come from a table (they depend on incidence and λ).
+    #[must_use]
+    pub fn is_tabulated(&self) -> bool {
+        self.table().is_some()
+    }
+
+    /// η_m for a grating of open fraction `rho` (amplitude reading).
     #[inline]
-    pub(crate) fn efficiency(self, rho: f64, order: i64) -> f64 {
+    pub(crate) fn efficiency(&self, rho: f64, order: i64) -> f64 {
         rho * rho * self.relative(rho, order)
     }
 
     /// η_m/ρ²: the efficiency relative to that of order 0 of a flat strip (the order weights of
-    /// the sampler use it).
+    /// the sampler use it). For a tabulated model: 1 (its weights are computed per call).
     #[inline]
-    pub(crate) fn relative(self, rho: f64, order: i64) -> f64 {
+    pub(crate) fn relative(&self, rho: f64, order: i64) -> f64 {
         match self {
             OrderEfficiency::Amplitude => single_slit_cycles(rho * order as f64),
+            OrderEfficiency::Tabulated(_) => 1.0,
         }
+    }
+}
+
+/// Unpolarised η of one order of a table, 0 outside its orders.
+#[inline]
+pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: f64) -> f64 {
+    if order < i64::from(*t.orders().start()) || order > i64::from(*t.orders().end()) {
+        return 0.0;
+    }
+    let e = t
+        .efficiency(order as i32, sin_theta_i, lambda_nm)
+        .unpolarised();
+    if e.is_finite() && e > 0.0 {
+        e
+    } else {
+        0.0
+    }
+}
+
+/// The sampler's order weights for a tabulated model at one (wo, λ): η_m(−wo.x, λ) of every
+/// stored order, the candidate range clipped to the table and Σ η over it.
+pub(super) struct TabOrders {
+    buf: [Polarised; MAX_TABULATED_ORDERS],
+    first: i64,
+    pub lo: i64,
+    pub hi: i64,
+    pub total: f64,
+}
+
+impl TabOrders {
+    /// η_m(−wo.x, λ) of order m (0 outside the candidates).
+    #[inline]
+    pub(super) fn weight(&self, m: i64) -> f64 {
+        if m < self.lo || m > self.hi {
+            return 0.0;
+        }
+        let e = self.buf[(m - self.first) as usize].unpolarised();
+        if e.is_finite() && e > 0.0 {
+            e
+        } else {
+            0.0
+        }
+    }
+
+    /// Chooses an order ∝ η_m(−wo.x, λ) from `uc` in [0, 1): the order and its probability.
+    pub(super) fn choose(&self, uc: f64) -> (i64, f64) {
+        let target = uc * self.total;
+        let mut acc = 0.0;
+        let mut last = self.lo;
+        for m in self.lo..=self.hi {
+            let w = self.weight(m);
+            if w > 0.0 {
+                last = m;
+                acc += w;
+                if target < acc {
+                    return (m, w / self.total);
+                }
+            }
+        }
+        (last, self.weight(last) / self.total)
+    }
+}
+
+impl GratingBsdf {
+    /// The same grating with the order efficiencies `efficiency`. A tabulated model brings its
+    /// own period: the grating takes the table's period d (keeping N and the open fraction
+    /// ρ = w/d, which a tabulated model does not use: its lobes are (N·d/λ)·F_N·g without the
+    /// single-slit factor, and the orders' powers are the table's). The groove spread is kept.
+    ///
+    /// ```
+    /// use diffraction::grating_bsdf::OrderEfficiency;
+    /// use diffraction::relief::Preset;
+    /// use diffraction::{Grating, GratingBsdf};
+    /// let b = GratingBsdf::new(Grating::new(1500.0, 750.0, 30)?)
+    ///     .with_efficiency(OrderEfficiency::preset(Preset::Cd));
+    /// assert_eq!(b.grating().period_nm(), 1600.0);
+    /// assert!(b.order_efficiency().is_tabulated());
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_efficiency(&self, efficiency: OrderEfficiency) -> GratingBsdf {
+        let grating = match efficiency.table() {
+            Some(t) if t.period_nm() != self.grating.period_nm() => {
+                let d = t.period_nm();
+                Grating::with_slits(d, self.grating.open_fraction() * d, self.grating.slits())
+                    .unwrap_or(self.grating)
+            }
+            _ => self.grating,
+        };
+        GratingBsdf::build(grating, self.groove, efficiency)
+    }
+
+    /// A shipped preset's grating (its rigorous order efficiencies, [`Preset::table`]) with
+    /// `slits` coherently lit grooves and the natural groove spread of [`GratingBsdf::new`]
+    /// (a coherence length N·d; ideal for N = ∞). The period is the table's; the open
+    /// fraction is irrelevant for a tabulated model (set to ½). An error naming `slits` for
+    /// N = 0.
+    ///
+    /// **Choosing N.** N is the number of grooves the light illuminates coherently, not the
+    /// number on the part: the coherence width of light from a source of angular size δ is
+    /// about λ/δ, so a lamp of δ = 0.01 rad at 550 nm lights about 55 µm coherently, about 34
+    /// grooves of a CD (d = 1.6 µm); the sun (δ ≈ 0.0093 rad) about the same; a distant point
+    /// source or a laser many more (N = ∞ is the limit). Larger N narrows each order's lobe
+    /// (half-width λ/(N·d) in u) without changing its power.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// use diffraction::{GratingBsdf, Slits};
+    /// let cd = GratingBsdf::preset(Preset::Cd, 34)?;
+    /// assert_eq!(cd.grating().slits(), Slits::Finite(34));
+    /// assert_eq!(GratingBsdf::preset(Preset::Dvd, Slits::Infinite)?.grating().period_nm(), 740.0);
+    /// assert_eq!(GratingBsdf::preset(Preset::Cd, 0).unwrap_err().parameter(), "slits");
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn preset(preset: Preset, slits: impl Into<Slits>) -> Result<GratingBsdf, Error> {
+        let d = preset.period_nm();
+        let grating = Grating::with_slits(d, 0.5 * d, slits.into())?;
+        Ok(GratingBsdf::new(grating).with_efficiency(OrderEfficiency::preset(preset)))
+    }
+
+    /// Where the order efficiencies come from.
+    ///
+    /// ```
+    /// use diffraction::grating_bsdf::OrderEfficiency;
+    /// use diffraction::{Grating, GratingBsdf};
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert_eq!(b.order_efficiency(), OrderEfficiency::Amplitude);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn order_efficiency(&self) -> OrderEfficiency {
+        self.efficiency.clone()
+    }
+
+    /// The efficiency η_m of order m: the share of the incident power it carries over the whole
+    /// (u, v) plane; for the amplitude reading η_m = ρ²·S(π·ρ·m) and Σ_m η_m = ρ (Parseval).
+    ///
+    /// ```
+    /// use diffraction::{Grating, GratingBsdf};
+    /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
+    /// assert_eq!(b.efficiency(0), 0.25);
+    /// assert!(b.efficiency(2) < 1e-30); // w = d/2: even orders are missing
+    /// let total: f64 = (-20000..=20000).map(|m| b.efficiency(m)).sum();
+    /// assert!((total - 0.5).abs() < 1e-5); // Parseval, to the 1/m² tail
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    ///
+    /// A tabulated model's efficiencies depend on incidence and λ
+    /// ([`efficiency_at`](Self::efficiency_at)); for it this is η_m at normal incidence at
+    /// 550 nm.
+    #[must_use]
+    pub fn efficiency(&self, order: i32) -> f64 {
+        match self.table() {
+            None => self
+                .efficiency
+                .efficiency(self.grating.open_fraction(), order as i64),
+            Some(t) => eta(t, i64::from(order), 0.0, 550.0),
+        }
+    }
+
+    /// The table of a tabulated model.
+    #[inline]
+    pub(super) fn table(&self) -> Option<&EfficiencyTable> {
+        self.efficiency.table()
+    }
+
+    /// η_m(−wo.x, λ) of the candidates `c`, `None` when they carry nothing.
+    pub(super) fn tab_orders(
+        &self,
+        t: &EfficiencyTable,
+        wo: DVec3,
+        lambda_nm: f64,
+        c: &Candidates,
+    ) -> Option<TabOrders> {
+        let (first, last) = (i64::from(*t.orders().start()), i64::from(*t.orders().end()));
+        let count = ((last - first + 1) as usize).min(MAX_TABULATED_ORDERS);
+        let mut o = TabOrders {
+            buf: [Polarised::default(); MAX_TABULATED_ORDERS],
+            first,
+            lo: c.lo.max(first),
+            hi: c.hi.min(first + count as i64 - 1),
+            total: 0.0,
+        };
+        t.efficiencies(-wo.x, lambda_nm, &mut o.buf[..count]);
+        let mut total = 0.0;
+        for m in o.lo..=o.hi {
+            total += o.weight(m);
+        }
+        o.total = total;
+        (total > 0.0 && total.is_finite()).then_some(o)
+    }
+
+    /// η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) of a tabulated model (see the
+    /// [module docs](super)), unpolarised; the amplitude reading's η_m otherwise. Symmetric in
+    /// (wo, wi) and ≥ 0; 0 for orders the table does not store and for non-finite input.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// use diffraction::GratingBsdf;
+    /// use glam::DVec3;
+    /// let cd = GratingBsdf::preset(Preset::Cd, diffraction::Slits::Infinite)?;
+    /// // Order 1 of 550 nm from normal incidence leaves at wi.x = λ/d.
+    /// let (wo, x) = (DVec3::Z, 550.0 / 1600.0);
+    /// let wi = DVec3::new(x, 0.0, (1.0 - x * x).sqrt());
+    /// let e = cd.efficiency_at(1, wo, wi, 550.0);
+    /// assert!(e > 0.0 && e < 1.0);
+    /// assert_eq!(e, cd.efficiency_at(1, wi, wo, 550.0)); // reciprocal
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn efficiency_at(&self, order: i32, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        match self.table() {
+            None => self.efficiency(order),
+            Some(t) => {
+                let m = i64::from(order);
+                eta(t, m, -wi.x, lambda_nm).min(eta(t, m, -wo.x, lambda_nm))
+            }
+        }
+    }
+}
+
+impl GratingBsdf {
+    /// f of a tabulated model with finite N and a groove spread: η̃_m·ℓ_m(u, v) for the order
+    /// m owning u (the phase `eval` reads), after the hemisphere checks.
+    #[inline]
+    pub(super) fn tab_value(&self, t: &EfficiencyTable, wo: DVec3, wi: DVec3, l: f64) -> f64 {
+        let (u, v) = (wi.x + wo.x, wi.y + wo.y);
+        let m = math::rint(self.lobe.phase(u, l));
+        if !m.is_finite() {
+            return 0.0;
+        }
+        let m = m as i64;
+        let e = eta(t, m, -wo.x, l);
+        if e == 0.0 {
+            return 0.0;
+        }
+        let e = e.min(eta(t, m, -wi.x, l));
+        if e == 0.0 {
+            return 0.0;
+        }
+        e * self.lobe.value(u, v, l)
+    }
+
+    /// [`Bsdf::sample`](crate::Bsdf::sample) for a tabulated model: the order ∝ η_m(−wo.x, λ)
+    /// among the candidates `c`, then u, v and the direction as for the amplitude model.
+    pub(super) fn tab_sample(
+        &self,
+        t: &EfficiencyTable,
+        wo: DVec3,
+        lambda_nm: f64,
+        c: &Candidates,
+        [uc, ux, uy]: [f64; 3],
+    ) -> Option<BsdfSample> {
+        let o = self.tab_orders(t, wo, lambda_nm, c)?;
+        let (m, pm) = o.choose(uc);
+        let step = lambda_nm / self.grating.period_nm();
+        let (u, r) = match self.grating.slits() {
+            Slits::Finite(n) => {
+                let r = lorentz_r(n as f64, self.atan_n, ux);
+                ((m as f64 + r) * step, r)
+            }
+            Slits::Infinite => (m as f64 * step, 0.0),
+        };
+        let v = self.groove.sample(uy, lambda_nm);
+        let (x, y) = (u - wo.x, v - wo.y);
+        let z2 = 1.0 - x * x - y * y;
+        if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {
+            return None;
+        }
+        let wi = DVec3::new(x, y, math::sqrt(z2));
+        let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+        let specular = BsdfFlags::REFLECTION | BsdfFlags::SPECULAR;
+        let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
+            (Slits::Finite(n), false) => {
+                // From the returned direction itself, as `eval` and `pdf` (see `sample`).
+                let (u, v) = (wi.x + wo.x, wi.y + wo.y);
+                let xr = self.lobe.phase(u, lambda_nm);
+                let mr = math::rint(xr) as i64;
+                let w = o.weight(mr);
+                let e = w.min(eta(t, mr, -wi.x, lambda_nm));
+                let f = if e == 0.0 {
+                    0.0
+                } else {
+                    e * self.lobe.value(u, v, lambda_nm)
+                };
+                (
+                    f,
+                    self.pdf_w(w, o.total, n as f64, xr, v, wi.z, lambda_nm),
+                    BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
+                )
+            }
+            (Slits::Finite(n), true) => {
+                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
+                let unit = GrooveFactor {
+                    big: 1.0,
+                    coherent: false,
+                };
+                let (num, den) = self.lobe.ratio(u / lambda_nm, unit, 0.0, lambda_nm);
+                (
+                    e * (num / den),
+                    pm * (lorentz_q(n as f64, self.atan_n, r) / step) * wi.z,
+                    specular,
+                )
+            }
+            (Slits::Infinite, false) => {
+                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
+                let pv = self.groove.pdf(v, lambda_nm);
+                (
+                    e * self.groove.value(v, lambda_nm),
+                    pm * pv * wi.z,
+                    specular,
+                )
+            }
+            (Slits::Infinite, true) => {
+                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
+                (e / wi.z, pm, specular)
+            }
+        };
+        if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
+            return None;
+        }
+        Some(BsdfSample::new(wi, f, pdf, flags).with_order(order))
+    }
+
+    /// The weight bound of a tabulated model: f·cos θi/pdf = (η̃_m/η_m(−wo.x))·Σ η ·
+    /// N·F_N/q · g/q_v ≤ Σ η·2·atan N·sup g/q_v (Σ η·sup g/q_v for N = ∞), since η̃ ≤ η
+    /// (times 1 + 10⁻¹² for rounding).
+    pub(super) fn tab_weight_bound(
+        &self,
+        t: &EfficiencyTable,
+        wo: DVec3,
+        lambda_nm: f64,
+        c: &Candidates,
+    ) -> f64 {
+        let Some(o) = self.tab_orders(t, wo, lambda_nm, c) else {
+            return 0.0;
+        };
+        let gv = self.groove.proxy_bound();
+        // The relative 10⁻¹² covers the rounding of the weight's products and quotients.
+        let b = match self.grating.slits() {
+            Slits::Infinite => o.total * gv,
+            Slits::Finite(_) => o.total * 2.0 * self.atan_n * gv,
+        };
+        b * (1.0 + 1e-12)
     }
 }

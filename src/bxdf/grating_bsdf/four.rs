@@ -31,7 +31,10 @@ impl GratingBsdf {
             let l = lambdas.lambda();
             for k in 1..4 {
                 if l[k] > 0.0 && l[k].is_finite() {
-                    f[k] = self.lobe.value(u, v, l[k]);
+                    f[k] = match self.table() {
+                        Some(t) => self.tab_value(t, wo, wi, l[k]),
+                        None => self.lobe.value(u, v, l[k]),
+                    };
                     pdf[k] = self.pdf_finite(wo, wi, l[k]);
                 }
             }

@@ -58,11 +58,11 @@ pub(super) struct OrderDistribution {
 }
 
 impl OrderDistribution {
-    pub(super) fn new(grating: &Grating, efficiency: OrderEfficiency) -> OrderDistribution {
+    pub(super) fn new(grating: &Grating, efficiency: &OrderEfficiency) -> OrderDistribution {
         let mut d = OrderDistribution {
             slits: grating.slits(),
             rho: grating.open_fraction(),
-            efficiency,
+            efficiency: efficiency.clone(),
             w0: 0.0,
             prefix: [0.0; TABLE_ORDERS + 1],
             weight: [0.0; TABLE_ORDERS + 1],

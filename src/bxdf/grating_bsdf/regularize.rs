@@ -83,6 +83,6 @@ impl GratingBsdf {
             GrooveKind::Ideal => GrooveSpread::gaussian(REGULARIZE_MIN_HALF_WIDTH).ok(),
         };
         let groove = widened.unwrap_or(self.groove);
-        GratingBsdf::build(grating, groove, self.efficiency)
+        GratingBsdf::build(grating, groove, self.efficiency.clone())
     }
 }

@@ -93,7 +93,7 @@ impl GratingBsdf {
                 let mut chosen = None;
                 let mut last = None;
                 for p in self.grating.peaks(mix.u, band).take(MAX_WAVELENGTH_PEAKS) {
-                    let w = self.peak_weight(&p, mix.v);
+                    let w = self.peak_weight(&p, &mix);
                     if w > 0.0 {
                         last = Some((p, w, acc));
                         if target < acc + w {
@@ -143,15 +143,17 @@ impl GratingBsdf {
         self.wavelength_pdf_mix(&mix, band, lambda_nm)
     }
 
-    /// The area-based weight of one peak in the wavelength mixture.
-    fn peak_weight(&self, p: &Peak, v: f64) -> f64 {
+    /// The area-based weight of one peak in the wavelength mixture: η_m·(d/|m|)·g(v; λ_m), with
+    /// a tabulated model's η̃_m at the peak's λ.
+    fn peak_weight(&self, p: &Peak, mix: &WavelengthMixture) -> f64 {
         let l = p.wavelength_nm;
         let g = if self.groove.is_delta() {
             1.0
         } else {
-            self.groove.value(v, l)
+            self.groove.value(mix.v, l)
         };
-        let w = self.efficiency(p.order) * (self.grating.period_nm() / p.order.abs() as f64) * g;
+        let eta = self.efficiency_at(p.order, mix.wo, mix.wi, l);
+        let w = eta * (self.grating.period_nm() / p.order.abs() as f64) * g;
         if w.is_finite() {
             w
         } else {
@@ -168,6 +170,8 @@ impl GratingBsdf {
             total: 0.0,
             zero_weight: 0.0,
             zero_lo: band.max_nm(),
+            wo,
+            wi,
         };
         let Slits::Finite(n) = self.grating.slits() else {
             return mix;
@@ -191,11 +195,21 @@ impl GratingBsdf {
                 self.groove.value(v, mid)
             };
             let rho = self.grating.open_fraction();
-            let f = rho
-                * rho
-                * (mix.n * self.grating.period_nm() / mid)
-                * self.grating.intensity_f64(u, mid)
-                * g;
+            let f = match self.table() {
+                None => {
+                    rho * rho
+                        * (mix.n * self.grating.period_nm() / mid)
+                        * self.grating.intensity_f64(u, mid)
+                        * g
+                }
+                // η̃_0(λ)·(N·d/λ)·F_N·g at the middle of the range.
+                Some(_) => {
+                    self.efficiency_at(0, wo, wi, mid)
+                        * (mix.n * self.grating.period_nm() / mid)
+                        * self.grating.n_slit(u, mid)
+                        * g
+                }
+            };
             let w = f * (band.max_nm() - zero_lo);
             if w.is_finite() && w > 0.0 {
                 mix.zero_weight = w;
@@ -204,7 +218,7 @@ impl GratingBsdf {
             }
         }
         for p in self.grating.peaks(u, band).take(MAX_WAVELENGTH_PEAKS) {
-            total += self.peak_weight(&p, v);
+            total += self.peak_weight(&p, &mix);
         }
         mix.total = if total.is_finite() { total } else { 0.0 };
         mix
@@ -241,7 +255,7 @@ impl GratingBsdf {
                     }
                 }
                 if let Some(pk) = found {
-                    let w = self.peak_weight(&pk, mix.v);
+                    let w = self.peak_weight(&pk, mix);
                     p += share * w * lorentz_q(mix.n, self.atan_n, r) * mix.q / (lambda * lambda);
                 }
             }
@@ -263,4 +277,6 @@ struct WavelengthMixture {
     total: f64,
     zero_weight: f64,
     zero_lo: f64,
+    wo: DVec3,
+    wi: DVec3,
 }
