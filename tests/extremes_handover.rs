@@ -32,3 +32,39 @@ fn an_out_of_range_count_is_named() {
     assert!(!e.starts_with("unknown"), "{e}");
     assert!(e.contains("99999999999") && e.contains("65536"), "{e}");
 }
+
+/// At N = ∞ `sample` read the efficiency of the order clamped to i32 while the order's sampling
+/// weight used the true order: beyond 2³¹ (here wo far from unit, m ≈ 2·10¹²; with unit
+/// directions d/λ > 10⁹ does the same) the weight was 4.4e-20 against a bound of 5.0e-37.
+#[test]
+fn sample_weight_bound_beyond_i32_orders() {
+    use diffraction::Bsdf;
+    use glam::DVec2;
+    let b =
+        GratingBsdf::new(Grating::infinite(1.0, 1e-6).unwrap()).with_groove(GrooveSpread::IDEAL);
+    let wo = DVec3::new(1e12, -4.770228783212094e-226, 1.0);
+    let bound = b.sample_weight_bound(wo, 0.5);
+    let x = b
+        .sample(wo, 0.5, 2.2250738585072014e-308, DVec2::new(1e-9, 1e-12))
+        .expect("the sweep's case samples a direction");
+    assert!(
+        x.weight() <= bound * (1.0 + 1e-9),
+        "{} > {bound:e}",
+        x.weight()
+    );
+    // Unit directions: d/λ = 2·10⁹, orders up to 4·10⁹.
+    let b =
+        GratingBsdf::new(Grating::infinite(1e12, 3e11).unwrap()).with_groove(GrooveSpread::IDEAL);
+    let wo = DVec3::new(0.6, 0.0, 0.8);
+    for k in 0..64 {
+        let uc = (k as f64 + 0.5) / 64.0;
+        let bound = b.sample_weight_bound(wo, 500.0);
+        if let Some(x) = b.sample(wo, 500.0, uc, DVec2::new(0.5, 0.5)) {
+            assert!(
+                x.weight() <= bound * (1.0 + 1e-9),
+                "uc {uc}: {} > {bound:e}",
+                x.weight()
+            );
+        }
+    }
+}

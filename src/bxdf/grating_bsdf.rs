@@ -582,7 +582,8 @@ impl Bsdf for GratingBsdf {
                 )
             }
             (Slits::Infinite, false) => {
-                let eta = self.efficiency(order);
+                // The true order m, not the i32 it is reported as: beyond 2³¹ the two differ.
+                let eta = self.efficiency.efficiency(self.grating.open_fraction(), m);
                 let pv = self.groove.pdf(v, lambda_nm);
                 (
                     eta * self.groove.value(v, lambda_nm),
@@ -591,7 +592,8 @@ impl Bsdf for GratingBsdf {
                 )
             }
             (Slits::Infinite, true) => {
-                let eta = self.efficiency(order);
+                // The true order m, not the i32 it is reported as: beyond 2³¹ the two differ.
+                let eta = self.efficiency.efficiency(self.grating.open_fraction(), m);
                 (eta / wi.z, pm, BsdfFlags::REFLECTION | BsdfFlags::SPECULAR)
             }
         };
