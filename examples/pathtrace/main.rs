@@ -9,6 +9,12 @@
 //! cargo run --release --example pathtrace -- cd_area_light --integrator whitted
 //! ```
 //!
+//! The paper's scenes (fig4a … fig6, no `[radiometry]` table) render too when named
+//! (`pathtrace -- fig6 --integrator path --out fig6_path.png`): [`paper`] maps their unitless
+//! lights, ambient light, eq. 12 coefficients and Agu-Hill gratings to physical units, and says
+//! what has no counterpart (the ambient coefficients, the per-grating exposure, the
+//! `diffraction` coefficient).
+//!
 //! Geometry, textures, scene files and output are in `examples/common`, shared with the paper's
 //! ray tracer (`examples/raytrace`).
 
@@ -45,11 +51,14 @@ pub mod schema;
 #[path = "../common/texture.rs"]
 pub mod texture;
 
+mod paper;
 mod path;
 mod radiometry;
 mod surface;
 mod whitted;
 
+#[cfg(test)]
+mod paper_tests;
 #[cfg(test)]
 mod tests;
 
@@ -69,8 +78,12 @@ USAGE:
 
 With no SCENE, renders every shipped scene with a [radiometry] table (cd_area_light) into
 out/ (NAME.png and the linear NAME.pfm). SCENE is a shipped scene's name or a path to a .toml
-scene file with a [radiometry] table; the paper's scenes (fig4a ... fig6) are the example
-raytrace's.
+scene file. A scene without a [radiometry] table (the paper's fig4a ... fig6, the example
+raytrace's) is mapped to physical units: the lights give the paper's irradiance at the
+camera's look_at point and fall off as 1/r^2, the ambient light is a uniform sky of its
+luminance, gratings of model agu-hill are the radiometric grating of the same d, w and N
+(the module paper of examples/pathtrace says all of it). Name it with --out to keep the
+ray tracer's out/NAME.png.
 
 ";
 
@@ -210,6 +223,12 @@ impl run::Renderer for Integrator {
             }
             Integrator::Whitted => whitted::render(scene, camera, progress),
         }
+    }
+
+    /// The scenes in physical units only: the paper's are the ray tracer's pictures in out/
+    /// (named, they render here too, mapped by [`paper`]).
+    fn renders_by_default(&self, scene: &Scene<Radiometric>) -> bool {
+        !scene.units.from_paper
     }
 
     fn integrator(&self) -> &'static str {

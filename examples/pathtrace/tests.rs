@@ -216,11 +216,14 @@ period_nm = 1600.0
             .unwrap_err()
             .to_string()
     };
-    let e = err(&format!("{base}model = \"radiometric\"\n"));
+    // Without a [radiometry] table the scene is the paper's, mapped (crate::paper): a model
+    // with no radiometric reading is refused at its field.
+    let e = err(&format!("{base}model = \"thorman\"\n"));
     assert_eq!(
         e,
-        "t.toml: field radiometry: a scene without a [radiometry] table (no physical units) is \
-         the paper's ray tracer's"
+        "t.toml: line 10, field objects[0].material.model: the path tracer takes gratings of \
+         model \"radiometric\", and \"agu-hill\" in the paper's scenes (read as the radiometric \
+         grating); \"thorman\" has no physical units"
     );
     // Each error names the field, the range or the rule, and the numbers.
     let radiometric = |extra: &str| {
@@ -467,29 +470,30 @@ fn light_samples_times_exact_colours_are_bounded() {
     );
 }
 
-/// A scene the path tracer cannot render, after one it can, is reported before anything is
-/// rendered or written: the first scene's existing picture stays as it was.
+/// A scene the path tracer cannot render (a Thorman grating: no physical units), after one it
+/// can, is reported before anything is rendered or written: the first scene's existing picture
+/// stays as it was.
 #[test]
-fn a_scene_for_the_other_renderer_fails_the_run_before_any_write() {
+fn a_scene_the_path_tracer_refuses_fails_the_run_before_any_write() {
     let dir = std::env::temp_dir().join(format!("pathtrace-plan-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let old = b"an existing picture";
     std::fs::write(dir.join("cd_area_light.png"), old).unwrap();
+    let compare = scenes_dir().join("baselines/compare.toml");
     let opts = crate::cli::Options {
-        scenes: vec!["cd_area_light".into(), "fig4a".into()],
+        scenes: vec!["cd_area_light".into(), compare.display().to_string()],
         out: Some(dir.clone()),
         quiet: true,
         ..Default::default()
     };
-    let fig4a = scenes_dir().join("fig4a.toml");
     assert_eq!(
         crate::run::run(&Integrator::Path, &opts),
         Err(format!(
-            "{}: field radiometry: a scene without a [radiometry] table (no physical units) is \
-             the paper's ray tracer's: render it with `cargo run --release --example raytrace \
-             -- fig4a`",
-            fig4a.display()
+            "{}: line 124, field objects[5].material.model: the path tracer takes gratings of \
+             model \"radiometric\", and \"agu-hill\" in the paper's scenes (read as the \
+             radiometric grating); \"thorman\" has no physical units",
+            compare.display()
         ))
     );
     assert_eq!(std::fs::read(dir.join("cd_area_light.png")).unwrap(), old);
