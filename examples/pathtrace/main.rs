@@ -92,7 +92,63 @@ const OWN_OPTIONS: &str = "\
                        light from the emitters, each area light by its light samples)
     --max-depth D      bounces: path length (path; 1 = direct light only) or mirror
                        recursion (whitted), 0-64
+    --filter NAME      none only (the default): footprint, the example raytrace's filter of
+                       the paper's colour over a pixel's interval of u, is refused with the
+                       reason for each integrator
 ";
+
+/// The path tracer's own arguments: `--integrator`, and `--filter`, which takes `none` only
+/// ([`command`] refuses `footprint` with the reason for the integrator).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Args {
+    /// `--integrator`.
+    pub integrator: Integrator,
+    /// `--filter footprint` was given.
+    pub footprint: bool,
+}
+
+impl cli::Extra for Args {
+    fn take(
+        &mut self,
+        arg: &str,
+        value: &mut dyn FnMut() -> Result<String, String>,
+        opts: &Options,
+    ) -> Result<bool, String> {
+        if arg != "--filter" {
+            return self.integrator.take(arg, value, opts);
+        }
+        self.footprint = match value()?.as_str() {
+            "none" => false,
+            "footprint" => true,
+            v => return Err(format!("--filter: expected none or footprint, got \"{v}\"")),
+        };
+        Ok(true)
+    }
+}
+
+/// The command of the arguments `args`: `--filter footprint` is refused on either integrator
+/// (the path integrator averages each pixel by its samples; the radiometric grating's colour
+/// is not a function of u, so there is no colour table to average over a footprint).
+pub fn command(args: &[String]) -> Result<Command<Args>, String> {
+    let command = cli::parse::<Args>(args)?;
+    if let Command::Render(_, a) = &command {
+        if a.footprint {
+            return Err(match a.integrator {
+                Integrator::Path => "--filter footprint: not with the path integrator, which \
+                    averages each pixel's radiance by its samples (raise --spp); the footprint \
+                    filter averages the paper's diffraction colour over a pixel's interval of u, \
+                    in the example raytrace"
+                    .to_string(),
+                Integrator::Whitted => "--filter footprint: not with --integrator whitted of the \
+                    path tracer: the radiometric grating's colour depends on the direction along \
+                    the grooves as well as on u, so no colour table over u can average it; the \
+                    footprint filter is the example raytrace's, for the paper's model"
+                    .to_string(),
+            });
+        }
+    }
+    Ok(command)
+}
 
 /// The integrator of a render (`--integrator`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -241,7 +297,7 @@ impl run::Renderer for Integrator {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match cli::parse::<Integrator>(&args) {
+    let result = match command(&args) {
         Err(e) => {
             eprintln!("error: {e}\n\nRun with --help for usage.");
             return ExitCode::from(2);
@@ -250,7 +306,7 @@ fn main() -> ExitCode {
             print!("{USAGE}{}{OWN_OPTIONS}{}", cli::OPTIONS, cli::OUTPUTS);
             Ok(())
         }
-        Ok(Command::Render(opts, integrator)) => run::run(&integrator, &opts),
+        Ok(Command::Render(opts, a)) => run::run(&a.integrator, &opts),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -500,3 +500,45 @@ fn a_scene_the_path_tracer_refuses_fails_the_run_before_any_write() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--filter footprint` is refused on both integrators, in either order of the options, with
+/// the reason; `--filter none` is the default.
+#[test]
+fn filter_footprint_is_refused_with_the_reason_on_every_integrator() {
+    let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
+    let path = "--filter footprint: not with the path integrator, which averages each pixel's \
+                radiance by its samples (raise --spp); the footprint filter averages the paper's \
+                diffraction colour over a pixel's interval of u, in the example raytrace";
+    let whitted = "--filter footprint: not with --integrator whitted of the path tracer: the \
+                   radiometric grating's colour depends on the direction along the grooves as \
+                   well as on u, so no colour table over u can average it; the footprint filter \
+                   is the example raytrace's, for the paper's model";
+    for (line, expected) in [
+        ("cd_area_light --filter footprint", path),
+        ("fig6 --filter footprint --integrator path", path),
+        (
+            "cd_area_light --filter footprint --integrator whitted",
+            whitted,
+        ),
+        (
+            "cd_area_light --integrator whitted --filter footprint",
+            whitted,
+        ),
+    ] {
+        assert_eq!(
+            crate::command(&args(line)),
+            Err(expected.to_string()),
+            "{line}"
+        );
+    }
+    let Ok(crate::cli::Command::Render(_, a)) =
+        crate::command(&args("cd_area_light --filter none --integrator whitted"))
+    else {
+        panic!("--filter none")
+    };
+    assert_eq!((a.integrator, a.footprint), (Integrator::Whitted, false));
+    assert_eq!(
+        crate::command(&args("cd_area_light --filter box")),
+        Err("--filter: expected none or footprint, got \"box\"".to_string())
+    );
+}
