@@ -39,6 +39,10 @@ pub trait Renderer: Sync {
     fn render(&self, prepared: &Self::Prepared, camera: &Camera, progress: Option<&str>) -> Image;
     /// The integrator's name, for the summary of a render.
     fn integrator(&self) -> &'static str;
+    /// Whether a run that names no scene renders `scene` (default: every scene it takes).
+    fn renders_by_default(&self, _scene: &Scene<Self::Physics>) -> bool {
+        true
+    }
 }
 
 /// Where the shipped scenes live.
@@ -360,6 +364,16 @@ pub fn run<R: Renderer>(r: &R, opts: &Options) -> Result<(), String> {
             );
             continue;
         };
+        if all && !r.renders_by_default(&scene) {
+            note(
+                opts,
+                &format!(
+                    "{name}: skipped (the example {}'s; name it to render it here too)",
+                    R::OTHER
+                ),
+            );
+            continue;
+        }
         let s = &scene.settings;
         let frames = opts.frames.unwrap_or(1);
         limits::work(s.width, s.height, s.spp, frames)

@@ -9,6 +9,12 @@
 //! cargo run --release --example pathtrace -- cd_area_light --integrator whitted
 //! ```
 //!
+//! The paper's scenes (fig4a … fig6, no `[radiometry]` table) render too when named
+//! (`pathtrace -- fig6 --integrator path --out fig6_path.png`): [`paper`] maps their unitless
+//! lights, ambient light, eq. 12 coefficients and Agu-Hill gratings to physical units, and says
+//! what has no counterpart (the ambient coefficients, the per-grating exposure, the
+//! `diffraction` coefficient).
+//!
 //! Geometry, textures, scene files and output are in `examples/common`, shared with the paper's
 //! ray tracer (`examples/raytrace`).
 
@@ -45,11 +51,14 @@ pub mod schema;
 #[path = "../common/texture.rs"]
 pub mod texture;
 
+mod paper;
 mod path;
 mod radiometry;
 mod surface;
 mod whitted;
 
+#[cfg(test)]
+mod paper_tests;
 #[cfg(test)]
 mod tests;
 
@@ -69,8 +78,12 @@ USAGE:
 
 With no SCENE, renders every shipped scene with a [radiometry] table (cd_area_light) into
 out/ (NAME.png and the linear NAME.pfm). SCENE is a shipped scene's name or a path to a .toml
-scene file with a [radiometry] table; the paper's scenes (fig4a ... fig6) are the example
-raytrace's.
+scene file. A scene without a [radiometry] table (the paper's fig4a ... fig6, the example
+raytrace's) is mapped to physical units: the lights give the paper's irradiance at the
+camera's look_at point and fall off as 1/r^2, the ambient light is a uniform sky of its
+luminance, gratings of model agu-hill are the radiometric grating of the same d, w and N
+(the module paper of examples/pathtrace says all of it). Name it with --out to keep the
+ray tracer's out/NAME.png.
 
 ";
 
@@ -79,7 +92,63 @@ const OWN_OPTIONS: &str = "\
                        light from the emitters, each area light by its light samples)
     --max-depth D      bounces: path length (path; 1 = direct light only) or mirror
                        recursion (whitted), 0-64
+    --filter NAME      none only (the default): footprint, the example raytrace's filter of
+                       the paper's colour over a pixel's interval of u, is refused with the
+                       reason for each integrator
 ";
+
+/// The path tracer's own arguments: `--integrator`, and `--filter`, which takes `none` only
+/// ([`command`] refuses `footprint` with the reason for the integrator).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Args {
+    /// `--integrator`.
+    pub integrator: Integrator,
+    /// `--filter footprint` was given.
+    pub footprint: bool,
+}
+
+impl cli::Extra for Args {
+    fn take(
+        &mut self,
+        arg: &str,
+        value: &mut dyn FnMut() -> Result<String, String>,
+        opts: &Options,
+    ) -> Result<bool, String> {
+        if arg != "--filter" {
+            return self.integrator.take(arg, value, opts);
+        }
+        self.footprint = match value()?.as_str() {
+            "none" => false,
+            "footprint" => true,
+            v => return Err(format!("--filter: expected none or footprint, got \"{v}\"")),
+        };
+        Ok(true)
+    }
+}
+
+/// The command of the arguments `args`: `--filter footprint` is refused on either integrator
+/// (the path integrator averages each pixel by its samples; the radiometric grating's colour
+/// is not a function of u, so there is no colour table to average over a footprint).
+pub fn command(args: &[String]) -> Result<Command<Args>, String> {
+    let command = cli::parse::<Args>(args)?;
+    if let Command::Render(_, a) = &command {
+        if a.footprint {
+            return Err(match a.integrator {
+                Integrator::Path => "--filter footprint: not with the path integrator, which \
+                    averages each pixel's radiance by its samples (raise --spp); the footprint \
+                    filter averages the paper's diffraction colour over a pixel's interval of u, \
+                    in the example raytrace"
+                    .to_string(),
+                Integrator::Whitted => "--filter footprint: not with --integrator whitted of the \
+                    path tracer: the radiometric grating's colour depends on the direction along \
+                    the grooves as well as on u, so no colour table over u can average it; the \
+                    footprint filter is the example raytrace's, for the paper's model"
+                    .to_string(),
+            });
+        }
+    }
+    Ok(command)
+}
 
 /// The integrator of a render (`--integrator`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -212,6 +281,12 @@ impl run::Renderer for Integrator {
         }
     }
 
+    /// The scenes in physical units only: the paper's are the ray tracer's pictures in out/
+    /// (named, they render here too, mapped by [`paper`]).
+    fn renders_by_default(&self, scene: &Scene<Radiometric>) -> bool {
+        !scene.units.from_paper
+    }
+
     fn integrator(&self) -> &'static str {
         match self {
             Integrator::Path => "path",
@@ -222,7 +297,7 @@ impl run::Renderer for Integrator {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match cli::parse::<Integrator>(&args) {
+    let result = match command(&args) {
         Err(e) => {
             eprintln!("error: {e}\n\nRun with --help for usage.");
             return ExitCode::from(2);
@@ -231,7 +306,7 @@ fn main() -> ExitCode {
             print!("{USAGE}{}{OWN_OPTIONS}{}", cli::OPTIONS, cli::OUTPUTS);
             Ok(())
         }
-        Ok(Command::Render(opts, integrator)) => run::run(&integrator, &opts),
+        Ok(Command::Render(opts, a)) => run::run(&a.integrator, &opts),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -31,7 +31,7 @@ use crate::diagnostics::{Check, FieldError};
 use crate::limits::{count, RADIOMETRIC_SLITS};
 use crate::material::{model_error, Material};
 use crate::scene::{Light, Physics};
-use crate::schema::{RawGrating, RawRadiometry, RawScene};
+use crate::schema::{RawGrating, RawKind, RawRadiometry, RawScene};
 
 /// The largest accepted camera exposure, sr·m²/W.
 pub const MAX_EXPOSURE: f64 = 1e12;
@@ -64,6 +64,8 @@ pub struct Radiometry {
     pub ys: f64,
     /// ∫ s·B_c·cmf dλ for the box basis of red, green and blue.
     pub basis: [Xyz; 3],
+    /// Whether these units are the mapping of a paper scene ([`crate::paper`]).
+    pub from_paper: bool,
 }
 
 /// The box upsampling's channel at λ: 0 red (≥ 585 nm), 1 green (490-585 nm), 2 blue.
@@ -157,6 +159,7 @@ impl Radiometry {
             white: xyz(white),
             ys: white[1],
             basis: [xyz(basis[0]), xyz(basis[1]), xyz(basis[2])],
+            from_paper: false,
         })
     }
 
@@ -286,26 +289,27 @@ impl Physics for Radiometric {
     type Grating = GratingBsdf;
     type Units = Radiometry;
 
-    fn accepts(raw: &RawScene) -> Check<()> {
-        match raw.radiometry {
-            Some(_) => Ok(()),
-            None => Err(FieldError::new(
-                "radiometry",
-                "a scene without a [radiometry] table (no physical units) is the paper's ray \
-                 tracer's",
-            )),
-        }
+    /// Every scene: one without a `[radiometry]` table is the paper's, mapped to physical
+    /// units ([`crate::paper`]).
+    fn accepts(_: &RawScene) -> Check<()> {
+        Ok(())
     }
 
+    /// "radiometric", and "agu-hill" read radiometrically ([`crate::paper::grating`]; refused
+    /// in a scene with a `[radiometry]` table by [`Physics::units`], which sees the table).
     fn grating(name: &str, g: &RawGrating, period: f64, path: &str) -> Check<GratingBsdf> {
-        if name != "radiometric" {
-            return Err(FieldError::new(
+        match name {
+            "radiometric" => grating_model(g, period, path),
+            "agu-hill" => crate::paper::grating(g, period, path),
+            _ => Err(FieldError::new(
                 format!("{path}.model"),
-                "a scene with a [radiometry] table takes gratings of model \"radiometric\" \
-                 only (the other models have no physical units)",
-            ));
+                format!(
+                    "the path tracer takes gratings of model \"radiometric\", and \"agu-hill\" \
+                     in the paper's scenes (read as the radiometric grating); \"{name}\" has no \
+                     physical units"
+                ),
+            )),
         }
-        grating_model(g, period, path)
     }
 
     fn units(
@@ -314,10 +318,23 @@ impl Physics for Radiometric {
         materials: &[Material<GratingBsdf>],
         spectral: &Spectral,
     ) -> Check<Radiometry> {
-        check_materials(materials)?;
         let Some(table) = &raw.radiometry else {
-            return Err(FieldError::new("radiometry", "missing"));
+            check_materials(materials)?;
+            return crate::paper::units(raw, lights, spectral.illuminant());
         };
+        // A paper grating has no place among physical units.
+        for (i, o) in raw.objects.iter().enumerate() {
+            if let RawKind::Grating(g) = &o.material.kind {
+                if g.model.as_deref().unwrap_or("agu-hill") != "radiometric" {
+                    return Err(FieldError::new(
+                        format!("objects[{i}].material.model"),
+                        "a scene with a [radiometry] table takes gratings of model \
+                         \"radiometric\" only (the other models have no physical units)",
+                    ));
+                }
+            }
+        }
+        check_materials(materials)?;
         let keys: Vec<(DVec3, f64)> = raw
             .lights
             .iter()

@@ -216,11 +216,14 @@ period_nm = 1600.0
             .unwrap_err()
             .to_string()
     };
-    let e = err(&format!("{base}model = \"radiometric\"\n"));
+    // Without a [radiometry] table the scene is the paper's, mapped (crate::paper): a model
+    // with no radiometric reading is refused at its field.
+    let e = err(&format!("{base}model = \"thorman\"\n"));
     assert_eq!(
         e,
-        "t.toml: field radiometry: a scene without a [radiometry] table (no physical units) is \
-         the paper's ray tracer's"
+        "t.toml: line 10, field objects[0].material.model: the path tracer takes gratings of \
+         model \"radiometric\", and \"agu-hill\" in the paper's scenes (read as the radiometric \
+         grating); \"thorman\" has no physical units"
     );
     // Each error names the field, the range or the rule, and the numbers.
     let radiometric = |extra: &str| {
@@ -467,32 +470,75 @@ fn light_samples_times_exact_colours_are_bounded() {
     );
 }
 
-/// A scene the path tracer cannot render, after one it can, is reported before anything is
-/// rendered or written: the first scene's existing picture stays as it was.
+/// A scene the path tracer cannot render (a Thorman grating: no physical units), after one it
+/// can, is reported before anything is rendered or written: the first scene's existing picture
+/// stays as it was.
 #[test]
-fn a_scene_for_the_other_renderer_fails_the_run_before_any_write() {
+fn a_scene_the_path_tracer_refuses_fails_the_run_before_any_write() {
     let dir = std::env::temp_dir().join(format!("pathtrace-plan-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let old = b"an existing picture";
     std::fs::write(dir.join("cd_area_light.png"), old).unwrap();
+    let compare = scenes_dir().join("baselines/compare.toml");
     let opts = crate::cli::Options {
-        scenes: vec!["cd_area_light".into(), "fig4a".into()],
+        scenes: vec!["cd_area_light".into(), compare.display().to_string()],
         out: Some(dir.clone()),
         quiet: true,
         ..Default::default()
     };
-    let fig4a = scenes_dir().join("fig4a.toml");
     assert_eq!(
         crate::run::run(&Integrator::Path, &opts),
         Err(format!(
-            "{}: field radiometry: a scene without a [radiometry] table (no physical units) is \
-             the paper's ray tracer's: render it with `cargo run --release --example raytrace \
-             -- fig4a`",
-            fig4a.display()
+            "{}: line 124, field objects[5].material.model: the path tracer takes gratings of \
+             model \"radiometric\", and \"agu-hill\" in the paper's scenes (read as the \
+             radiometric grating); \"thorman\" has no physical units",
+            compare.display()
         ))
     );
     assert_eq!(std::fs::read(dir.join("cd_area_light.png")).unwrap(), old);
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--filter footprint` is refused on both integrators, in either order of the options, with
+/// the reason; `--filter none` is the default.
+#[test]
+fn filter_footprint_is_refused_with_the_reason_on_every_integrator() {
+    let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
+    let path = "--filter footprint: not with the path integrator, which averages each pixel's \
+                radiance by its samples (raise --spp); the footprint filter averages the paper's \
+                diffraction colour over a pixel's interval of u, in the example raytrace";
+    let whitted = "--filter footprint: not with --integrator whitted of the path tracer: the \
+                   radiometric grating's colour depends on the direction along the grooves as \
+                   well as on u, so no colour table over u can average it; the footprint filter \
+                   is the example raytrace's, for the paper's model";
+    for (line, expected) in [
+        ("cd_area_light --filter footprint", path),
+        ("fig6 --filter footprint --integrator path", path),
+        (
+            "cd_area_light --filter footprint --integrator whitted",
+            whitted,
+        ),
+        (
+            "cd_area_light --integrator whitted --filter footprint",
+            whitted,
+        ),
+    ] {
+        assert_eq!(
+            crate::command(&args(line)),
+            Err(expected.to_string()),
+            "{line}"
+        );
+    }
+    let Ok(crate::cli::Command::Render(_, a)) =
+        crate::command(&args("cd_area_light --filter none --integrator whitted"))
+    else {
+        panic!("--filter none")
+    };
+    assert_eq!((a.integrator, a.footprint), (Integrator::Whitted, false));
+    assert_eq!(
+        crate::command(&args("cd_area_light --filter box")),
+        Err("--filter: expected none or footprint, got \"box\"".to_string())
+    );
 }

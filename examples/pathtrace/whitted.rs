@@ -1,6 +1,18 @@
 //! The Whitted-style renderer of radiometric scenes (`--integrator whitted`): direct light
 //! integrated over each area light by its stratified light samples, mirror recursion; the
 //! reference the path tracer's direct light is compared with.
+//!
+//! # Cost
+//!
+//! Every camera sample takes each spherical light's `samples` directions, each with a shadow ray
+//! and, on a grating, the grating's colour over the whole visible band (the crate's peak search
+//! and lobe integrals), where the path tracer takes one light sample and one BSDF sample per
+//! vertex at four wavelengths. The time is proportional to the light samples: `cd_area_light`
+//! at 160×120 and 16 spp took 0.22, 0.48 and 1.50 s of CPU with 1, 4 and 16 light samples (the
+//! path tracer 0.25 s); at 16 (the scene's) about half of it is the grating's colours, 18 % the
+//! light-direction sampling and 9 % the shadow rays (perf). That is the price of a low-noise
+//! reference, 256 light directions per pixel, not waste: lower `samples` in the scene's light
+//! for a faster, noisier picture.
 
 use diffraction::color::Xyz;
 use diffraction::SpectralResponse;
