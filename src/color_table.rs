@@ -13,9 +13,11 @@ use crate::{Grating, Slits};
 
 mod grid;
 mod nodes;
+mod radiometric;
 mod tabulated;
 use grid::power_of_two_below;
 use nodes::GratingNodes;
+pub use radiometric::RadiometricTable;
 use tabulated::{Plan, Tabulated};
 
 /// Blocks per octave of u, as a power of two: the lookup reads the block from the exponent and the
@@ -143,14 +145,10 @@ const DARK_SHARE: f64 = (6.0 / 29.0) * (6.0 / 29.0);
 ///   Nodes whose colour is provably below the tolerance (S(β) ≤ 1/β² at the band's smallest
 ///   phase, times the white, below 0.043·accuracy of the floor 555/(N·∫ȳ)) are black without an
 ///   evaluation: the dense combs of orders of very coarse gratings.
-/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) is the table of
-///   [`Spectral::with_envelope`]`(response.envelope)` where the envelope does not depend on the
-///   directions (a Gaussian groove: λ⁻¹), the colour then `response.scale · lookup(response.u)`
-///   for the [`GratingResponse`](crate::GratingResponse) of
-///   [`SpectralResponse::grating_response`](crate::SpectralResponse::grating_response) (measured
-///   20 ns against 0.8 ms for the generic `xyz_brdf` and 22 µs for `xyz_response` with
-///   `auto(1e-3)`, CD grating, within 8·10⁻⁵ of `Exact`). A coherence length's envelope
-///   depends on v: use [`Spectral::xyz_response`] there.
+/// * The radiometric [`GratingBsdf`](crate::GratingBsdf)'s colour in physical units is
+///   [`RadiometricTable`](crate::RadiometricTable)'s (a table of `Spectral::with_envelope(λ⁻¹)`
+///   here would measure its tolerance against the paper's unitless floor, about 1/λ too
+///   coarse).
 ///
 /// ```
 /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};

@@ -82,6 +82,9 @@ pub enum Requirement {
         /// Upper end.
         max: f64,
     },
+    /// The same at every wavelength (a groove spread other than a coherence length, whose
+    /// width λ/L changes with λ): the value is the rejected length.
+    IndependentOfWavelength,
 }
 
 impl Error {
@@ -146,6 +149,9 @@ impl fmt::Display for Error {
                     }
                     Requirement::Within { min, max } => {
                         write!(f, "lie in [{}, {}]", Num(*min), Num(*max))
+                    }
+                    Requirement::IndependentOfWavelength => {
+                        write!(f, "be the same at every wavelength")
                     }
                 }
             }

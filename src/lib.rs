@@ -198,7 +198,7 @@ pub use bxdf::{
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
 #[cfg(feature = "alloc")]
-pub use color_table::ColorTable;
+pub use color_table::{ColorTable, RadiometricTable};
 pub use error::{Error, Requirement};
 pub use film::SpectralFilm;
 pub use float::Float;
