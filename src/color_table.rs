@@ -14,6 +14,8 @@ use crate::{Grating, Slits};
 mod grid;
 mod nodes;
 mod radiometric;
+#[cfg(feature = "serde")]
+mod stored;
 mod tabulated;
 use grid::power_of_two_below;
 use nodes::GratingNodes;
@@ -190,6 +192,15 @@ impl ColorTable {
     /// assert!(ColorTable::ASYMPTOTIC_ACCURACY <= DEFAULT_ACCURACY);
     /// ```
     pub const ASYMPTOTIC_ACCURACY: f64 = 1e-4;
+
+    /// The version of the stored form (feature `serde`) that this crate writes and reads; a
+    /// stored table of another version is refused on load (the error names `format_version`).
+    /// The stored form and its checks are described in docs/color_table.md.
+    ///
+    /// ```
+    /// assert_eq!(diffraction::ColorTable::FORMAT_VERSION, 1);
+    /// ```
+    pub const FORMAT_VERSION: u32 = 1;
 
     /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
     /// first, and [`error_estimate`](Self::error_estimate) says what was reached.

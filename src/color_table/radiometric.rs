@@ -124,6 +124,8 @@ impl RadiometricTable {
     /// The work budget of a build: [`ColorTable::MAX_WORK`] (an N = ∞ node counts as a finite
     /// one with the same orders).
     pub const MAX_WORK: usize = ColorTable::MAX_WORK;
+    /// The version of the stored form (feature `serde`): [`ColorTable::FORMAT_VERSION`].
+    pub const FORMAT_VERSION: u32 = ColorTable::FORMAT_VERSION;
 
     /// Tabulates C(u) of `bsdf` under `spectral`'s illuminant (its envelope is not used: the
     /// table applies the BSDF's own) to `accuracy` in the sense of [`ColorTable`].
@@ -184,24 +186,47 @@ impl RadiometricTable {
             max_nodes: Self::MAX_NODES,
             max_work: Self::MAX_WORK,
         };
-        let per_nm = plain.with_envelope(Envelope::new(1, 0.0)?);
-        let (grid, evaluations, k, spectral, specular) = match g.slits() {
+        let (grid, evaluations) = match g.slits() {
             Slits::Finite(n) => {
                 let n = n as f64;
+                let per_nm = plain.with_envelope(Envelope::new(1, 0.0)?);
                 let k = (rho * rho * n * d).min(f64::MAX);
                 let nodes = GratingNodes::new(&per_nm, g, n, accuracy, k, white, floor)?;
                 let grid = Tabulated::build(&plan, &|u, scale| nodes.eval(u, scale), &|| {
                     nodes.work_done.get()
                 });
-                (grid, nodes.evaluations.get(), k, per_nm, Xyz::default())
+                (grid, nodes.evaluations.get())
             }
             Slits::Infinite => {
                 let delta = DeltaNodes::new(&plain, bsdf, accuracy, white, floor);
                 let grid =
                     Tabulated::build(&plan, &|u, _| delta.eval(u), &|| delta.work_done.get());
-                let specular = plain.white().scale(bsdf.efficiency(0));
-                (grid, delta.evaluations.get(), 1.0, plain, specular)
+                (grid, delta.evaluations.get())
             }
+        };
+        Self::with_grid(bsdf, illuminant, accuracy, grid, evaluations)
+    }
+
+    /// The table of `bsdf` (checked by [`factorises`]) around its tabulated `grid`: the
+    /// integrator and factor of the direct lookups, and the order-0 delta.
+    pub(super) fn with_grid(
+        bsdf: &GratingBsdf,
+        illuminant: Illuminant,
+        accuracy: f64,
+        grid: Tabulated,
+        evaluations: usize,
+    ) -> Result<RadiometricTable, Error> {
+        let plain = Spectral::new(illuminant);
+        let g = bsdf.grating();
+        let rho = g.open_fraction();
+        let (u_lo, unresolved) = radiometric_first_block(bsdf);
+        let (k, spectral, specular) = match g.slits() {
+            Slits::Finite(n) => (
+                (rho * rho * n as f64 * g.period_nm()).min(f64::MAX),
+                plain.with_envelope(Envelope::new(1, 0.0)?),
+                Xyz::default(),
+            ),
+            Slits::Infinite => (1.0, plain, plain.white().scale(bsdf.efficiency(0))),
         };
         Ok(RadiometricTable {
             bsdf: bsdf.clone(),
@@ -312,6 +337,12 @@ impl RadiometricTable {
         self.specular
     }
 
+    /// The tabulated function.
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(super) fn grid(&self) -> &Tabulated {
+        &self.grid
+    }
+
     /// The tabulated BSDF.
     #[must_use]
     pub fn bsdf(&self) -> &GratingBsdf {
@@ -419,7 +450,8 @@ impl<'a> DeltaNodes<'a> {
     fn provably_dark(&self, u: f64) -> bool {
         let d = self.bsdf.grating().period_nm();
         let a = (d * u / LAMBDA_MAX_NM).max(1.0);
-        let bound = d * (1.0 / (a * a * a) + 0.5 / (a * a)) / (core::f64::consts::PI.powi(2));
+        let pi2 = core::f64::consts::PI * core::f64::consts::PI;
+        let bound = d * (1.0 / (a * a * a) + 0.5 / (a * a)) / pi2;
         a > 1.0 && (0..3).all(|c| bound * self.peak_weight[c] <= self.dark * self.white[c])
     }
 

@@ -251,7 +251,7 @@ impl Tabulated {
 
     /// The stored form: the intervals of every block and the node values (positions follow
     /// from `u_lo` and the intervals).
-    #[allow(dead_code)] // the stored form (feature `serde`)
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
     pub(super) fn parts(&self) -> (Vec<u32>, Vec<[f64; 3]>) {
         (
             self.blocks.iter().map(|b| b.n).collect(),
@@ -264,7 +264,7 @@ impl Tabulated {
     /// that layout, each a power of two in [2, 1024], 1 + Σ intervals values, at most
     /// `max_nodes`, every channel finite and ≥ 0; `scale` positive, `error` ≥ 0. The errors
     /// name the field.
-    #[allow(dead_code)] // the stored form (feature `serde`)
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
     pub(super) fn from_parts(
         expected_u_lo: f64,
         stored: Stored<'_>,
@@ -460,7 +460,7 @@ impl Tabulated {
 }
 
 /// A table's stored fields (see [`Tabulated::from_parts`]).
-#[allow(dead_code)] // the stored form (feature `serde`)
+#[cfg_attr(not(feature = "serde"), allow(dead_code))]
 pub(super) struct Stored<'a> {
     pub u_lo: f64,
     pub intervals: &'a [u32],
