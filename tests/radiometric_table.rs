@@ -306,3 +306,45 @@ fn bad_input_is_refused_with_the_parameter_named() {
     assert_eq!(t.xyz(below.0, below.1), Xyz::default());
     assert_eq!(t.xyz(DVec3::NAN, DVec3::Z), Xyz::default());
 }
+
+/// Why a coherence length is refused: the table's C(u) with g evaluated at one effective
+/// wavelength (555 nm) instead of at each λ, against `Exact` of the BSDF with L = N·d, at
+/// random directions with v inside g's main lobes (|v| < 3·555/L). Prints the error; asserts
+/// only that it is far above the factorising tables' (so that the refusal stays justified).
+#[test]
+fn coherence_length_does_not_factorise() {
+    let s = Spectral::new(Illuminant::D65);
+    let g = Grating::new(1600.0, 800.0, 1000).unwrap();
+    let coherent = GratingBsdf::new(g);
+    let diffraction::GrooveKind::CoherenceLength { length_nm } = coherent.groove().kind() else {
+        panic!("the default groove is a coherence length");
+    };
+    let t = RadiometricTable::new(&s, &gaussian(1600.0, 1000), ACCURACY).unwrap();
+    let white = WhitePoint::new(s.white()).unwrap();
+    let mut r = Lcg(21);
+    let (mut rel, mut de) = (0.0f64, 0.0f64);
+    let mut count = 0;
+    while count < 200 {
+        let u = 0.25 + 1.5 * r.next();
+        let v = 3.0 * 555.0 / length_nm * (2.0 * r.next() - 1.0);
+        let wi = DVec3::new(0.5 * u, 0.5 * v, (1.0 - 0.25 * (u * u + v * v)).sqrt());
+        let Some(resp) = coherent.grating_response(wi, wi) else {
+            continue;
+        };
+        let want = s.xyz_response(&resp, Strategy::EXACT);
+        if want.y < 1e-3 * t.scale() * wi.z * length_nm / 555.0 {
+            continue; // near a zero of the sinc²: the relative error is not meaningful there
+        }
+        let got = t.lookup(u).scale(wi.z * coherent.groove().value(v, 555.0));
+        let k = 1.0 / want.y;
+        rel = rel.max((got.y - want.y).abs() * k);
+        de = de.max(
+            got.scale(k)
+                .to_lab(white)
+                .delta_e2000(want.scale(k).to_lab(white)),
+        );
+        count += 1;
+    }
+    println!("coherence length, g at 555 nm: worst relative Y {rel:.3}, ΔE2000 {de:.2}");
+    assert!(rel > 10.0 * LOOKUP_REL && de > LOOKUP_DE2000);
+}

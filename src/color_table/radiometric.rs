@@ -66,8 +66,10 @@ use crate::{Band, Envelope, GratingBsdf, GrooveKind, Slits, MAX_ORDERS};
 /// The grid, its refinement and its tolerance are those of [`ColorTable`] (its
 /// [Accuracy](ColorTable#accuracy) section, with the error scale Y_b the largest Y at
 /// d·|u| ≥ 360 nm, at least ρ²·d/∫ȳ: an order of efficiency ρ² at 555 nm under E); nodes of
-/// finite N cost what `ColorTable`'s do, nodes of N = ∞ O(orders). Measured in
-/// docs/color_table.md.
+/// finite N cost what `ColorTable`'s do, nodes of N = ∞ O(orders). Measured at 10⁻⁴
+/// (`tests/radiometric_table.rs`, docs/color_table.md): within 7.4·10⁻⁵ of the exposure and
+/// 0.023 ΔE2000 of the direct colour; `xyz` 75-88 ns against 441 µs for `Exact`; builds
+/// 15 ms (N = ∞) to 0.46 s (d = 1600 nm, N = 1000), about `ColorTable`'s for the same grating.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RadiometricTable {
     bsdf: GratingBsdf,
