@@ -348,3 +348,40 @@ fn coherence_length_does_not_factorise() {
     println!("coherence length, g at 555 nm: worst relative Y {rel:.3}, ΔE2000 {de:.2}");
     assert!(rel > 10.0 * LOOKUP_REL && de > LOOKUP_DE2000);
 }
+
+/// Extreme gratings build in bounded work (at most `MAX_NODES` nodes, `MAX_WORK` units plus
+/// the initial grid) and give finite, non-negative colours everywhere.
+#[test]
+fn extreme_gratings_are_bounded_and_finite() {
+    let s = Spectral::new(Illuminant::D65);
+    let rough = GrooveSpread::gaussian(1e-12).unwrap();
+    let bsdfs = [
+        GratingBsdf::new(Grating::new(1e300, 5e299, 7).unwrap()).with_groove(rough),
+        GratingBsdf::new(Grating::infinite(1e300, 1e300).unwrap()),
+        GratingBsdf::new(Grating::infinite(1e6, 1e5).unwrap()),
+        GratingBsdf::new(Grating::new(5e-324, 5e-324, 1).unwrap()).with_groove(rough),
+        GratingBsdf::new(Grating::new(1e12, 5e11, u32::MAX).unwrap()).with_groove(rough),
+    ];
+    for b in &bsdfs {
+        let start = std::time::Instant::now();
+        let t = RadiometricTable::new(&s, b, 1e-2).unwrap();
+        println!(
+            "d = {:e}, N = {:?}: {} nodes, {} evaluations, {:.3} s",
+            b.grating().period_nm(),
+            b.grating().slits(),
+            t.node_count(),
+            t.evaluations(),
+            start.elapsed().as_secs_f64()
+        );
+        assert!(t.node_count() <= RadiometricTable::MAX_NODES);
+        assert!(t.evaluations() <= RadiometricTable::MAX_WORK + 2600);
+        assert!(t.scale() > 0.0 && t.scale().is_finite());
+        for u in [0.0, 1e-300, 1e-20, 1e-6, 0.3, 1.0, 2.0, 5.0] {
+            for c in [t.lookup(u), t.mean(u, u + 1e-3), t.mean(-u, 2.0 * u)] {
+                for x in [c.x, c.y, c.z] {
+                    assert!(x >= 0.0 && x.is_finite(), "{x} at {u}");
+                }
+            }
+        }
+    }
+}

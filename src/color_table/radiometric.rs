@@ -175,7 +175,8 @@ impl RadiometricTable {
         let white = [white.x, white.y, white.z];
         let g = bsdf.grating();
         let (d, rho) = (g.period_nm(), g.open_fraction());
-        let floor = (rho * rho * d / crate::cie::cmf_areas()[1]).min(f64::MAX);
+        // Clamped to the normal range: a scale of 0 (d = 5e-324 nm) would leave no tolerance.
+        let floor = (rho * rho * d / crate::cie::cmf_areas()[1]).clamp(f64::MIN_POSITIVE, f64::MAX);
         let (u_lo, unresolved) = radiometric_first_block(bsdf);
         let plan = Plan {
             accuracy,
