@@ -51,9 +51,11 @@ use crate::{Band, Envelope, GratingBsdf, GrooveKind, Slits, MAX_ORDERS};
 ///
 /// # What a renderer multiplies by
 ///
-/// * A point or distant light of irradiance E⊥ at normal incidence (in the illuminant's units:
-///   E⊥ = 1 is the light whose white reflector has Y = 1): radiance XYZ toward wo =
-///   E⊥ · cos θi · g(v) · `lookup(u)` (= E⊥ · [`xyz`](Self::xyz)`(wo, wi)`).
+/// * A point or distant light of the illuminant's spectrum whose irradiance at normal
+///   incidence has luminance E⊥ (∫E·ȳ of that irradiance; the unit of `Spectral`'s colour is
+///   E⊥ = 1, under which a surface with f·cos θi ≡ 1 has Y = 1 and a white Lambertian one
+///   1/π): radiance XYZ toward wo = E⊥ · cos θi · g(v) · `lookup(u)`
+///   (= E⊥ · [`xyz`](Self::xyz)`(wo, wi)`).
 /// * An area light of radiance L whose image in the (u, v) plane is the rectangle
 ///   [u0, u1] × [v0, v1] (d(wi.x)·d(wi.y) = cos θi·dωi): XYZ = L · (u1 − u0) ·
 ///   `mean(u0, u1)` · [`GrooveSpread::mass`](crate::GrooveSpread::mass)`(v0, v1, ·)` exactly,
