@@ -269,6 +269,31 @@ fn footprint_means_match_a_quadrature() {
         let (rel, de) = errors(t.mean(a, c), want, t.scale(), s.white());
         worst = (worst.0.max(rel), worst.1.max(de));
     }
+    // N = ∞: the reference C(u) is the delta peaks' areas over cos θi·g(0).
+    let inf = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap())
+        .with_groove(GrooveSpread::gaussian(SIGMA).unwrap());
+    let t = RadiometricTable::new(&s, &inf, ACCURACY).unwrap();
+    let n = norm(s.illuminant());
+    let c_of = |u: f64| {
+        let wi = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
+        direct(&s, &inf, wi, wi, n).scale(1.0 / (wi.z * inf.groove().value(0.0, 1.0)))
+    };
+    for (a, c) in [(0.30, 0.31), (0.5, 0.52), (0.9, 0.95), (1.31, 1.3105)] {
+        use quadrature::{W8, X8};
+        let (pieces, mut acc) = (32, [0.0; 3]);
+        let h = (c - a) / pieces as f64;
+        for j in 0..pieces {
+            for (x, w) in X8.iter().zip(W8) {
+                let v = c_of(a + (j as f64 + 0.5) * h + 0.5 * h * x);
+                acc[0] += w * 0.5 * v.x / pieces as f64;
+                acc[1] += w * 0.5 * v.y / pieces as f64;
+                acc[2] += w * 0.5 * v.z / pieces as f64;
+            }
+        }
+        let want = Xyz::new(acc[0], acc[1], acc[2]);
+        let (rel, de) = errors(t.mean(a, c), want, t.scale(), s.white());
+        worst = (worst.0.max(rel), worst.1.max(de));
+    }
     println!("means: worst {:.2e} rel, ΔE2000 {:.4}", worst.0, worst.1);
     assert!(worst.0 <= MEAN_REL, "{:e}", worst.0);
     assert!(worst.1 <= MEAN_DE2000, "{}", worst.1);
