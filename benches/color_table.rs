@@ -8,7 +8,11 @@
 //! 10⁻³ centred there. Tables are built with `diffraction::spectrum::DEFAULT_ACCURACY` under D65, slit width
 //! d/2.
 //!
-//! `cargo bench --bench color_table -- --warm-up-time 1 --measurement-time 2`
+//! The `radiometric_table` groups do the same for `RadiometricTable` (the radiometric BSDF's
+//! colour in physical units) against `Spectral::xyz_response`, its builds beside
+//! `ColorTable`'s, and (feature `serde`) a load of its cached JSON.
+//!
+//! `cargo bench --features serde --bench color_table -- --warm-up-time 1 --measurement-time 2`
 
 use criterion::{black_box, BenchmarkId, Criterion, Throughput};
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -103,9 +107,116 @@ fn bench_build(c: &mut Criterion) {
     group.finish();
 }
 
+/// The radiometric table (`RadiometricTable`) of the `GratingBsdf` with a Gaussian groove
+/// σ = 0.02 (and of N = ∞): lookups, `xyz(wo, wi)` and means per colour against the direct
+/// colour `Spectral::xyz_response` (`Exact` and `auto(1e-3)`) at the same directions; builds
+/// at accuracy 10⁻⁴ beside `ColorTable`'s of the same grating; a load of the cached JSON
+/// (feature `serde`).
+fn bench_radiometric(c: &mut Criterion) {
+    use diffraction::{GratingBsdf, GrooveSpread, RadiometricTable, SpectralResponse};
+    use glam::DVec3;
+    let s = Spectral::new(Illuminant::D65);
+    let rough = GrooveSpread::gaussian(0.02).unwrap();
+    let us = batch();
+    // Direction pairs with u = wi.x + wo.x from the batch (halved into both) and v = 0.01.
+    let pairs: Vec<(DVec3, DVec3)> = us
+        .iter()
+        .map(|&u| {
+            let (x, y) = (0.5 * u.clamp(-1.98, 1.98), 0.005);
+            let z = (1.0 - x * x - y * y).sqrt();
+            (DVec3::new(x, y, z), DVec3::new(x, y, z))
+        })
+        .collect();
+    let bsdfs = [
+        (
+            "d1600_n1000",
+            GratingBsdf::new(Grating::new(1600.0, 800.0, 1000).unwrap()).with_groove(rough),
+        ),
+        (
+            "d1600_inf",
+            GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap()).with_groove(rough),
+        ),
+    ];
+    for (name, b) in &bsdfs {
+        let table = RadiometricTable::new(&s, b, ACCURACY).unwrap();
+        let mut group = c.benchmark_group(format!("radiometric_table/{name}"));
+        group.throughput(Throughput::Elements(BATCH as u64));
+        group.bench_function("lookup", |bch| {
+            bch.iter(|| {
+                us.iter()
+                    .map(|&u| table.lookup(black_box(u)).y)
+                    .sum::<f64>()
+            })
+        });
+        group.bench_function("xyz", |bch| {
+            bch.iter(|| {
+                pairs
+                    .iter()
+                    .map(|&(o, i)| table.xyz(black_box(o), i).y)
+                    .sum::<f64>()
+            })
+        });
+        group.bench_function("mean_1e-3", |bch| {
+            bch.iter(|| {
+                us.iter()
+                    .map(|&u| table.mean(black_box(u - 5e-4), u + 5e-4).y)
+                    .sum::<f64>()
+            })
+        });
+        group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
+        // N = ∞ has no grating response (delta lobes): no baseline.
+        let baselines = if b.grating().slits().as_f64().is_finite() {
+            vec![Strategy::EXACT, Strategy::auto(1e-3).unwrap()]
+        } else {
+            vec![]
+        };
+        for strategy in baselines {
+            group.bench_function(BenchmarkId::new("xyz_response", strategy), |bch| {
+                bch.iter(|| {
+                    pairs[..BASELINE_BATCH]
+                        .iter()
+                        .filter_map(|&(o, i)| b.grating_response(black_box(o), i))
+                        .map(|r| s.xyz_response(&r, strategy).y)
+                        .sum::<f64>()
+                })
+            });
+        }
+        group.finish();
+    }
+    let mut group = c.benchmark_group("radiometric_table/build_1e-4");
+    group
+        .sample_size(10)
+        .sampling_mode(criterion::SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(100));
+    for (d, n) in [(1600.0, 1000), (740.0, 30)] {
+        let g = Grating::new(d, d / 2.0, n).unwrap();
+        let b = GratingBsdf::new(g).with_groove(rough);
+        group.bench_function(format!("radiometric_d{d}_n{n}"), |bch| {
+            bch.iter(|| RadiometricTable::new(&s, black_box(&b), 1e-4).unwrap())
+        });
+        group.bench_function(format!("color_table_d{d}_n{n}"), |bch| {
+            bch.iter(|| ColorTable::new(&s, black_box(&g), 1e-4).unwrap())
+        });
+    }
+    let (_, inf) = &bsdfs[1];
+    group.bench_function("radiometric_d1600_inf", |bch| {
+        bch.iter(|| RadiometricTable::new(&s, black_box(inf), 1e-4).unwrap())
+    });
+    #[cfg(feature = "serde")]
+    {
+        let table = RadiometricTable::new(&s, &bsdfs[0].1, 1e-4).unwrap();
+        let json = serde_json::to_string(&table).unwrap();
+        group.bench_function("load_json_d1600_n1000", |bch| {
+            bch.iter(|| serde_json::from_str::<RadiometricTable>(black_box(&json)).unwrap())
+        });
+    }
+    group.finish();
+}
+
 fn main() {
     let mut c = Criterion::default().configure_from_args();
     bench_lookup(&mut c);
     bench_build(&mut c);
+    bench_radiometric(&mut c);
     c.final_summary();
 }

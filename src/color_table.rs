@@ -1,11 +1,10 @@
 //! A per-grating colour table: XYZ(|u|) tabulated once, looked up in nanoseconds, and averaged
 //! over an interval of u in O(1) for footprint filtering (see [`ColorTable`]).
 
-use alloc::vec::Vec;
-
 use crate::color::Xyz;
 use crate::error::{Error, Requirement};
-use crate::spectrum::bounds::{self, accuracy_floor};
+#[cfg(doc)]
+use crate::spectrum::bounds;
 #[cfg(doc)]
 use crate::spectrum::DEFAULT_ACCURACY;
 use crate::spectrum::{Illuminant, Spectral, Strategy};
@@ -13,9 +12,15 @@ use crate::spectrum::{MAX_ACCURACY, MIN_ACCURACY};
 use crate::{Grating, Slits};
 
 mod grid;
-use grid::{
-    assemble, cell_integral, derivatives, hermite, power_of_two_below, tolerance, work_units,
-};
+mod nodes;
+mod radiometric;
+#[cfg(feature = "serde")]
+mod stored;
+mod tabulated;
+use grid::power_of_two_below;
+use nodes::GratingNodes;
+pub use radiometric::RadiometricTable;
+use tabulated::{Plan, Tabulated};
 
 /// Blocks per octave of u, as a power of two: the lookup reads the block from the exponent and the
 /// top `SUB_BITS` bits of the mantissa.
@@ -51,28 +56,6 @@ const TINY_FRACTION: f64 = 1.0 / (1u64 << 20) as f64;
 /// tolerance in the dark is (6/29)² = 0.043 of the accuracy (see [`tolerance`]), so a strategy
 /// whose bound meets this share of it keeps every channel inside its tolerance.
 const DARK_SHARE: f64 = (6.0 / 29.0) * (6.0 / 29.0);
-
-/// One uniform block of the grid.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Block {
-    /// First u of the block.
-    u0: f64,
-    /// Node spacing.
-    h: f64,
-    /// 1 / spacing.
-    inv_h: f64,
-    /// Index of the block's first node.
-    first: u32,
-    /// Number of intervals (≥ 1).
-    n: u32,
-}
-
-/// The value and the derivative in u at a node.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Node {
-    f: [f64; 3],
-    d: [f64; 3],
-}
 
 /// The colour XYZ(|u|) of one grating under one illuminant, tabulated over [0, 2] on a graded
 /// grid, with O(1) lookup and O(1) means over intervals of u.
@@ -164,14 +147,10 @@ struct Node {
 ///   Nodes whose colour is provably below the tolerance (S(β) ≤ 1/β² at the band's smallest
 ///   phase, times the white, below 0.043·accuracy of the floor 555/(N·∫ȳ)) are black without an
 ///   evaluation: the dense combs of orders of very coarse gratings.
-/// * The radiometric model's colour C(u) (the per-order factor 1/λ of DESIGN.md) is the table of
-///   [`Spectral::with_envelope`]`(response.envelope)` where the envelope does not depend on the
-///   directions (a Gaussian groove: λ⁻¹), the colour then `response.scale · lookup(response.u)`
-///   for the [`GratingResponse`](crate::GratingResponse) of
-///   [`SpectralResponse::grating_response`](crate::SpectralResponse::grating_response) (measured
-///   20 ns against 0.8 ms for the generic `xyz_brdf` and 22 µs for `xyz_response` with
-///   `auto(1e-3)`, CD grating, within 8·10⁻⁵ of `Exact`). A coherence length's envelope
-///   depends on v: use [`Spectral::xyz_response`] there.
+/// * The radiometric [`GratingBsdf`](crate::GratingBsdf)'s colour in physical units is
+///   [`RadiometricTable`](crate::RadiometricTable)'s (a table of `Spectral::with_envelope(λ⁻¹)`
+///   here would measure its tolerance against the paper's unitless floor, about 1/λ too
+///   coarse).
 ///
 /// ```
 /// use diffraction::spectrum::{Illuminant, Spectral, Strategy};
@@ -190,15 +169,7 @@ pub struct ColorTable {
     grating: Grating,
     illuminant: Illuminant,
     accuracy: f64,
-    scale: f64,
-    error: f64,
-    /// End of block 0, and the key (bits >> SHIFT) of block 1.
-    u_lo: f64,
-    base_key: u64,
-    blocks: Vec<Block>,
-    nodes: Vec<Node>,
-    /// ∫₀^{u_i} of the interpolant at every node.
-    cumulative: Vec<[f64; 3]>,
+    grid: Tabulated,
     /// Where order 0's lobe is narrower than the first block (N·d > 360/(20·2⁻⁶⁴) nm): the
     /// end of that block, below which a lookup is `Exact`; −1 where the grid resolves the lobe.
     exact_below: f64,
@@ -206,21 +177,6 @@ pub struct ColorTable {
     spectral: Spectral,
     /// Colour evaluations the build took.
     evaluations: usize,
-}
-
-/// A block while the grid is refined.
-struct Work {
-    u0: f64,
-    h: f64,
-    n: usize,
-    /// Values at the n + 1 nodes.
-    vals: Vec<[f64; 3]>,
-    /// Values at the n midpoints (empty until computed).
-    mids: Vec<[f64; 3]>,
-    /// Refinement stopped by the node budget.
-    capped: bool,
-    /// The worst midpoint error at the last check.
-    err: f64,
 }
 
 impl ColorTable {
@@ -236,6 +192,15 @@ impl ColorTable {
     /// assert!(ColorTable::ASYMPTOTIC_ACCURACY <= DEFAULT_ACCURACY);
     /// ```
     pub const ASYMPTOTIC_ACCURACY: f64 = 1e-4;
+
+    /// The version of the stored form (feature `serde`) that this crate writes and reads; a
+    /// stored table of another version is refused on load (the error names `format_version`).
+    /// The stored form and its checks are described in docs/color_table.md.
+    ///
+    /// ```
+    /// assert_eq!(diffraction::ColorTable::FORMAT_VERSION, 1);
+    /// ```
+    pub const FORMAT_VERSION: u32 = 1;
 
     /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
     /// first, and [`error_estimate`](Self::error_estimate) says what was reached.
@@ -314,216 +279,36 @@ impl ColorTable {
                 return Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite))
             }
         };
-        let d = grating.period_nm();
         let white = spectral.white();
         let white = [white.x, white.y, white.z];
-        let fast =
-            n >= bounds::ASYMPTOTIC_MIN_SLITS as f64 && accuracy >= Self::ASYMPTOTIC_ACCURACY;
-        let order0_from = ORDER0_HALF_PERIOD_NM / d;
-        // Where order 0's light reaches the band, `Asymptotic` is within ORDER0_BOUND of that
-        // light: a relative error δ moves CIELAB's f(t) by δ·t^(1/3)/3, within the tolerance
-        // (accuracy/3) while t ≤ (accuracy/ORDER0_BOUND)³; brighter nodes are recomputed by `Exact`.
-        let dark_t = {
-            let r = accuracy / bounds::ASYMPTOTIC_ORDER0;
-            r * r * r
-        };
-        // Below the accuracy where `Asymptotic` is used, a node is the cheapest strategy whose
-        // bound meets DARK_SHARE of the accuracy (the peak search for very fine gratings,
-        // whose bound 8/N is far below it; otherwise `Exact`).
-        let careful = Strategy::auto((accuracy * DARK_SHARE).max(MIN_ACCURACY))?;
-        let evaluations = core::cell::Cell::new(0usize);
-        let work_done = core::cell::Cell::new(0usize);
-        // A colour is at most S_max·flat per channel (F_N ≤ 1, S(β) ≤ 1/β² with β ≥ π·ρ·x at
-        // the band's longest wavelength), and the tolerance at least DARK_SHARE·accuracy·
-        // white·floor: where that bound is below it the node is black without an evaluation
-        // (the dense combs of very coarse gratings, d·|u| in millimetres and more).
-        let flat = spectral.xyz(grating, 0.0, Strategy::EXACT);
-        let flat = [flat.x, flat.y, flat.z];
-        let dark = accuracy * DARK_SHARE * accuracy_floor(n);
-        let slit = core::f64::consts::PI * grating.open_fraction() / LAMBDA_MAX_NM;
-        let provably_dark = |u: f64| {
-            let beta = slit * d * u;
-            beta > 1.0 && (0..3).all(|c| flat[c] / (beta * beta) <= dark * white[c])
-        };
-        let eval = |u: f64, scale: f64| {
-            if provably_dark(u) {
-                return [0.0; 3];
-            }
-            evaluations.set(evaluations.get() + 1);
-            work_done.set(work_done.get() + work_units(d * u));
-            if fast {
-                let c = spectral.xyz(grating, u, Strategy::ASYMPTOTIC);
-                let c = [c.x, c.y, c.z];
-                if u >= order0_from {
-                    return c;
-                }
-                let exposure = scale.max(c[1]);
-                if (0..3).all(|k| c[k] <= dark_t * white[k] * exposure) {
-                    return c;
-                }
-            }
-            let strategy = if fast {
-                Strategy::EXACT
-            } else {
-                spectral.choose(grating, u, careful)
-            };
-            let c = spectral.xyz(grating, u, strategy);
-            [c.x, c.y, c.z]
-        };
-        let mut scale = accuracy_floor(n);
-        let diffracted_from = LAMBDA_MIN_NM / d;
-
-        // Blocks: [0, u_lo), then 2^SUB_BITS per octave up to U_MAX.
-        let lobe_end = LAMBDA_MIN_NM / (LOBE_FRACTION * n * d);
-        let u_lo = power_of_two_below(lobe_end).clamp(MIN_U_LO, 1.0);
-        // Order 0's lobe narrower than the first block: not resolved (see `lookup`).
-        let unresolved = lobe_end < MIN_U_LO || lobe_end.is_nan();
-        let base_key = u_lo.to_bits() >> SHIFT;
-        let end_key = U_MAX.to_bits() >> SHIFT;
-        let mut bounds = Vec::with_capacity((end_key - base_key + 2) as usize);
-        bounds.push(0.0);
-        for key in base_key..=end_key {
-            bounds.push(f64::from_bits(key << SHIFT));
-        }
-        // Every block starts with two intervals, so that it is checked at two points.
-        let values: Vec<[f64; 3]> = bounds.iter().map(|&u| eval(u, scale)).collect();
-        let mut work: Vec<Work> = bounds
-            .windows(2)
-            .zip(values.windows(2))
-            .map(|(b, v)| {
-                let h = 0.5 * (b[1] - b[0]);
-                Work {
-                    u0: b[0],
-                    h,
-                    n: 2,
-                    vals: alloc::vec![v[0], eval(b[0] + h, scale), v[1]],
-                    mids: Vec::new(),
-                    capped: false,
-                    err: 0.0,
-                }
-            })
-            .collect();
-        if unresolved {
+        let floor = GratingNodes::paper_floor(n);
+        let nodes = GratingNodes::new(spectral, grating, n, accuracy, 1.0, white, floor)?;
+        let (u_lo, unresolved) = first_block(grating);
+        let plan = Plan {
+            accuracy,
+            white,
+            floor,
+            diffracted_from: LAMBDA_MIN_NM / grating.period_nm(),
+            u_lo,
             // The first block holds the lobe, which no grid of that spacing resolves: lookups
             // there are `Exact`, so the block is neither refined nor checked (its values only
             // enter `mean`).
-            work[0].capped = true;
-        }
-        let mut nodes_used = 2 * bounds.len() - 1;
-        for w in &work {
-            for (j, v) in w.vals.iter().enumerate() {
-                if w.u0 + j as f64 * w.h >= diffracted_from {
-                    scale = scale.max(v[1]);
-                }
-            }
-        }
-
-        loop {
-            let (xs, fs, starts) = assemble(&work);
-            let ds = derivatives(&xs, &fs);
-            // Every block is checked against the current derivatives (a neighbour's refinement
-            // changes them); only new midpoints cost an evaluation.
-            let mut failing: Vec<(usize, f64)> = Vec::new();
-            for (k, w) in work.iter_mut().enumerate() {
-                if w.mids.is_empty() {
-                    w.mids = (0..w.n)
-                        .map(|j| eval(w.u0 + (j as f64 + 0.5) * w.h, scale))
-                        .collect();
-                    for (j, m) in w.mids.iter().enumerate() {
-                        if w.u0 + (j as f64 + 0.5) * w.h >= diffracted_from {
-                            scale = scale.max(m[1]);
-                        }
-                    }
-                }
-                let mut err = 0.0f64;
-                for (j, exact) in w.mids.iter().enumerate() {
-                    let i = starts[k] + j;
-                    for c in 0..3 {
-                        let interp = 0.5 * (fs[i][c] + fs[i + 1][c])
-                            + 0.125 * w.h * (ds[i][c] - ds[i + 1][c]);
-                        let tol = tolerance(exact, c, scale, white);
-                        err = err.max((interp - exact[c]).abs() / tol);
-                    }
-                }
-                w.err = err;
-                if err > accuracy && !w.capped {
-                    failing.push((k, err));
-                }
-            }
-            if failing.is_empty() {
-                break;
-            }
-            failing.sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
-            // The evaluations spent and planned for the next round's midpoint checks.
-            let mut planned = work_done.get();
-            for (k, _) in failing {
-                let w = &mut work[k];
-                // Doubling adds w.n nodes (already evaluated as midpoints) and costs 2·w.n
-                // new midpoint checks.
-                let cost = 2 * w.n * work_units(d * (w.u0 + w.n as f64 * w.h));
-                let over_budget = planned + cost > Self::MAX_WORK;
-                if nodes_used + w.n > Self::MAX_NODES || w.n >= MAX_BLOCK_INTERVALS || over_budget {
-                    w.capped = true;
-                    continue;
-                }
-                planned += cost;
-                nodes_used += w.n;
-                let mut vals = Vec::with_capacity(2 * w.n + 1);
-                for (j, m) in w.mids.iter().enumerate() {
-                    vals.push(w.vals[j]);
-                    vals.push(*m);
-                }
-                vals.push(w.vals[w.n]);
-                w.vals = vals;
-                w.mids = Vec::new();
-                w.n *= 2;
-                w.h *= 0.5;
-            }
-        }
-
-        let skip = unresolved as usize;
-        let error = work.iter().skip(skip).fold(0.0f64, |m, w| m.max(w.err));
-        let (xs, fs, starts) = assemble(&work);
-        let ds = derivatives(&xs, &fs);
-        let blocks: Vec<Block> = work
-            .iter()
-            .zip(&starts)
-            .map(|(w, &first)| Block {
-                u0: w.u0,
-                h: w.h,
-                inv_h: 1.0 / w.h,
-                first: first as u32,
-                n: w.n as u32,
-            })
-            .collect();
-        let nodes: Vec<Node> = fs.iter().zip(&ds).map(|(&f, &d)| Node { f, d }).collect();
-        let mut cumulative = Vec::with_capacity(nodes.len());
-        let mut acc = [0.0; 3];
-        cumulative.push(acc);
-        for b in &blocks {
-            for j in 0..b.n as usize {
-                let i = b.first as usize + j;
-                let cell = cell_integral(&nodes[i], &nodes[i + 1], b.h, 1.0);
-                for c in 0..3 {
-                    acc[c] += cell[c];
-                }
-                cumulative.push(acc);
-            }
-        }
+            skip_first: unresolved,
+            period_nm: grating.period_nm(),
+            max_nodes: Self::MAX_NODES,
+            max_work: Self::MAX_WORK,
+        };
+        let grid = Tabulated::build(&plan, &|u, scale| nodes.eval(u, scale), &|| {
+            nodes.work_done.get()
+        });
         Ok(ColorTable {
             grating: *grating,
             illuminant: spectral.illuminant(),
             accuracy,
-            scale,
-            error,
-            u_lo,
-            base_key,
-            blocks,
-            nodes,
-            cumulative,
+            grid,
             exact_below: if unresolved { u_lo } else { -1.0 },
             spectral: *spectral,
-            evaluations: evaluations.get(),
+            evaluations: nodes.evaluations.get(),
         })
     }
 
@@ -569,9 +354,7 @@ impl ColorTable {
         if a < self.exact_below {
             return self.spectral.xyz(&self.grating, a, Strategy::EXACT);
         }
-        let (i, s, h) = self.locate(a.min(U_MAX));
-        let f = hermite(&self.nodes[i], &self.nodes[i + 1], h, s);
-        Xyz::new(f[0].max(0.0), f[1].max(0.0), f[2].max(0.0))
+        self.grid.value(a.min(U_MAX))
     }
 
     /// The mean colour over u ∈ [u0, u1] (either order): (1/|u1 − u0|)·∫ XYZ(|u|) du of the
@@ -600,58 +383,7 @@ impl ColorTable {
     /// ```
     #[must_use]
     pub fn mean(&self, u0: f64, u1: f64) -> Xyz {
-        if !(u0.is_finite() && u1.is_finite()) {
-            return Xyz::default();
-        }
-        let (a, b) = if u0 <= u1 { (u0, u1) } else { (u1, u0) };
-        let len = b - a;
-        let mid = 0.5 * a + 0.5 * b;
-        let (_, _, h) = self.locate(mid.abs().min(U_MAX));
-        // Finite ends: len is not NaN (it may overflow to +∞, handled below).
-        if len <= TINY_FRACTION * h {
-            return self.lookup(mid);
-        }
-        // ∫_a^b XYZ(|u|) du = F(b) − F(a) with F odd, F(v) = ∫₀^v for v ≥ 0; clamped to [−2, 2].
-        let (ca, cb) = (a.clamp(-U_MAX, U_MAX), b.clamp(-U_MAX, U_MAX));
-        let inside = if ca >= 0.0 {
-            self.integral(ca, cb)
-        } else if cb <= 0.0 {
-            self.integral(-cb, -ca)
-        } else {
-            let (l, r) = (self.integral(0.0, -ca), self.integral(0.0, cb));
-            [l[0] + r[0], l[1] + r[1], l[2] + r[2]]
-        };
-        let mut m = [inside[0] / len, inside[1] / len, inside[2] / len];
-        let outside = 1.0 - (cb - ca) / len;
-        if outside > 0.0 {
-            let edge = self.lookup(U_MAX);
-            m[0] += outside * edge.x;
-            m[1] += outside * edge.y;
-            m[2] += outside * edge.z;
-        }
-        Xyz::new(m[0].max(0.0), m[1].max(0.0), m[2].max(0.0))
-    }
-
-    /// ∫ over [a, b] of the interpolant, 0 ≤ a ≤ b ≤ 2: whole cells from the cumulative sums,
-    /// the partial cells at each end directly, so that no digits are lost to large sums.
-    fn integral(&self, a: f64, b: f64) -> [f64; 3] {
-        let (ia, sa, ha) = self.locate(a);
-        let (ib, sb, hb) = self.locate(b);
-        if ia == ib {
-            let lo = cell_integral(&self.nodes[ia], &self.nodes[ia + 1], ha, sa);
-            let hi = cell_integral(&self.nodes[ib], &self.nodes[ib + 1], hb, sb);
-            return [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-        }
-        // [a, node ia + 1]: the cell's rest; whole cells ia + 1 .. ib; [node ib, b].
-        let whole_a = cell_integral(&self.nodes[ia], &self.nodes[ia + 1], ha, 1.0);
-        let part_a = cell_integral(&self.nodes[ia], &self.nodes[ia + 1], ha, sa);
-        let part_b = cell_integral(&self.nodes[ib], &self.nodes[ib + 1], hb, sb);
-        let (c0, c1) = (&self.cumulative[ia + 1], &self.cumulative[ib]);
-        let mut out = [0.0; 3];
-        for c in 0..3 {
-            out[c] = (whole_a[c] - part_a[c]) + (c1[c] - c0[c]) + part_b[c];
-        }
-        out
+        self.grid.mean(u0, u1, &|u| self.lookup(u))
     }
 
     /// The grid for `gpu::GpuColorTable`: the end of block 0, the u below which lookups are
@@ -667,28 +399,8 @@ impl ColorTable {
         impl Iterator<Item = (f64, f64, u32, u32)> + '_,
         impl Iterator<Item = ([f64; 3], [f64; 3])> + '_,
     ) {
-        (
-            self.u_lo,
-            self.exact_below,
-            self.blocks.iter().map(|b| (b.u0, b.h, b.first, b.n)),
-            self.nodes.iter().map(|n| (n.f, n.d)),
-        )
-    }
-
-    /// The node index, the fraction in [0, 1] and the spacing of the cell holding `a` ∈ [0, 2].
-    #[inline]
-    fn locate(&self, a: f64) -> (usize, f64, f64) {
-        let k = if a < self.u_lo {
-            0
-        } else {
-            // a ≥ u_lo, so its key is at least base_key.
-            ((a.to_bits() >> SHIFT) - self.base_key + 1) as usize
-        };
-        let b = &self.blocks[k.min(self.blocks.len() - 1)];
-        let t = (a - b.u0) * b.inv_h;
-        // t ≥ 0 (a ≥ u0); `as` truncates toward 0, which is floor here, and saturates.
-        let j = (t as u32).min(b.n - 1);
-        ((b.first + j) as usize, t - j as f64, b.h)
+        let (blocks, nodes) = self.grid.gpu_parts();
+        (self.grid.u_lo, self.exact_below, blocks, nodes)
     }
 
     /// The error scale Y_b: the largest Y at the table's u with d·|u| ≥ 360 nm (the brightest
@@ -705,7 +417,7 @@ impl ColorTable {
     /// ```
     #[must_use]
     pub fn scale(&self) -> f64 {
-        self.scale
+        self.grid.scale
     }
 
     /// The worst error found at the midpoint checks when the table was built, in the units of
@@ -723,7 +435,7 @@ impl ColorTable {
     /// ```
     #[must_use]
     pub fn error_estimate(&self) -> f64 {
-        self.error
+        self.grid.error
     }
 
     /// The accuracy the table was asked for.
@@ -783,7 +495,7 @@ impl ColorTable {
     /// ```
     #[must_use]
     pub fn node_count(&self) -> usize {
-        self.nodes.len()
+        self.grid.node_count()
     }
 
     /// Heap and inline memory of the table, bytes.
@@ -799,9 +511,15 @@ impl ColorTable {
     /// ```
     #[must_use]
     pub fn size_bytes(&self) -> usize {
-        core::mem::size_of::<Self>()
-            + self.blocks.capacity() * core::mem::size_of::<Block>()
-            + self.nodes.capacity() * core::mem::size_of::<Node>()
-            + self.cumulative.capacity() * core::mem::size_of::<[f64; 3]>()
+        core::mem::size_of::<Self>() + self.grid.heap_bytes()
     }
+}
+
+/// The end u_lo of a grating's first block, 2^⌊log₂(360 nm/(20·N·d))⌋ within [2⁻⁶⁴, 1], and
+/// whether order 0's lobe is narrower than that block (N·d > 360/(20·2⁻⁶⁴) nm: not resolved).
+fn first_block(grating: &Grating) -> (f64, bool) {
+    let (n, d) = (grating.slits().as_f64(), grating.period_nm());
+    let lobe_end = LAMBDA_MIN_NM / (LOBE_FRACTION * n * d);
+    let u_lo = power_of_two_below(lobe_end).clamp(MIN_U_LO, 1.0);
+    (u_lo, lobe_end < MIN_U_LO || lobe_end.is_nan())
 }

@@ -109,6 +109,13 @@ pub enum Requirement {
         /// The diffraction order.
         order: i32,
     },
+    /// The same at every wavelength (a groove spread other than a coherence length, whose
+    /// width λ/L changes with λ): the value is the rejected length.
+    IndependentOfWavelength,
+    /// Order efficiencies that are the same at every incidence and wavelength (the amplitude
+    /// reading): a tabulated model's colour does not factorise into one function of u. The value
+    /// is the number of orders the table stores.
+    NotTabulated,
 }
 
 impl Error {
@@ -174,6 +181,15 @@ impl fmt::Display for Error {
             ),
             Error::InvalidParameter {
                 name,
+                requirement: Requirement::NotTabulated,
+                ..
+            } => write!(
+                f,
+                "invalid {name}: tabulated order efficiencies depend on the incidence and the \
+                 wavelength, so the colour is no function of u alone (no table over u)"
+            ),
+            Error::InvalidParameter {
+                name,
                 value,
                 requirement,
             } => {
@@ -206,7 +222,12 @@ impl fmt::Display for Error {
                         "be 0: order {order} is evanescent there (|sin_theta_i + m lambda/d| >= 1)"
                     ),
                     // Printed by the arms above.
-                    Requirement::Count { .. } | Requirement::Slices { .. } => Ok(()),
+                    Requirement::Count { .. }
+                    | Requirement::Slices { .. }
+                    | Requirement::NotTabulated => Ok(()),
+                    Requirement::IndependentOfWavelength => {
+                        write!(f, "be the same at every wavelength")
+                    }
                 }
             }
         }

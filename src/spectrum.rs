@@ -310,9 +310,8 @@ impl Spectral {
     }
 
     /// E(λ)·cmf(λ)·norm at one wavelength, the weight of a spectral sample.
-    /// E(λ)·cmf(λ)·norm at one wavelength, the weight of a spectral sample.
     #[inline]
-    pub(super) fn weight(&self, lambda_nm: f64) -> DVec3 {
+    pub(crate) fn weight(&self, lambda_nm: f64) -> DVec3 {
         let mut e = self.illuminant.power(lambda_nm) * self.norm;
         if !self.envelope.is_one() {
             e *= self.envelope.at(lambda_nm);

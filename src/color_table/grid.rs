@@ -4,7 +4,8 @@
 
 use alloc::vec::Vec;
 
-use super::{Node, Work, LAMBDA_MAX_NM, LAMBDA_MIN_NM};
+use super::tabulated::{Node, Work};
+use super::{LAMBDA_MAX_NM, LAMBDA_MIN_NM};
 use crate::math::cbrt;
 
 /// The error allowed in channel `c` of `exact`, over the accuracy: the change of that channel
