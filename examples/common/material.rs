@@ -11,6 +11,7 @@ use std::sync::Arc;
 
 use diffraction::frame::{GratingField, Tile};
 use diffraction::Illumination;
+use diffraction::relief::Preset;
 use glam::DVec3;
 
 use crate::colour::Colour;
@@ -265,12 +266,16 @@ impl<'a> Loader<'a> {
             }
             (Some(d), None) => check(&f("period_nm"), d, limits::PERIOD_NM)?,
             (None, Some(l)) => 1.0e6 / check(&f("lines_per_mm"), l, limits::LINES_PER_MM)?,
-            (None, None) => {
-                return Err(FieldError::new(
-                    f("period_nm"),
-                    "missing: a grating needs period_nm (or lines_per_mm)",
-                ))
-            }
+            (None, None) => match g.efficiency.as_deref().map(str::parse::<Preset>) {
+                // A preset's table fixes the period.
+                Some(Ok(preset)) => preset.period_nm(),
+                _ => {
+                    return Err(FieldError::new(
+                        f("period_nm"),
+                        "missing: a grating needs period_nm (or lines_per_mm)",
+                    ))
+                }
+            },
         };
         let kdiff = check(
             &f("diffraction"),

@@ -238,6 +238,10 @@ pub struct RawGrating {
     pub reflectance: Option<f64>,
     /// The radiometric grating's Gaussian spread along the grooves.
     pub groove_sigma: Option<f64>,
+    /// The radiometric grating's order efficiencies: "amplitude" (default) or a rigorous
+    /// preset of `diffraction::relief::Preset` ("cd", "dvd", "blazed600", "foil"), whose
+    /// period is then the default `period_nm`.
+    pub efficiency: Option<String>,
 }
 
 /// The grating models a scene names (`model`) and the parameters each takes; which of them a
@@ -252,13 +256,19 @@ pub const MODELS: [(&str, &[&str]); 5] = [
     ),
     (
         "radiometric",
-        &["slit_width_nm", "slits", "coherence_nm", "groove_sigma"],
+        &[
+            "slit_width_nm",
+            "slits",
+            "coherence_nm",
+            "groove_sigma",
+            "efficiency",
+        ],
     ),
 ];
 
 impl RawGrating {
     /// The model parameters present, by key.
-    pub fn parameters(&self) -> [(&'static str, bool); 8] {
+    pub fn parameters(&self) -> [(&'static str, bool); 9] {
         [
             ("slit_width_nm", self.slit_width_nm.is_some()),
             ("slits", self.slits.is_some()),
@@ -268,6 +278,7 @@ impl RawGrating {
             ("coherence_nm", self.coherence_nm.is_some()),
             ("reflectance", self.reflectance.is_some()),
             ("groove_sigma", self.groove_sigma.is_some()),
+            ("efficiency", self.efficiency.is_some()),
         ]
     }
 }

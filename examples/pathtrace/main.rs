@@ -235,7 +235,11 @@ impl run::Renderer for Integrator {
                     .enumerate()
                     .filter_map(|(i, m)| m.grating.as_ref().map(|g| (i, g)))
                     .map(|(i, g)| {
-                        let integrand = Integrand::Grating(*g.model.grating());
+                        let integrand = if g.model.order_efficiency().is_tabulated() {
+                            Integrand::Tabulated(g.model.grating().period_nm())
+                        } else {
+                            Integrand::Grating(*g.model.grating())
+                        };
                         let ns = budget::colour_ns(&scene.spectral, integrand, g.strategy);
                         (
                             ns,

@@ -24,6 +24,8 @@
 use diffraction::cie::{cmf, Illuminant};
 use diffraction::color::Xyz;
 use diffraction::spectrum::Spectral;
+use diffraction::grating_bsdf::OrderEfficiency;
+use diffraction::relief::Preset;
 use diffraction::{Band, Grating, GratingBsdf, GrooveSpread};
 use glam::DVec3;
 
@@ -277,7 +279,25 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
         None => GratingBsdf::new(grating),
         Some(spread) => GratingBsdf::new(grating).with_groove(spread),
     };
-    Ok(bsdf)
+    match g.efficiency.as_deref() {
+        None | Some("amplitude") => Ok(bsdf),
+        Some(name) => {
+            let preset: Preset = name.parse().map_err(|e: diffraction::ParseError| {
+                FieldError::new(f("efficiency"), format!("{e} or amplitude, got \"{name}\""))
+            })?;
+            if preset.period_nm() != period {
+                return Err(FieldError::new(
+                    f("period_nm"),
+                    format!(
+                        "the preset \"{name}\" is tabulated for a period of {} nm, got {period} \
+                         (leave period_nm out to take the preset's)",
+                        preset.period_nm()
+                    ),
+                ));
+            }
+            Ok(bsdf.with_efficiency(OrderEfficiency::preset(preset)))
+        }
+    }
 }
 
 /// The scenes of the path tracer: physical units (a `[radiometry]` table), gratings of model

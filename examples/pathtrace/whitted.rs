@@ -16,6 +16,7 @@
 
 use diffraction::color::Xyz;
 use diffraction::SpectralResponse;
+use diffraction::spectrum::GenericStrategy;
 use glam::DVec3;
 
 use crate::camera::{self, Camera, CameraRays};
@@ -69,9 +70,17 @@ pub fn trace(scene: &Scene<Radiometric>, ray: &Ray, depth: u32, rng: &mut Rng) -
             if let Some(b) = surface.grating {
                 // ∫ s·f·cmf dλ·cos, from the crate's colour (relative to ∫ s·ȳ).
                 let g = match surface.strategy {
-                    Colour::Integral(s) => b
-                        .grating_response(wo_l, wi_l)
-                        .map_or(Xyz::default(), |r| scene.spectral.xyz_response(&r, s)),
+                    Colour::Integral(s) => match b.grating_response(wo_l, wi_l) {
+                        Some(r) => scene.spectral.xyz_response(&r, s),
+                        // Tabulated efficiencies (η depends on λ): the generic rule of the
+                        // same name (`Colour::generic`).
+                        None => {
+                            let rule = Colour::Integral(s)
+                                .generic()
+                                .unwrap_or(GenericStrategy::WINDOWS);
+                            scene.spectral.xyz_brdf(b, wo_l, wi_l, rule)
+                        }
+                    },
                     Colour::Paper => scene.spectral.paper_peaks_brdf(b, wo_l, wi_l),
                 };
                 c += g * (r.ys * surface.grating_weight);
@@ -117,3 +126,4 @@ pub fn film(r: &Radiometry, xyz: Xyz) -> DVec3 {
     let c = (xyz * r.exposure).to_linear_srgb();
     DVec3::new(c.r, c.g, c.b)
 }
+
