@@ -45,9 +45,17 @@ pub trait Renderer: Sync {
     }
 }
 
+/// The crate's root directory (`examples/` is there): the including package's manifest
+/// directory, or `DIFFRACTION_EXAMPLES_ROOT` at compile time (set by the build script of the
+/// workspace member `gpu-tests`, which includes these files too).
+pub const ROOT: &str = match option_env!("DIFFRACTION_EXAMPLES_ROOT") {
+    Some(root) => root,
+    None => env!("CARGO_MANIFEST_DIR"),
+};
+
 /// Where the shipped scenes live.
 pub fn scenes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
+    Path::new(ROOT).join("examples/scenes")
 }
 
 /// The shipped scene names, sorted.
@@ -66,7 +74,7 @@ pub fn scene_names() -> Vec<String> {
 }
 
 /// A scene argument: a shipped scene's name, or a path to a `.toml` file.
-fn scene_path(arg: &str) -> Result<PathBuf, String> {
+pub fn scene_path(arg: &str) -> Result<PathBuf, String> {
     let as_path = Path::new(arg);
     if arg.ends_with(".toml") || arg.contains(std::path::MAIN_SEPARATOR) || arg.contains('/') {
         return Ok(as_path.to_path_buf());

@@ -58,7 +58,7 @@ pub fn render(p: &PaperScene, camera: &Camera, progress: Option<&str>) -> Image 
 }
 
 /// The sky seen along `dir`: `background` at the horizon and below, `zenith` straight up.
-fn sky(scene: &Scene<Paper>, dir: DVec3) -> DVec3 {
+pub fn sky(scene: &Scene<Paper>, dir: DVec3) -> DVec3 {
     let env = &scene.units;
     let t = dir.y.clamp(0.0, 1.0);
     env.background + (env.zenith - env.background) * t
@@ -67,7 +67,7 @@ fn sky(scene: &Scene<Paper>, dir: DVec3) -> DVec3 {
 /// The fraction of `light` visible from `origin`: one shadow ray for a point light, `samples`
 /// stratified rays ([`Strata`]) toward a disc of the light's radius facing the point for a
 /// spherical one.
-fn visibility(scene: &Scene<Paper>, origin: DVec3, light: &Light, rng: &mut Rng) -> f64 {
+pub fn visibility(scene: &Scene<Paper>, origin: DVec3, light: &Light, rng: &mut Rng) -> f64 {
     let objects = &scene.objects;
     if light.radius <= 0.0 {
         let to = light.position - origin;

@@ -30,3 +30,13 @@ pub const SINGLE_SLIT_WORST_MEASURED: f64 = 5e-7;
 /// cell (docs/gpu.md: the nodes rounded to f32, the cubic basis and the sum, and the rounding of
 /// the position in the cell).
 pub const TABLE_ROUNDINGS: f64 = 16.0;
+
+/// The mean ΔE2000 between the example gpu's fig. 6 (G-buffer on the CPU, eq. 12 and the colour
+/// table in WGSL) and the reference tracer's with the same colour rule, at 96×72 and 4 spp
+/// (gpu-tests/tests/scenes.rs): the f32 shading's roundings only, measured 1.5e-5 on lavapipe
+/// (7.9e-6 at 480×360); margin 10× (far below the 1 of a visible difference: a tenfold
+/// regression of the shading's precision, or any systematic error, fails it).
+pub const SCENE_MEAN_DELTA_E: f64 = 1.5e-4;
+/// The largest ΔE2000 of one pixel there: measured 0.06 (a grating pixel where a light is at
+/// grazing incidence and f32 decides the sign of cos θ differently); margin 5×.
+pub const SCENE_MAX_DELTA_E: f64 = 0.3;

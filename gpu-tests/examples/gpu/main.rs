@@ -1,142 +1,117 @@
-//! Fig. 6 of Agu & Hill rendered headless on the GPU with the library's WGSL shading: the CD's
-//! data area is shaded by `diffraction_shade_grating` (eq. 12 with the grating's colour table,
-//! built on the CPU and uploaded as three buffers), everything else by `diffraction_shade`.
-//! A simplified fig6 (examples/scenes/fig6.toml): no mirror reflections, a striped can instead
-//! of the label image, hard shadows of the can only, one sample per pixel.
+//! The paper's scenes (examples/scenes/*.toml: fig4a, fig4b, fig6, ...) with the library's WGSL
+//! shading: the geometry on the CPU by the reference tracer's own code (`examples/common`, the
+//! scene loader, the camera, ray casting, shadow rays and mirror recursion of
+//! `examples/raytrace`), a G-buffer of every hit ([`gbuffer`]), and eq. 12 with each grating's
+//! colour table on the GPU in one compute pass ([`device`], `shade.wgsl`). Each picture is
+//! compared with the reference tracer's at the same size, samples and seed with the same
+//! colour rule (`raytrace --filter point`: the colour table's lookup at each sample's u), and
+//! the mean ΔE2000 printed with the frame time.
 //!
-//! `cargo run -p gpu-tests --example gpu -- [out.png]` (default `target/gpu_fig6.png`); any
-//! wgpu adapter works, Mesa lavapipe included (`NODEVICE_SELECT=1` silences its warning).
+//! ```text
+//! cargo run --release -p gpu-tests --example gpu -- fig6 --width 480 --height 360 --out gpu.png
+//! cargo run --release -p gpu-tests --example gpu -- --help
+//! ```
+//!
+//! Any wgpu adapter works, Mesa lavapipe included (`NODEVICE_SELECT=1` silences its warning).
 
-use std::time::Instant;
+#[path = "../../../examples/common/budget.rs"]
+pub mod budget;
+#[path = "../../../examples/common/camera.rs"]
+pub mod camera;
+#[path = "../../../examples/common/cli.rs"]
+pub mod cli;
+#[path = "../../../examples/common/colour.rs"]
+pub mod colour;
+#[path = "../../../examples/common/diagnostics.rs"]
+pub mod diagnostics;
+#[path = "../../../examples/common/files.rs"]
+pub mod files;
+#[path = "../../../examples/common/font.rs"]
+pub mod font;
+#[path = "../../../examples/raytrace/footprint.rs"]
+pub mod footprint;
+#[path = "../../../examples/common/geometry.rs"]
+pub mod geometry;
+#[path = "../../../examples/common/limits.rs"]
+pub mod limits;
+#[path = "../../../examples/common/material.rs"]
+pub mod material;
+#[path = "../../../examples/raytrace/model.rs"]
+pub mod model;
+#[path = "../../../examples/common/output.rs"]
+pub mod output;
+#[path = "../../../examples/common/run.rs"]
+pub mod run;
+#[path = "../../../examples/common/sampling.rs"]
+pub mod sampling;
+#[path = "../../../examples/common/scene.rs"]
+pub mod scene;
+#[path = "../../../examples/common/schema.rs"]
+pub mod schema;
+#[path = "../../../examples/common/texture.rs"]
+pub mod texture;
+#[path = "../../../examples/raytrace/whitted.rs"]
+pub mod whitted;
 
-use diffraction::gpu::{shading_source, GpuColorTable, GpuIllumination};
-use diffraction::spectrum::{Illuminant, Spectral};
-use diffraction::{ColorTable, Grating, Illumination};
-use wgpu::util::DeviceExt;
+pub mod compare;
+pub mod device;
+pub mod gbuffer;
+pub mod renderer;
 
-const WIDTH: u32 = 480;
-const HEIGHT: u32 = 360;
+use std::process::ExitCode;
 
-fn main() {
-    let out = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "target/gpu_fig6.png".to_string());
+use cli::{Command, Options};
+use renderer::{Args, GpuRenderer};
 
-    // The CD's grating (fig6.toml: d = 1600 nm, w = 800 nm, N = 1000) under D65, its table, and
-    // the exposure that makes its brightest diffracted colour Y = 1 (the CPU ray tracer's).
-    let start = Instant::now();
-    let grating = Grating::new(1600.0, 800.0, 1000).expect("grating");
-    let spectral = Spectral::new(Illuminant::D65);
-    let table = ColorTable::new(&spectral, &grating, 1e-3).expect("table");
-    let from = 360.0 / grating.period_nm();
-    let brightest = (0..4000)
-        .map(|i| table.lookup(from + (2.0 - from) * i as f64 / 3999.0).y)
-        .fold(0.0f64, f64::max);
-    let exposure = if brightest > 0.0 {
-        1.0 / brightest
-    } else {
-        1.0
+const USAGE: &str = "\
+gpu: the paper's scenes with the diffraction crate's WGSL shading (geometry on the CPU, by the
+reference tracer's code; eq. 12 and the colour tables on the GPU), compared with the reference
+tracer (raytrace --filter point) by the mean CIEDE2000 over the picture
+
+USAGE:
+    gpu [SCENE...] [OPTIONS]
+
+With no SCENE, renders every paper scene of examples/scenes into out/. SCENE is a shipped
+scene's name (fig4a, fig4b, fig6, ...) or a path to a .toml scene file; its gratings must be
+the paper's model with a spectral strategy (a colour table is built for each).
+
+";
+
+const OWN_OPTIONS: &str = "\
+    --max-depth D      mirror recursion, 0-64
+    --no-reference     do not render the reference picture (no ΔE2000)
+";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match cli::parse::<Args>(&args) {
+        Err(e) => {
+            eprintln!("error: {e}\n\nRun with --help for usage.");
+            return ExitCode::from(2);
+        }
+        Ok(Command::Help) => {
+            print!("{USAGE}{}{OWN_OPTIONS}{}", cli::OPTIONS, cli::OUTPUTS);
+            Ok(())
+        }
+        Ok(Command::Render(opts, extra)) => {
+            // An unknown scene is a usage error, like a bad option.
+            if let Some(e) = opts.scenes.iter().find_map(|s| run::scene_path(s).err()) {
+                eprintln!("error: {e}\n\nRun with --help for usage.");
+                return ExitCode::from(2);
+            }
+            render(&opts, &extra)
+        }
     };
-    let gpu_table = GpuColorTable::new(&table);
-    println!(
-        "table: {} nodes in {:.0} ms, exposure {exposure:.1}",
-        table.node_count(),
-        start.elapsed().as_secs_f64() * 1e3
-    );
-
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
-    let adapter = pollster::block_on(instance.request_adapter(&Default::default()))
-        .expect("no GPU adapter (on Linux without a GPU: apt-get install mesa-vulkan-drivers)");
-    println!("adapter: {}", adapter.get_info().name);
-    let (device, queue) =
-        pollster::block_on(adapter.request_device(&Default::default())).expect("device");
-
-    let source = format!("{}\n{}", shading_source(1, 0), include_str!("scene.wgsl"));
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("fig6"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("fig6"),
-        layout: None,
-        module: &module,
-        entry_point: Some("render"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-
-    // Params: width, height, exposure, pad, then the grating's eq. 12 coefficients (fig6's
-    // grating material: k_a = k_d = 1 and the diffraction term 1).
-    let k = GpuIllumination::from(&Illumination::new(1.0, 1.0, 1.0).expect("coefficients"));
-    let mut params = Vec::with_capacity(32);
-    params.extend_from_slice(&WIDTH.to_le_bytes());
-    params.extend_from_slice(&HEIGHT.to_le_bytes());
-    params.extend_from_slice(&(exposure as f32).to_le_bytes());
-    params.extend_from_slice(&0f32.to_le_bytes());
-    params.extend_from_slice(&k.to_bytes());
-    let init = |bytes: &[u8], usage| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: None,
-            contents: bytes,
-            usage,
-        })
-    };
-    let params = init(&params, wgpu::BufferUsages::UNIFORM);
-    let size = (4 * WIDTH * HEIGHT) as u64;
-    let pixels = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("pixels"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let read = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("read"),
-        size,
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
-    let header = init(&gpu_table.header_bytes(), wgpu::BufferUsages::UNIFORM);
-    let blocks = init(&gpu_table.blocks_bytes(), wgpu::BufferUsages::STORAGE);
-    let nodes = init(&gpu_table.nodes_bytes(), wgpu::BufferUsages::STORAGE);
-    let group = |index: u32, buffers: &[&wgpu::Buffer]| {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &pipeline.get_bind_group_layout(index),
-            entries: &buffers
-                .iter()
-                .enumerate()
-                .map(|(i, b)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: b.as_entire_binding(),
-                })
-                .collect::<Vec<_>>(),
-        })
-    };
-    let group0 = group(0, &[&params, &pixels]);
-    let group1 = group(1, &[&header, &blocks, &nodes]);
-
-    let start = Instant::now();
-    let mut enc = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group0, &[]);
-        pass.set_bind_group(1, &group1, &[]);
-        pass.dispatch_workgroups(WIDTH.div_ceil(8), HEIGHT.div_ceil(8), 1);
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
     }
-    enc.copy_buffer_to_buffer(&pixels, 0, &read, 0, size);
-    queue.submit([enc.finish()]);
-    read.slice(..)
-        .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .expect("poll");
-    let rgba = read.slice(..).get_mapped_range().expect("mapped").to_vec();
-    println!(
-        "rendered {WIDTH}x{HEIGHT} in {:.1} ms",
-        start.elapsed().as_secs_f64() * 1e3
-    );
-    image::save_buffer(&out, &rgba, WIDTH, HEIGHT, image::ExtendedColorType::Rgba8)
-        .expect("write the PNG");
-    println!("wrote {out}");
+}
+
+fn render(opts: &Options, extra: &Args) -> Result<(), String> {
+    let r = GpuRenderer::new(extra.reference, opts.quiet);
+    run::run(&r, opts)
 }

@@ -1,0 +1,14 @@
+//! Names the crate's root for the example and tests that include `examples/common` (its
+//! scenes directory and assets): `DIFFRACTION_EXAMPLES_ROOT`, this package's parent.
+
+fn main() {
+    let here = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let root = std::path::Path::new(&here)
+        .parent()
+        .expect("gpu-tests lives in the crate's root");
+    println!(
+        "cargo:rustc-env=DIFFRACTION_EXAMPLES_ROOT={}",
+        root.display()
+    );
+    println!("cargo:rerun-if-changed=build.rs");
+}

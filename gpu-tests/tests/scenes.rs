@@ -1,0 +1,110 @@
+//! The example gpu's renderer on a paper scene: fig. 6 at 96×72 (the scene's 4 spp) rendered
+//! with the G-buffer on the CPU and the WGSL shading on the device, against the reference
+//! tracer's picture of the same samples with the same colour rule (`--filter point`); the mean
+//! ΔE2000 over the picture is bounded by `gpu_tolerance::SCENE_MEAN_DELTA_E`.
+//!
+//! `harness = false` (Cargo.toml): the included modules' own unit tests are the root crate's
+//! and are not run again here.
+#![allow(dead_code, unused_imports)] // the included modules' test-only items
+
+#[path = "../../examples/common/budget.rs"]
+pub mod budget;
+#[path = "../../examples/common/camera.rs"]
+pub mod camera;
+#[path = "../../examples/common/cli.rs"]
+pub mod cli;
+#[path = "../../examples/common/colour.rs"]
+pub mod colour;
+#[path = "../examples/gpu/compare.rs"]
+pub mod compare;
+#[path = "../examples/gpu/device.rs"]
+pub mod device;
+#[path = "../../examples/common/diagnostics.rs"]
+pub mod diagnostics;
+#[path = "../../examples/common/files.rs"]
+pub mod files;
+#[path = "../../examples/common/font.rs"]
+pub mod font;
+#[path = "../../examples/raytrace/footprint.rs"]
+pub mod footprint;
+#[path = "../examples/gpu/gbuffer.rs"]
+pub mod gbuffer;
+#[path = "../../examples/common/geometry.rs"]
+pub mod geometry;
+#[path = "../../tests/support/gpu_tolerance.rs"]
+mod gpu_tolerance;
+#[path = "../../examples/common/limits.rs"]
+pub mod limits;
+#[path = "../../examples/common/material.rs"]
+pub mod material;
+#[path = "../../examples/raytrace/model.rs"]
+pub mod model;
+#[path = "../../examples/common/output.rs"]
+pub mod output;
+#[path = "../examples/gpu/renderer.rs"]
+pub mod renderer;
+#[path = "../../examples/common/run.rs"]
+pub mod run;
+#[path = "../../examples/common/sampling.rs"]
+pub mod sampling;
+#[path = "../../examples/common/scene.rs"]
+pub mod scene;
+#[path = "../../examples/common/schema.rs"]
+pub mod schema;
+#[path = "../../examples/common/texture.rs"]
+pub mod texture;
+#[path = "../../examples/raytrace/whitted.rs"]
+pub mod whitted;
+
+use run::Renderer;
+
+fn main() {
+    fig6_on_the_gpu_matches_the_reference_tracer();
+    println!("test fig6_on_the_gpu_matches_the_reference_tracer ... ok");
+}
+
+fn fig6_on_the_gpu_matches_the_reference_tracer() {
+    if let Err(e) = device::Gpu::new() {
+        if std::env::var_os("CI").is_some() {
+            panic!("{e}");
+        }
+        eprintln!("skipped: {e}");
+        return;
+    }
+    let mut scene = scene::load::<model::Paper>(&run::scenes_dir().join("fig6.toml"))
+        .expect("the shipped fig6 loads");
+    (scene.settings.width, scene.settings.height) = (96, 72);
+    let r = renderer::GpuRenderer::new(true, true);
+    let p = r.prepare(scene, &|_| {}).expect("prepared");
+    let camera = p.scene.scene.camera;
+    let (image, reference, frame) = r.frame(&p, &camera, None);
+    let d = frame.difference.expect("compared");
+    eprintln!(
+        "fig6 96x72: {} records, GPU {:.1} ms, mean ΔE2000 {:.2e}, max {:.3}",
+        frame.records,
+        frame.gpu_s * 1e3,
+        d.mean,
+        d.max
+    );
+    // Not trivially equal: the GPU's f32 shading differs from the f64 reference somewhere,
+    // and the picture is not black.
+    let reference = reference.expect("rendered");
+    assert_ne!(image.pixels, reference.pixels);
+    let bright = image
+        .pixels
+        .iter()
+        .filter(|c| c.max_element() > 0.2)
+        .count();
+    assert!(bright > image.pixels.len() / 4, "{bright} bright pixels");
+    assert!(
+        d.mean <= gpu_tolerance::SCENE_MEAN_DELTA_E,
+        "mean ΔE2000 {:.2e} above {:.2e}",
+        d.mean,
+        gpu_tolerance::SCENE_MEAN_DELTA_E
+    );
+    assert!(
+        d.max <= gpu_tolerance::SCENE_MAX_DELTA_E,
+        "max ΔE2000 {}",
+        d.max
+    );
+}
