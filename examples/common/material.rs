@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use diffraction::frame::{GratingField, Tile};
-use diffraction::Illumination;
 use diffraction::relief::Preset;
+use diffraction::Illumination;
 use glam::DVec3;
 
 use crate::colour::Colour;

@@ -23,9 +23,9 @@
 
 use diffraction::cie::{cmf, Illuminant};
 use diffraction::color::Xyz;
-use diffraction::spectrum::Spectral;
 use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::Preset;
+use diffraction::spectrum::Spectral;
 use diffraction::{Band, Grating, GratingBsdf, GrooveSpread};
 use glam::DVec3;
 

@@ -15,8 +15,8 @@
 //! for a faster, noisier picture.
 
 use diffraction::color::Xyz;
-use diffraction::SpectralResponse;
 use diffraction::spectrum::GenericStrategy;
+use diffraction::SpectralResponse;
 use glam::DVec3;
 
 use crate::camera::{self, Camera, CameraRays};
@@ -126,4 +126,3 @@ pub fn film(r: &Radiometry, xyz: Xyz) -> DVec3 {
     let c = (xyz * r.exposure).to_linear_srgb();
     DVec3::new(c.r, c.g, c.b)
 }
-
