@@ -533,20 +533,7 @@ impl Bsdf for GratingBsdf {
             return self.tab_sample(t, wo, lambda_nm, &c, [uc, ux, uy]);
         }
         let (m, pm) = self.orders.choose(&c, uc);
-        let (u, r) = match self.grating.slits() {
-            Slits::Finite(n) => {
-                let r = lorentz_r(n as f64, self.atan_n, ux);
-                ((m as f64 + r) * step, r)
-            }
-            Slits::Infinite => (m as f64 * step, 0.0),
-        };
-        let v = self.groove.sample(uy, lambda_nm);
-        let (x, y) = (u - wo.x, v - wo.y);
-        let z2 = 1.0 - x * x - y * y;
-        if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {
-            return None;
-        }
-        let wi = DVec3::new(x, y, math::sqrt(z2));
+        let (wi, u, r, v) = self.sample_direction(wo, m, step, ux, uy, lambda_nm)?;
         let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
             (Slits::Finite(n), false) => {
@@ -654,6 +641,34 @@ impl Bsdf for GratingBsdf {
 }
 
 impl GratingBsdf {
+    /// The direction of order m's sample, shared by both efficiency models: u from the
+    /// Lorentzian proxy (`ux`; u = m·λ/d for N = ∞), v from the groove's proxy (`uy`), and
+    /// wi = (u − wo.x, v − wo.y, +√(1 − …)); `None` below the surface. Returns (wi, u, r, v).
+    fn sample_direction(
+        &self,
+        wo: DVec3,
+        m: i64,
+        step: f64,
+        ux: f64,
+        uy: f64,
+        lambda_nm: f64,
+    ) -> Option<(DVec3, f64, f64, f64)> {
+        let (u, r) = match self.grating.slits() {
+            Slits::Finite(n) => {
+                let r = lorentz_r(n as f64, self.atan_n, ux);
+                ((m as f64 + r) * step, r)
+            }
+            Slits::Infinite => (m as f64 * step, 0.0),
+        };
+        let v = self.groove.sample(uy, lambda_nm);
+        let (x, y) = (u - wo.x, v - wo.y);
+        let z2 = 1.0 - x * x - y * y;
+        if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {
+            return None;
+        }
+        Some((DVec3::new(x, y, math::sqrt(z2)), u, r, v))
+    }
+
     /// Finite N with a groove spread: the lobes have a density (`eval` and `pdf` are not 0).
     #[inline]
     fn is_glossy(&self) -> bool {

@@ -103,6 +103,7 @@ impl Tabulated {
     /// Every block's (u0, h, first node, intervals) and every node's (value, derivative), for
     /// the GPU's upload structs.
     #[cfg(feature = "gpu")]
+    #[allow(clippy::type_complexity)]
     pub fn gpu_parts(
         &self,
     ) -> (

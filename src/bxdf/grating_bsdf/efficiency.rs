@@ -46,11 +46,10 @@ use alloc::sync::Arc;
 
 use glam::DVec3;
 
-use super::lobe::{lorentz_q, lorentz_r, GrooveFactor};
+use super::lobe::{lorentz_q, GrooveFactor};
 use super::orders::Candidates;
 use super::GratingBsdf;
 use crate::bxdf::bsdf::{BsdfFlags, BsdfSample};
-use crate::bxdf::MIN_COS_THETA;
 use crate::error::{Error, Requirement};
 use crate::kernel::single_slit_cycles;
 use crate::math;
@@ -461,20 +460,7 @@ impl GratingBsdf {
         let o = self.tab_orders(t, wo, lambda_nm, c)?;
         let (m, pm) = o.choose(uc);
         let step = lambda_nm / self.grating.period_nm();
-        let (u, r) = match self.grating.slits() {
-            Slits::Finite(n) => {
-                let r = lorentz_r(n as f64, self.atan_n, ux);
-                ((m as f64 + r) * step, r)
-            }
-            Slits::Infinite => (m as f64 * step, 0.0),
-        };
-        let v = self.groove.sample(uy, lambda_nm);
-        let (x, y) = (u - wo.x, v - wo.y);
-        let z2 = 1.0 - x * x - y * y;
-        if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {
-            return None;
-        }
-        let wi = DVec3::new(x, y, math::sqrt(z2));
+        let (wi, u, r, v) = self.sample_direction(wo, m, step, ux, uy, lambda_nm)?;
         let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         let specular = BsdfFlags::REFLECTION | BsdfFlags::SPECULAR;
         let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
