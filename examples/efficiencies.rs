@@ -271,12 +271,64 @@ fn parse_table(file: &str, text: &str) -> Result<EfficiencyTable, String> {
     serde_json::from_str::<EfficiencyTable>(text).map_err(|e| format!("--table: {file:?}: {e}"))
 }
 
-/// Without the `serde` feature the library has no JSON reader.
+/// Without the `serde` feature: the documented fields read with serde_json's `Value` and
+/// checked by `EfficiencyTable::new` (the same checks on load as the library's `Deserialize`).
 #[cfg(not(feature = "serde"))]
-fn parse_table(file: &str, _text: &str) -> Result<EfficiencyTable, String> {
-    Err(format!(
-        "--table: {file:?}: reading a JSON table needs the crate's `serde` feature (--features serde)"
-    ))
+fn parse_table(file: &str, text: &str) -> Result<EfficiencyTable, String> {
+    use serde_json::Value;
+    let err = |what: String| format!("--table: {file:?}: {what}");
+    let v: Value = serde_json::from_str(text).map_err(|e| err(e.to_string()))?;
+    if v["format"] != "diffraction-efficiency-table" {
+        return Err(err(
+            "format: expected \"diffraction-efficiency-table\"".to_string()
+        ));
+    }
+    if v["version"] != 1 {
+        return Err(err(format!("version: expected 1, got {}", v["version"])));
+    }
+    let number = |x: &Value, name: &str| {
+        x.as_f64()
+            .ok_or_else(|| err(format!("{name}: expected a number")))
+    };
+    let list = |name: &str| -> Result<Vec<f64>, String> {
+        v[name]
+            .as_array()
+            .ok_or_else(|| err(format!("{name}: expected an array of numbers")))?
+            .iter()
+            .map(|x| number(x, name))
+            .collect()
+    };
+    // te[k][j][i]: order k, wavelength j, incidence i, flattened in that order.
+    let cube = |name: &str| -> Result<Vec<f64>, String> {
+        let mut out = Vec::new();
+        let shape = || {
+            err(format!(
+                "{name}: expected an array [orders][lambda][sin_theta_i]"
+            ))
+        };
+        for order in v[name].as_array().ok_or_else(shape)? {
+            for row in order.as_array().ok_or_else(shape)? {
+                for x in row.as_array().ok_or_else(shape)? {
+                    out.push(number(x, name)?);
+                }
+            }
+        }
+        Ok(out)
+    };
+    let order_min = v["order_min"]
+        .as_i64()
+        .and_then(|m| i32::try_from(m).ok())
+        .ok_or_else(|| err("order_min: expected an integer".to_string()))?;
+    let period = number(&v["grating"]["period_nm"], "grating.period_nm")?;
+    EfficiencyTable::new(
+        period,
+        order_min,
+        list("sin_theta_i")?,
+        list("lambda_nm")?,
+        cube("te")?,
+        cube("tm")?,
+    )
+    .map_err(|e| err(e.to_string()))
 }
 
 /// The JSON line of one order.
@@ -590,12 +642,9 @@ mod tests {
         let q = "--lambda 550 --theta 20";
         let preset = lines(&format!("--preset cd {q}"));
         let file = concat!(env!("CARGO_MANIFEST_DIR"), "/data/efficiencies/cd.json");
-        let table = if cfg!(feature = "serde") {
-            lines(&format!("--table {file} {q}"))
-        } else {
-            assert!(error(&format!("--table {file} {q}")).starts_with("--table"));
-            preset.clone()
-        };
+        // Read by the library's `Deserialize` with feature `serde`, by the example's own reader
+        // without it.
+        let table = lines(&format!("--table {file} {q}"));
         assert_eq!(preset.len(), table.len());
         let cd = Preset::Cd.table();
         let s = 20f64.to_radians().sin();

@@ -108,7 +108,8 @@ fn a_paper_light_gives_the_papers_irradiance_at_the_reference_distance() {
 /// integrators render the scene to finite pixels.
 #[test]
 fn cd_preset_renders_with_both_integrators() {
-    let mut scene = scene::load::<Radiometric>(&scenes_dir().join("presets/cd_preset.toml")).unwrap();
+    let mut scene =
+        scene::load::<Radiometric>(&scenes_dir().join("presets/cd_preset.toml")).unwrap();
     let g = scene
         .materials
         .iter()
