@@ -73,6 +73,30 @@ pub fn cmf(lambda_nm: f64) -> [f64; 3] {
     }
 }
 
+/// E(λ) of `illuminant` and the colour-matching functions at λ with one table look-up: the same
+/// values, to the bit, as [`Illuminant::power`] and [`cmf`] (the same interpolation of the same
+/// rows); zeros outside 360-830 nm.
+#[inline]
+pub(crate) fn power_and_cmf(illuminant: Illuminant, lambda_nm: f64) -> (f64, [f64; 3]) {
+    let Some((i, t)) = locate(lambda_nm) else {
+        return (0.0, [0.0; 3]);
+    };
+    let e = match illuminant {
+        Illuminant::E => 1.0,
+        Illuminant::D65 => D65[i] + t * (D65[i + 1] - D65[i]),
+        Illuminant::A => ILLUMINANT_A[i] + t * (ILLUMINANT_A[i + 1] - ILLUMINANT_A[i]),
+    };
+    let (a, b) = (CIE1931_2DEG[i], CIE1931_2DEG[i + 1]);
+    (
+        e,
+        [
+            a[0] + t * (b[0] - a[0]),
+            a[1] + t * (b[1] - a[1]),
+            a[2] + t * (b[2] - a[2]),
+        ],
+    )
+}
+
 /// A CIE illuminant: the light's relative spectral power E(λ).
 ///
 /// ```

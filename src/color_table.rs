@@ -120,11 +120,12 @@ const DARK_SHARE: f64 = (6.0 / 29.0) * (6.0 / 29.0);
 ///
 /// A build costs about twice the node count (100-5200 nodes) in calls of [`Spectral::xyz`]. For
 /// N ≥ 5 and `accuracy` ≥ [`ASYMPTOTIC_ACCURACY`](Self::ASYMPTOTIC_ACCURACY) a node is
-/// [`Strategy::ASYMPTOTIC`] (5-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
+/// [`Strategy::ASYMPTOTIC`] (2-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
 /// where order 0's light reaches it but the colour is dark enough for `Asymptotic`'s bound
-/// (10⁻³ of that light) to move CIELAB's f(t) by less than accuracy/3 (t ≤ (accuracy/10⁻³)³);
-/// every other node (order 0's bright lobe and near tail, N < 5) is [`Strategy::EXACT`], which
-/// then dominates the build time. Below that accuracy a node is the cheapest strategy whose
+/// (2·10⁻⁴ of that light) to move CIELAB's f(t) by less than accuracy/3
+/// (t ≤ (accuracy/(2·10⁻⁴))³: every node at the default accuracy 10⁻³, the darker ones at 10⁻⁴);
+/// every other node (N < 5, and order 0's bright lobe and near tail below 10⁻³) is
+/// [`Strategy::EXACT`], which then dominates the build time. Below that accuracy a node is the cheapest strategy whose
 /// bound meets 0.043 of the accuracy ([`Spectral::choose`] with [`Strategy::auto`]: the peak
 /// search for very fine gratings, N ≳ 10⁸ at 10⁻⁶, else `Exact`). Memory is 72 bytes per node plus 32 per block
 /// ([`size_bytes`](Self::size_bytes)), at most 460 KiB.
@@ -182,7 +183,7 @@ pub struct ColorTable {
 impl ColorTable {
     /// The smallest `accuracy` at which nodes are computed by [`Strategy::ASYMPTOTIC`] (for
     /// N ≥ 5, where it meets the tolerance: see the [Cost](Self#cost) section); below it every
-    /// node is [`Strategy::EXACT`]. `Asymptotic` is within 1.4·10⁻⁴ of the brightest order
+    /// node is [`Strategy::EXACT`]. `Asymptotic` is within 2.1·10⁻⁴ of the brightest order
     /// (measured, `tests/asymptotic.rs`); the tables built with it at 10⁻⁴ were measured within
     /// 0.027 ΔE2000 of `Exact` (docs/color_table.md).
     ///

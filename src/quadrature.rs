@@ -1,4 +1,4 @@
-//! Gauss-Legendre rules, the crate's one set of quadrature nodes: 2, 3, 4 and 8 points on
+//! Gauss-Legendre rules, the crate's one set of quadrature nodes: 2, 3, 4, 6 and 8 points on
 //! [−1, 1], correctly rounded (mpmath, 40 digits: the roots of P_n and 2/((1 − x²)·P_n'(x)²)),
 //! applied to integrands with values in `f64` or in `DVec3` (XYZ).
 
@@ -54,6 +54,26 @@ pub(crate) const GL4: Rule<4> = Rule {
     ],
 };
 
+/// 6 points.
+pub(crate) const GL6: Rule<6> = Rule {
+    nodes: [
+        -0.932469514203152,
+        -0.6612093864662645,
+        -0.2386191860831969,
+        0.2386191860831969,
+        0.6612093864662645,
+        0.932469514203152,
+    ],
+    weights: [
+        0.17132449237917036,
+        0.3607615730481386,
+        0.46791393457269104,
+        0.46791393457269104,
+        0.3607615730481386,
+        0.17132449237917036,
+    ],
+};
+
 /// 8 points.
 pub(crate) const GL8: Rule<8> = Rule {
     nodes: [
@@ -97,6 +117,12 @@ pub(crate) fn gl8<T: Value>(a: f64, b: f64, f: &dyn Fn(f64) -> T) -> T {
     GL8.integrate(a, b, f)
 }
 
+/// 6-point Gauss-Legendre over [a, b].
+#[inline]
+pub(crate) fn gl6<T: Value>(a: f64, b: f64, f: &dyn Fn(f64) -> T) -> T {
+    GL6.integrate(a, b, f)
+}
+
 /// 4-point Gauss-Legendre over [a, b].
 #[inline]
 pub(crate) fn gl4<T: Value>(a: f64, b: f64, f: &dyn Fn(f64) -> T) -> T {
@@ -138,6 +164,7 @@ mod tests {
         check(&GL2);
         check(&GL3);
         check(&GL4);
+        check(&GL6);
         check(&GL8);
     }
 }

@@ -21,7 +21,7 @@
 //! | `PeakSearch { refine: false }` | O(visible orders), independent of N (a few µs where order 0's light reaches the band) | 3.5/N of the brightest order; 2e-3 of order 0's light |
 //! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
 //! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
-//! | `Asymptotic` | O(visible orders): 4 lobes × 8 points per bright order, one point per faint order, the envelope in 32 nm pieces | 5e-4 of the brightest order (worst measured 1.4e-4, N ≥ 5); 1e-3 of order 0's light |
+//! | `Asymptotic` | O(visible orders): 4 lobes × 6 points per bright order, one point per faint order, the envelope in 3-point pieces of 16-64 nm (order 0's: a product rule, 4 points per 30 nm) | 5e-4 of the brightest order (worst measured 2.1e-4, N ≥ 5); 2e-4 of order 0's light (measured 8.7e-5) |
 //! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
 //! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
 //!
@@ -68,8 +68,9 @@
 //! two lobes on. h is not smooth everywhere, and the strategy treats the exceptions exactly:
 //!
 //! - **Within two lobes of every integer** (the main lobe and first side lobe of each order,
-//!   order 0 included) and **at each band end** (the partial lobe where h jumps to 0 and one
-//!   more), lobe by lobe with 8-point Gauss-Legendre, split where λ crosses a node of the
+//!   order 0 included) and **at each band end** (the partial lobe where h jumps to 0), lobe by
+//!   lobe with 6-point Gauss-Legendre on whole lobes (the error of 6 points on a lobe of sin² is
+//!   7e-7; 4 points on pieces up to half a lobe, 2 below 0.15 lobe), split where λ crosses a node of the
 //!   illuminant (D65 is a 5 nm table interpolated linearly: relative slope jumps up to 8 %/nm;
 //!   A is Planck's law at every row) and into pieces of at most 16 nm. The 1 nm rows of the observer are not split at:
 //!   its linear interpolation differs from a smooth curve by a second difference/8 (below
@@ -80,12 +81,20 @@
 //! - **Lobes wider than 8 nm** (or than the illuminant's node spacing) in wavelength, q/(N·x²),
 //!   which occur for small N and in order 0's half period near the mirror direction: the
 //!   expansion needs h smooth on the scale of a lobe, so they too are integrated lobe by lobe.
-//! - **Between the windows**, ∫G in 4-point pieces of at most 32 nm (split at the illuminant's
-//!   nodes in order 0's half period only, where G is the whole colour), with the nearest integer's tangent line p of h subtracted and ∫p/(2 sin²πx) added
+//! - **Between the windows**, ∫G in 3-point pieces (split at the illuminant's nodes in order 0's
+//!   half period only, where G is the whole colour), at most 16 nm in order 0's half period and
+//!   16·(N/5)^(1/6) nm, at most 64, next to the orders m ≠ 0 (there G's share of the colour
+//!   relative to the order's peak h(m)/N falls as 1/N while the rule's error grows as span⁶), with the nearest integer's tangent line p of h subtracted and ∫p/(2 sin²πx) added
 //!   analytically (−cot(πr)/(2π) and −r·cot(πr)/(2π) + ln|sin πr|/(2π²), r = x − m); −[G']/(4π²N²)
 //!   at each window edge (h' by a one-sided difference over a quarter lobe). The first neglected
 //!   end term is 7.8e-4/T⁵ of the tail beyond T = 2 lobes; the kinks' ΔG'_j terms are
-//!   neglected (below 10⁻⁵ of the brightest order on the test grids).
+//!   neglected (below 10⁻⁵ of the brightest order on the test grids). In order 0's half period
+//!   the 30 nm pieces of the band it covers whole take a product rule instead: there
+//!   ∫G dx = ∫ W(λ)·K(λ) dλ/N² with W = E·cmf the tables' weight (quadratic between the 1 nm
+//!   rows, kinks included) and K = S(ρ·q/λ)/(2 sin²(π·q/λ)) smooth on the band (its poles
+//!   λ = q/k are at least 415 nm away), so K's cubic interpolant at 4 Gauss-Legendre nodes is
+//!   integrated against W exactly with weights computed from the tables at compile time: 4
+//!   evaluations of K per 30 nm instead of 3 of h per 5 nm between D65's nodes.
 //! - **Faint orders** (peak value below 1e-7·5.19/8·N, i.e. the peak search's error 8/N of them
 //!   below 10⁻⁷ of the brightest order's floor) whose whole period lies between the band ends
 //!   get the plain peak-search weight h(m)/N for their period; this keeps coarse gratings (100
@@ -93,9 +102,9 @@
 //!
 //! Below 5 slits the strategy is `Exact`. Measured against `Exact` (`tests/asymptotic.rs`: N = 5
 //! … 10⁶, d = 400 nm … 100 µm, w = d/2 and d/10, 128 directions, E and D65) and the python
-//! reference: at most 1.4e-4 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
-//! and 5.7e-4 of max(colour, brightest order) where order 0's half period does; `Spectral::choose`
-//! relies on 5e-4 and 1e-3.
+//! reference: at most 2.1e-4 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
+//! and 8.7e-5 of max(colour, brightest order) where order 0's half period does; `Spectral::choose`
+//! relies on 5e-4 and 2e-4.
 //!
 //! **The paper's peak colours** (its rendering steps 6-8) evaluate eq. 13 at the peak wavelengths
 //! only, each with its peak intensity S(β_m) whatever N is, and convert each to colour:
@@ -153,6 +162,7 @@ mod exact;
 mod generic;
 mod lobes;
 mod monte_carlo;
+mod order0;
 mod paper;
 mod peak_search;
 mod rules;
@@ -312,11 +322,11 @@ impl Spectral {
     /// E(λ)·cmf(λ)·norm at one wavelength, the weight of a spectral sample.
     #[inline]
     pub(crate) fn weight(&self, lambda_nm: f64) -> DVec3 {
-        let mut e = self.illuminant.power(lambda_nm) * self.norm;
+        let (power, c) = cie::power_and_cmf(self.illuminant, lambda_nm);
+        let mut e = power * self.norm;
         if !self.envelope.is_one() {
             e *= self.envelope.at(lambda_nm);
         }
-        let c = cie::cmf(lambda_nm);
         DVec3::new(e * c[0], e * c[1], e * c[2])
     }
 

@@ -264,6 +264,12 @@ impl Envelope {
         k.min(f64::MAX)
     }
 
+    /// The largest argument y of the sinc² factor sinc²(π·y), y = L/λ, over the band (0 without
+    /// one): below ½ the factor has no zero in the band and is as smooth as λ⁻ᵖ.
+    pub(crate) fn band_sinc_cycles(&self) -> f64 {
+        self.sinc_length_nm / crate::cie::TABLE_FIRST_NM
+    }
+
     /// Whether k(λ) = 1 everywhere.
     ///
     /// ```

@@ -7,7 +7,8 @@
 //! over the lobes wider than LOBE_NM, merged where they overlap; between them the envelope
 //! G = h/(2N² sin²πx) with its end corrections (`Walk::envelope`); faint orders by their peak
 //! value over their whole period (`Walk::plain_period`). The work is O(visible orders), as for
-//! the peak search. The smooth weight h comes from `Lobes::envelope_at` alone, so a further
+//! the peak search. The weight h comes from `Lobes::envelope_at` and `Lobes::integrand_at` (and
+//! order 0's product rule, `order0`, from the same spectral weight and envelope), so a further
 //! smooth per-wavelength factor multiplies in there. At the extremes of d·|u| (the band inside
 //! order 0's central lobe, or more than `DENSE_ORDERS` orders) it is `Exact`, whose closed forms
 //! bound the work there.
@@ -16,21 +17,31 @@ use glam::DVec3;
 
 use super::bounds;
 use super::lobes::Lobes;
-use super::rules::{gl2, gl4, gl8};
+use super::order0;
+use super::rules::{gl2, gl3, gl4, gl6};
 use super::{Spectral, BAND};
 use crate::cie::Illuminant;
-use crate::kernel::sinpi;
+use crate::kernel::{single_slit_cycles, sinpi};
 use crate::math::{ceil, floor, ln, rint, sqrt};
 use crate::{Grating, Slits};
 use core::f64::consts::PI;
 
 /// Lobes on each side of every integer x integrated lobe by lobe.
 const PEAK_LOBES: f64 = 2.0;
-/// Whole lobes after the partial lobe at each band end integrated lobe by lobe.
-const END_LOBES: f64 = 1.0;
-/// Largest span in wavelength of one 4-point piece of the envelope, not split at the
-/// illuminant's nodes.
-const ENVELOPE_SPAN_NM: f64 = 32.0;
+/// Whole lobes after the partial lobe at each band end integrated lobe by lobe: none, the
+/// envelope's expansion holds from the first zero on there (h is below 10⁻⁴ of its peak at the
+/// band ends, where the colour-matching functions vanish; measured: no change of the sweep's
+/// worst error against one lobe).
+const END_LOBES: f64 = 0.0;
+/// Largest span in wavelength of one 3-point piece of order 0's envelope where the pieces are
+/// not split at the illuminant's nodes, and the least span next to the orders m ≠ 0
+/// (`order_span_nm`). 32 nm left 2.1·10⁻⁴ of order 0's light; 16 nm 6.8·10⁻⁵, 8 nm no less.
+const ENVELOPE_SPAN_NM: f64 = 16.0;
+/// The product rule for order 0 (`order0`) is taken where the spectral envelope's sinc² factor
+/// stays below this argument over the band (no zero in it: as smooth as λ⁻ᵖ).
+const ORDER0_SINC_CYCLES: f64 = 0.5;
+/// The largest span of an envelope piece next to an order m ≠ 0 (see `order_span_nm`).
+const MAX_ORDER_SPAN_NM: f64 = 64.0;
 /// Lobes wider than this, in wavelength, or than the illuminant's node spacing, are
 /// integrated lobe by lobe.
 const LOBE_NM: f64 = 8.0;
@@ -48,6 +59,15 @@ fn node_spacing_nm(illuminant: Illuminant) -> f64 {
         Illuminant::D65 => 5.0,
         Illuminant::E | Illuminant::A => 0.0,
     }
+}
+
+/// The envelope's largest piece span next to an order m ≠ 0 for N slits: ENVELOPE_SPAN_NM at
+/// N = 5, growing as N^(1/6) to MAX_ORDER_SPAN_NM. There the envelope's share of the colour is
+/// divided by N relative to the order's peak h(m)/N, while the 3-point rule's relative error
+/// grows as span⁶: the product stays that of N = 5.
+fn order_span_nm(n: f64) -> f64 {
+    let grow = crate::math::powf(n / bounds::ASYMPTOTIC_MIN_SLITS as f64, 1.0 / 6.0);
+    (ENVELOPE_SPAN_NM * grow).clamp(ENVELOPE_SPAN_NM, MAX_ORDER_SPAN_NM)
 }
 
 /// cos(π·r) for |r| ≤ ½.
@@ -82,6 +102,8 @@ impl Spectral {
             cursor_on_zero: false,
             pending: None,
             acc: DVec3::ZERO,
+            order_span_nm: order_span_nm(n),
+            order0_pieces: self.envelope.band_sinc_cycles() <= ORDER0_SINC_CYCLES,
         };
         if x_lo.is_nan() || x_hi.is_nan() || x_lo >= x_hi {
             return walk.acc;
@@ -147,6 +169,11 @@ struct Walk<'s, 'a> {
     /// A window not yet integrated (it may still grow).
     pending: Option<(f64, f64)>,
     acc: DVec3,
+    /// The envelope's piece span next to the orders m ≠ 0 (`order_span_nm`).
+    order_span_nm: f64,
+    /// Whether order 0's half period takes the product rule on the fixed pieces (`order0`):
+    /// where the spectral envelope is smooth over the band.
+    order0_pieces: bool,
 }
 
 impl Walk<'_, '_> {
@@ -271,6 +298,54 @@ impl Walk<'_, '_> {
         b: f64,
         sum: &mut DVec3,
     ) {
+        if m == 0.0 && self.order0_pieces {
+            let q = self.lobes.q;
+            let (first, last) = order0::whole_pieces(q / b, q / a);
+            if first < last {
+                // Whole pieces by the product rule, the rest of [a, b] as below.
+                let (l0, l1) = (order0::bounds(first).0, order0::bounds(last - 1).1);
+                *sum += self.order0_whole(first, last);
+                let (x0, x1) = (q / l1, q / l0);
+                if x0 > a {
+                    self.half_period_parts(m, c, (hc, slope), a, x0, sum);
+                }
+                if b > x1 {
+                    self.half_period_parts(m, c, (hc, slope), x1, b, sum);
+                }
+                return;
+            }
+        }
+        self.half_period_parts(m, c, (hc, slope), a, b, sum);
+    }
+
+    /// ∫ h/(2 sin²πx) over order 0's whole fixed pieces [first, last) (`order0`): K(λ) =
+    /// S(ρ·q/λ)·env(λ)·norm/(2 sin²(π·q/λ)) against the tables' product weights.
+    fn order0_whole(&self, first: usize, last: usize) -> DVec3 {
+        let l = self.lobes;
+        let s = l.s;
+        let k = |lambda: f64| {
+            let x = l.q / lambda;
+            let sx = sinpi(x - rint(x));
+            let env = if s.envelope.is_one() {
+                1.0
+            } else {
+                s.envelope.at(lambda)
+            };
+            single_slit_cycles(l.duty * x) * env * s.norm / (2.0 * sx * sx)
+        };
+        order0::integrate(s.illuminant, first, last, &k)
+    }
+
+    /// `half_period` on [a, b] by Gauss-Legendre pieces and the tangent's closed forms.
+    fn half_period_parts(
+        &self,
+        m: f64,
+        c: f64,
+        (hc, slope): (DVec3, DVec3),
+        a: f64,
+        b: f64,
+        sum: &mut DVec3,
+    ) {
         // p(x) = value + slope·(x − m).
         let value = hc - slope * (c - m);
         let lobes = self.lobes;
@@ -287,7 +362,12 @@ impl Walk<'_, '_> {
         } else {
             0.0
         };
-        pieces(lobes.q, node, ENVELOPE_SPAN_NM, &gl4, a, b, sum, &rest);
+        let span = if m == 0.0 {
+            ENVELOPE_SPAN_NM
+        } else {
+            self.order_span_nm
+        };
+        pieces(lobes.q, node, span, &gl3, a, b, sum, &rest);
         // ∫ dr/(2 sin²πr) = −cot(πr)/(2π); ∫ r dr/(2 sin²πr) = −r·cot(πr)/(2π) + ln|sin πr|/(2π²).
         let (r0, r1) = (a - m, b - m);
         let (s0, s1) = (sinpi(r0), sinpi(r1));
@@ -314,15 +394,15 @@ fn window_rule(l: &Lobes<'_>, a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -
     pieces(l.q, node, SPAN_NM, &lobe_rule(l.n, l.q), a, b, acc, f);
 }
 
-/// The Gauss-Legendre rule for a piece of a lobe: 8 points where the piece is more than half a
-/// lobe (the error of 4 points on a whole lobe of sin² is 7e-4), 4 points up to half a lobe
-/// (3e-6), 2 points up to 0.15 lobe (2e-6) where the piece also spans at most 6 nm (h, smooth
-/// between the illuminant's nodes, changes little over it).
+/// The Gauss-Legendre rule for a piece of a lobe: 6 points where the piece is more than half a
+/// lobe (the error of 6 points on a whole lobe of sin² is 7e-7, of 4 points 7e-4), 4 points up
+/// to half a lobe (3e-6), 2 points up to 0.15 lobe (2e-6) where the piece also spans at most
+/// 6 nm (h, smooth between the illuminant's nodes, changes little over it).
 fn lobe_rule(n: f64, q: f64) -> impl Fn(f64, f64, &mut DVec3, &dyn Fn(f64) -> DVec3) {
     move |a, b, acc, f| {
         let lobes = (b - a) * n;
         if lobes > 0.5 {
-            gl8(a, b, acc, f);
+            gl6(a, b, acc, f);
         } else if lobes > 0.15 || q / a - q / b > 6.0 {
             gl4(a, b, acc, f);
         } else {

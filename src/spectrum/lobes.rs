@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::rules::{gl3, gl4, gl8};
 use super::Spectral;
-use crate::kernel::{single_slit_cycles, sinpi};
+use crate::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
 use crate::math::{ceil, floor, rint};
 use crate::quadrature::GL8;
 use crate::Grating;
@@ -49,6 +49,17 @@ impl<'a> Lobes<'a> {
         w * k
     }
 
+    /// E·S·cmf·F_N·norm·|dλ/dx| at phase x: S·F_N as one ratio without branches on the phase
+    /// (`intensity_ratio_flat`), one division.
+    #[inline]
+    pub(super) fn integrand_at(&self, x: f64) -> DVec3 {
+        let l = self.q / x;
+        let (num, den) = intensity_ratio_flat(x, self.duty * x, self.n_int);
+        let r = num / den;
+        let i = (r * r).min(1.0);
+        self.s.weight(l) * (i * (l / x))
+    }
+
     /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables (8-point rule).
     pub(super) fn lobes(&self, a: f64, b: f64) -> DVec3 {
         self.lobes_by(a, b, Self::split_at_rows)
@@ -67,11 +78,7 @@ impl<'a> Lobes<'a> {
         if b.is_nan() || a.is_nan() || b <= a {
             return acc;
         }
-        let integrand = |x: f64| {
-            let f = crate::kernel::n_slit_cycles(x, self.n_int);
-            let e = self.envelope_at(x);
-            e * f
-        };
+        let integrand = |x: f64| self.integrand_at(x);
         let mut k = floor(a * self.n) + 1.0;
         let mut lo = a;
         while lo < b {

@@ -39,6 +39,12 @@ pub(super) fn gl8(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
 
 /// See [`gl8`].
 #[inline]
+pub(super) fn gl6(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    *acc += quadrature::gl6(a, b, f);
+}
+
+/// See [`gl8`].
+#[inline]
 pub(super) fn gl4(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
     *acc += quadrature::gl4(a, b, f);
 }
