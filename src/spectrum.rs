@@ -70,7 +70,9 @@
 //! - **Within two lobes of every integer** (the main lobe and first side lobe of each order,
 //!   order 0 included) and **at each band end** (the partial lobe where h jumps to 0), lobe by
 //!   lobe with 6-point Gauss-Legendre on whole lobes (the error of 6 points on a lobe of sin² is
-//!   7e-7; 4 points on pieces up to half a lobe, 2 below 0.15 lobe), split where λ crosses a node of the
+//!   7e-7; 4 points on pieces up to half a lobe, 2 below 0.15 lobe; a window of an order m ≥ 1
+//!   that spans at most 4 nm and no node of the illuminant takes h's interpolant at 5
+//!   Gauss-Legendre points against F_N, integrated once per call), split where λ crosses a node of the
 //!   illuminant (D65 is a 5 nm table interpolated linearly: relative slope jumps up to 8 %/nm;
 //!   A is Planck's law at every row) and into pieces of at most 16 nm. The 1 nm rows of the observer are not split at:
 //!   its linear interpolation differs from a smooth curve by a second difference/8 (below

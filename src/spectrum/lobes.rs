@@ -60,6 +60,12 @@ impl<'a> Lobes<'a> {
         self.s.weight(l) * (i * (l / x))
     }
 
+    /// F_N at phase x.
+    #[inline]
+    pub(super) fn n_slit(&self, x: f64) -> f64 {
+        crate::kernel::n_slit_cycles(x, self.n_int)
+    }
+
     /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables (8-point rule).
     pub(super) fn lobes(&self, a: f64, b: f64) -> DVec3 {
         self.lobes_by(a, b, Self::split_at_rows)
