@@ -22,7 +22,7 @@
 //! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
 //! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
 //! | `Asymptotic` | O(visible orders): 4 lobes × 6 points per bright order, one point per faint order, the envelope in 3-point pieces of 16-64 nm (order 0's: a product rule, 4 points per 30 nm) | 5e-4 of the brightest order (worst measured 2.1e-4, N ≥ 5); 2e-4 of order 0's light (measured 8.7e-5) |
-//! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
+//! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere; where the band lies inside order 0's half period with at most about 80 lobes, a product rule of 128-512 points against the tables (`smooth_band`) | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
 //! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
 //!
 //! Δx = d·|u|·(1/360 − 1/830) is the range of the phase in cycles over the band.
@@ -168,6 +168,7 @@ mod order0;
 mod paper;
 mod peak_search;
 mod rules;
+mod smooth_band;
 mod strategy;
 
 pub mod bounds;

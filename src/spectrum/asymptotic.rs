@@ -77,6 +77,19 @@ fn order_span_nm(n: f64) -> f64 {
     (ENVELOPE_SPAN_NM * grow).clamp(ENVELOPE_SPAN_NM, MAX_ORDER_SPAN_NM)
 }
 
+impl Spectral {
+    /// Lobes wider than this (nm) are integrated lobe by lobe: LOBE_NM, or the illuminant's
+    /// node spacing where that is smaller.
+    fn lobe_nm(&self) -> f64 {
+        let node = node_spacing_nm(self.illuminant);
+        if node > 0.0 {
+            LOBE_NM.min(node)
+        } else {
+            LOBE_NM
+        }
+    }
+}
+
 /// cos(π·r) for |r| ≤ ½.
 #[inline]
 fn cospi(r: f64) -> f64 {
@@ -100,6 +113,15 @@ impl Spectral {
             return self.exact(grating, u);
         }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
+        let lobe_nm = self.lobe_nm();
+        if q / (n * x_lo * x_lo) > lobe_nm {
+            // Lobes wider than lobe_nm at the band's long end, walked lobe by lobe: where the
+            // band lies inside order 0's half period with at most about 80 lobes, `Exact`'s
+            // product rule is cheaper (and exact).
+            if let Some(c) = self.smooth_band(grating, q, n) {
+                return c;
+            }
+        }
         let lobes = Lobes::new(self, grating, q, n);
         let mut walk = Walk {
             lobes: &lobes,
@@ -119,12 +141,6 @@ impl Spectral {
         let t = PEAK_LOBES / n;
         // The band end, and every lobe wider than LOBE_NM (the envelope's expansion needs h
         // smooth on the scale of a lobe, q/(N·x²) nm wide).
-        let node = node_spacing_nm(self.illuminant);
-        let lobe_nm = if node > 0.0 {
-            LOBE_NM.min(node)
-        } else {
-            LOBE_NM
-        };
         let wide = ceil(sqrt(q / (n * lobe_nm)) * n);
         let left = (floor(x_lo * n) + 1.0 + END_LOBES).max(wide) / n;
         walk.exact_window(x_lo, left);
@@ -402,7 +418,10 @@ impl Walk<'_, '_> {
             let (first, last) = order0::whole_pieces(q / b, q / a);
             if first < last {
                 // Whole pieces by the product rule, the rest of [a, b] as below.
-                let (l0, l1) = (order0::bounds(first).0, order0::bounds(last - 1).1);
+                let (l0, l1) = (
+                    order0::piece_bounds(first).0,
+                    order0::piece_bounds(last - 1).1,
+                );
                 *sum += self.order0_whole(first, last);
                 let (x0, x1) = (q / l1, q / l0);
                 if x0 > a {

@@ -22,7 +22,7 @@ use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
 /// one 20 nm).
 pub(super) const PIECE_NM: f64 = 30.0;
 /// Pieces over the band.
-const PIECES: usize = 16;
+pub(super) const PIECES: usize = 16;
 /// Rows of the tables.
 const ROWS: usize = (LAST_NM - FIRST_NM) as usize + 1;
 
@@ -43,7 +43,7 @@ const W3: [f64; 3] = [0.5555555555555556, 0.8888888888888888, 0.5555555555555556
 type Weights = [[[f64; 3]; 4]; PIECES];
 
 /// The pieces' bounds: [360 + 30p, min(830, 390 + 30p)].
-const fn piece(p: usize) -> (f64, f64) {
+pub(super) const fn piece_bounds(p: usize) -> (f64, f64) {
     let lo = FIRST_NM as f64 + PIECE_NM * p as f64;
     let hi = lo + PIECE_NM;
     (
@@ -83,7 +83,7 @@ const fn weights(table: Option<&[f64; ROWS]>) -> Weights {
     let mut out = [[[0.0; 3]; 4]; PIECES];
     let mut p = 0;
     while p < PIECES {
-        let (lo, hi) = piece(p);
+        let (lo, hi) = piece_bounds(p);
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
         let mut j = (lo - FIRST_NM as f64) as usize;
         let end = (hi - FIRST_NM as f64) as usize;
@@ -144,11 +144,6 @@ pub(super) fn whole_pieces(l0: f64, l1: f64) -> (usize, usize) {
     (first, last.max(first))
 }
 
-/// The bounds (nm) of piece p.
-pub(super) fn bounds(p: usize) -> (f64, f64) {
-    piece(p)
-}
-
 /// Σ over pieces [first, last) of Σᵢ K(λᵢ)·Ωᵢ: ∫ W·K over those pieces for `illuminant`, to
 /// the cubic interpolation of K on each.
 pub(super) fn integrate(
@@ -160,7 +155,7 @@ pub(super) fn integrate(
     let w = weights_of(illuminant);
     let mut acc = DVec3::ZERO;
     for (p, wp) in w.iter().enumerate().take(last).skip(first) {
-        let (lo, hi) = piece(p);
+        let (lo, hi) = piece_bounds(p);
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
         for (t, wi) in T.iter().zip(wp) {
             acc += DVec3::from_array(*wi) * k(mid + half * t);
@@ -215,6 +210,6 @@ mod tests {
         assert_eq!(whole_pieces(400.0, 430.0), (2, 2)); // [390, 420] and [420, 450] are partial
         assert_eq!(whole_pieces(390.0, 450.0), (1, 3));
         assert_eq!(whole_pieces(900.0, 1000.0).0, whole_pieces(900.0, 1000.0).1);
-        assert_eq!(bounds(PIECES - 1), (810.0, 830.0));
+        assert_eq!(piece_bounds(PIECES - 1), (810.0, 830.0));
     }
 }
