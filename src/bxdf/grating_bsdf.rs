@@ -135,7 +135,7 @@ mod wavelength;
 
 pub use albedo::{ALBEDO_CUT_MARGIN, MAX_ALBEDO_ORDERS};
 pub use efficiency::{OrderEfficiency, Tabulated, MAX_TABULATED_ORDERS};
-use lobe::{lorentz_q, lorentz_r, GrooveFactor, Lobe};
+use lobe::{GrooveFactor, Lobe, PeriodProxy};
 use orders::{Candidates, OrderDistribution};
 pub use orders::{DEFENSIVE_ORDER_SHARE, MAX_WEIGHTED_ORDERS};
 pub use regularize::{
@@ -170,6 +170,8 @@ pub struct GratingBsdf {
     orders: OrderDistribution,
     lobe: Lobe,
     atan_n: f64,
+    /// The proxy of F_N inside a period that u is drawn from (finite N).
+    proxy: PeriodProxy,
 }
 
 #[cfg(feature = "serde")]
@@ -228,6 +230,7 @@ impl GratingBsdf {
                 groove,
             },
             atan_n: atan(grating.slits().as_f64()),
+            proxy: PeriodProxy::new(n, atan(grating.slits().as_f64())),
             grating,
             groove,
             efficiency,
@@ -335,8 +338,10 @@ impl GratingBsdf {
         if !(wo.z >= MIN_COS_THETA && wo.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return 0.0;
         }
-        let step = lambda_nm / self.grating.period_nm();
-        let Some(c) = self.orders.candidates(wo, step) else {
+        let Some(c) = self
+            .orders
+            .candidates(wo, self.grating.period_nm() / lambda_nm)
+        else {
             return 0.0;
         };
         if let Some(t) = self.table() {
@@ -347,7 +352,7 @@ impl GratingBsdf {
         let b = match self.grating.slits() {
             Slits::Infinite => rho * rho * c.total * gv,
             Slits::Finite(_) => {
-                let fu = 2.0 * self.atan_n;
+                let fu = self.proxy.bound();
                 rho * rho * c.total * self.orders.worst_envelope_ratio(&c) * fu * gv
             }
         };
@@ -528,7 +533,9 @@ impl Bsdf for GratingBsdf {
         }
         let (uc, ux, uy) = (unit_random(uc), unit_random(u2.x), unit_random(u2.y));
         let step = lambda_nm / self.grating.period_nm();
-        let c = self.orders.candidates(wo, step)?;
+        let c = self
+            .orders
+            .candidates(wo, self.grating.period_nm() / lambda_nm)?;
         if let Some(t) = self.table() {
             return self.tab_sample(t, wo, lambda_nm, &c, [uc, ux, uy]);
         }
@@ -536,25 +543,20 @@ impl Bsdf for GratingBsdf {
         let (wi, u, r, v) = self.sample_direction(wo, m, step, ux, uy, lambda_nm)?;
         let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
-            (Slits::Finite(n), false) => {
+            (Slits::Finite(_), false) => {
                 // f and pdf from the returned direction itself (u and v re-derived from wi, the
                 // same operations as `eval` and `pdf`, sharing q = u/λ and the candidates), so
                 // the sample agrees with them exactly.
                 let (u, v) = (wi.x + wo.x, wi.y + wo.y);
+                // q = u/λ once: `value` is f at q and `phase` is d·q.
+                let q = u / lambda_nm;
                 (
-                    self.lobe.value(u, v, lambda_nm),
-                    self.pdf_x(
-                        &c,
-                        n as f64,
-                        self.lobe.phase(u, lambda_nm),
-                        v,
-                        wi.z,
-                        lambda_nm,
-                    ),
+                    self.lobe.value_q(q, v, lambda_nm),
+                    self.pdf_x(&c, self.lobe.d * q, v, wi.z, lambda_nm),
                     BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
                 )
             }
-            (Slits::Finite(n), true) => {
+            (Slits::Finite(_), true) => {
                 // δ(v) omitted from both f and pdf: the lobe's value with g = 1, the same fused
                 // kernel as `eval`.
                 let unit = GrooveFactor {
@@ -564,7 +566,7 @@ impl Bsdf for GratingBsdf {
                 let (num, den) = self.lobe.ratio(u / lambda_nm, unit, 0.0, lambda_nm);
                 (
                     num / den,
-                    pm * (lorentz_q(n as f64, self.atan_n, r) / step) * wi.z,
+                    pm * (self.proxy.q(r) / step) * wi.z,
                     BsdfFlags::REFLECTION | BsdfFlags::SPECULAR,
                 )
             }
@@ -654,8 +656,8 @@ impl GratingBsdf {
         lambda_nm: f64,
     ) -> Option<(DVec3, f64, f64, f64)> {
         let (u, r) = match self.grating.slits() {
-            Slits::Finite(n) => {
-                let r = lorentz_r(n as f64, self.atan_n, ux);
+            Slits::Finite(_) => {
+                let r = self.proxy.r(ux);
                 ((m as f64 + r) * step, r)
             }
             Slits::Infinite => (m as f64 * step, 0.0),
@@ -678,24 +680,43 @@ impl GratingBsdf {
     /// The density for finite N and a non-ideal groove, after the checks.
     #[inline]
     fn pdf_finite(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        let step = lambda_nm / self.grating.period_nm();
-        let Some(c) = self.orders.candidates(wo, step) else {
+        let Some(c) = self
+            .orders
+            .candidates(wo, self.grating.period_nm() / lambda_nm)
+        else {
             return 0.0;
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let x = self.lobe.phase(u, lambda_nm);
         if let Some(t) = self.table() {
-            let Some(o) = self.tab_orders(t, wo, lambda_nm, &c) else {
-                return 0.0;
-            };
-            let m = math::rint(x);
-            if !m.is_finite() {
-                return 0.0;
-            }
-            let w = o.weight(m as i64);
-            return self.pdf_w(w, o.total, self.lobe.n as f64, x, v, wi.z, lambda_nm);
+            return self.tab_pdf(t, &c, wo, x, v, wi.z, lambda_nm);
         }
-        self.pdf_x(&c, self.lobe.n as f64, x, v, wi.z, lambda_nm)
+        self.pdf_x(&c, x, v, wi.z, lambda_nm)
+    }
+
+    /// [`pdf_finite`](Self::pdf_finite) for a tabulated model at the phase x. Not inlined: its
+    /// order buffer would otherwise enlarge the amplitude model's stack frame.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn tab_pdf(
+        &self,
+        t: &crate::relief::EfficiencyTable,
+        c: &Candidates,
+        wo: DVec3,
+        x: f64,
+        v: f64,
+        cos_i: f64,
+        lambda_nm: f64,
+    ) -> f64 {
+        let Some(o) = self.tab_orders(t, wo, lambda_nm, c) else {
+            return 0.0;
+        };
+        let m = math::rint(x);
+        if !m.is_finite() {
+            return 0.0;
+        }
+        let w = o.weight(m as i64);
+        self.pdf_w(w, o.total, x, v, cos_i, lambda_nm)
     }
 
     /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi at the phase x = d·(u/λ) (m = round(x), r = x − m; the
@@ -703,13 +724,13 @@ impl GratingBsdf {
     /// candidates `c`, with two divisions: the order and u factors, and the v and cosine
     /// factors (q_v = (1/s)/(π·(1 + (v/s)²)), [`GrooveSpread::pdf`] to rounding).
     #[inline(always)]
-    fn pdf_x(&self, c: &Candidates, n: f64, x: f64, v: f64, cos_i: f64, lambda_nm: f64) -> f64 {
+    fn pdf_x(&self, c: &Candidates, x: f64, v: f64, cos_i: f64, lambda_nm: f64) -> f64 {
         let mi = math::rint(x) as i64;
         if mi < c.lo || mi > c.hi {
             return 0.0;
         }
         let w = self.orders.candidate_weight(c, mi);
-        self.pdf_w(w, c.total, n, x, v, cos_i, lambda_nm)
+        self.pdf_w(w, c.total, x, v, cos_i, lambda_nm)
     }
 
     /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi with P(m) = w/total (see [`pdf_x`](Self::pdf_x)).
@@ -719,7 +740,6 @@ impl GratingBsdf {
         &self,
         w: f64,
         total: f64,
-        n: f64,
         x: f64,
         v: f64,
         cos_i: f64,
@@ -729,11 +749,10 @@ impl GratingBsdf {
             return 0.0;
         }
         let r = x - math::rint(x);
-        let t = 2.0 * n * r;
+        let (qa, qb) = self.proxy.ratio(r);
         let inv_s = self.groove.proxy_inverse_scale(lambda_nm);
         let tv = v * inv_s;
-        let a =
-            (w * n * self.grating.period_nm()) / (total * (1.0 + t * t) * self.atan_n * lambda_nm);
+        let a = (w * qa * self.grating.period_nm()) / (total * qb * lambda_nm);
         let b = (inv_s * cos_i) / (PI * (1.0 + tv * tv));
         let p = a * b;
         if p.is_finite() {

@@ -81,7 +81,10 @@ impl GratingBsdf {
             return Some(0.0);
         }
         let step = lambda_nm / self.grating.period_nm();
-        let Some(c) = self.orders.candidates(wo, step) else {
+        let Some(c) = self
+            .orders
+            .candidates(wo, self.grating.period_nm() / lambda_nm)
+        else {
             return Some(0.0);
         };
         if c.hi - c.lo + 1 > MAX_ALBEDO_ORDERS {

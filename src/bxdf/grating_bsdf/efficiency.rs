@@ -46,7 +46,7 @@ use alloc::sync::Arc;
 
 use glam::DVec3;
 
-use super::lobe::{lorentz_q, GrooveFactor};
+use super::lobe::GrooveFactor;
 use super::orders::Candidates;
 use super::GratingBsdf;
 use crate::bxdf::bsdf::{BsdfFlags, BsdfSample};
@@ -448,7 +448,9 @@ impl GratingBsdf {
     }
 
     /// [`Bsdf::sample`](crate::Bsdf::sample) for a tabulated model: the order ∝ η_m(−wo.x, λ)
-    /// among the candidates `c`, then u, v and the direction as for the amplitude model.
+    /// among the candidates `c`, then u, v and the direction as for the amplitude model. Not
+    /// inlined: its order buffer would otherwise enlarge the amplitude model's stack frame.
+    #[inline(never)]
     pub(super) fn tab_sample(
         &self,
         t: &EfficiencyTable,
@@ -464,7 +466,7 @@ impl GratingBsdf {
         let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
         let specular = BsdfFlags::REFLECTION | BsdfFlags::SPECULAR;
         let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
-            (Slits::Finite(n), false) => {
+            (Slits::Finite(_), false) => {
                 // From the returned direction itself, as `eval` and `pdf` (see `sample`).
                 let (u, v) = (wi.x + wo.x, wi.y + wo.y);
                 let xr = self.lobe.phase(u, lambda_nm);
@@ -478,11 +480,11 @@ impl GratingBsdf {
                 };
                 (
                     f,
-                    self.pdf_w(w, o.total, n as f64, xr, v, wi.z, lambda_nm),
+                    self.pdf_w(w, o.total, xr, v, wi.z, lambda_nm),
                     BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
                 )
             }
-            (Slits::Finite(n), true) => {
+            (Slits::Finite(_), true) => {
                 let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
                 let unit = GrooveFactor {
                     big: 1.0,
@@ -491,7 +493,7 @@ impl GratingBsdf {
                 let (num, den) = self.lobe.ratio(u / lambda_nm, unit, 0.0, lambda_nm);
                 (
                     e * (num / den),
-                    pm * (lorentz_q(n as f64, self.atan_n, r) / step) * wi.z,
+                    pm * (self.proxy.q(r) / step) * wi.z,
                     specular,
                 )
             }
@@ -532,7 +534,7 @@ impl GratingBsdf {
         // The relative 10⁻¹² covers the rounding of the weight's products and quotients.
         let b = match self.grating.slits() {
             Slits::Infinite => o.total * gv,
-            Slits::Finite(_) => o.total * 2.0 * self.atan_n * gv,
+            Slits::Finite(_) => o.total * self.proxy.bound() * gv,
         };
         b * (1.0 + 1e-12)
     }

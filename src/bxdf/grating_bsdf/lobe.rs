@@ -1,6 +1,6 @@
 //! The shape of the grating's lobes: the value f(u, v) of the finite-N lobes (the single-slit
-//! factor, the N-slit factor and the groove spread, fused into one division) and the Lorentzian
-//! proxy of F_N that the sampler draws u from.
+//! factor, the N-slit factor and the groove spread, fused into one division) and the proxy of F_N
+//! inside one period that the sampler draws u from ([`PeriodProxy`]).
 //!
 //! F_N(π·r) ≤ 2/(1 + 4N²r²) on |r| ≤ ½, so the Lorentzian density
 //! q(r) = N/((1 + 4N²r²)·atan N) on |r| < ½ (inverse CDF r = tan((2ξ − 1)·atan N)/(2N)) bounds
@@ -25,6 +25,63 @@ pub(super) fn lorentz_q(n: f64, atan_n: f64, r: f64) -> f64 {
     }
     let t = 2.0 * n * r;
     n / ((1.0 + t * t) * atan_n)
+}
+
+/// The direction sampler's proxy of N·F_N(π·r) inside one period, r ∈ [−½, ½): the Lorentzian
+/// q(r) = (N/atan N)/(1 + (2N·r)²), with its constants precomputed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct PeriodProxy {
+    /// N.
+    n: f64,
+    /// 2N.
+    two_n: f64,
+    /// atan N.
+    atan_n: f64,
+    /// q(0) = N/atan N.
+    peak: f64,
+}
+
+impl PeriodProxy {
+    /// The proxy for N ≥ 1 slits (atan N given, the value every other part uses).
+    pub(super) fn new(n: u32, atan_n: f64) -> PeriodProxy {
+        let nf = n as f64;
+        PeriodProxy {
+            n: nf,
+            two_n: 2.0 * nf,
+            atan_n,
+            peak: nf / atan_n,
+        }
+    }
+
+    /// r ∈ [−½, ½] from t ∈ [0, 1): the Lorentzian's inverse CDF ([`lorentz_r`]).
+    #[inline(always)]
+    pub(super) fn r(&self, t: f64) -> f64 {
+        lorentz_r(self.n, self.atan_n, t)
+    }
+
+    /// q(r) for |r| ≤ ½ (the caller's range) as (peak, 1 + (2N·r)²), for a caller that folds
+    /// the division into its own.
+    #[inline(always)]
+    pub(super) fn ratio(&self, r: f64) -> (f64, f64) {
+        let t = self.two_n * r;
+        (self.peak, 1.0 + t * t)
+    }
+
+    /// q(r), 0 for |r| > ½.
+    #[inline]
+    pub(super) fn q(&self, r: f64) -> f64 {
+        if r.abs() > 0.5 {
+            return 0.0;
+        }
+        let (a, b) = self.ratio(r);
+        a / b
+    }
+
+    /// sup over the period of N·F_N/q: 2·atan N.
+    #[inline]
+    pub(super) fn bound(&self) -> f64 {
+        2.0 * self.atan_n
+    }
 }
 
 /// The value of a finite-N lobe with a non-ideal groove spread, for one grating: everything that
@@ -99,7 +156,12 @@ impl Lobe {
     /// f at (u, v), finite and ≥ 0 (0 where the phase or the value is not finite).
     #[inline]
     pub(super) fn value(&self, u: f64, v: f64, lambda_nm: f64) -> f64 {
-        let q = u / lambda_nm;
+        self.value_q(u / lambda_nm, v, lambda_nm)
+    }
+
+    /// [`value`](Self::value) from q = u/λ, for a caller that also needs the phase d·q.
+    #[inline(always)]
+    pub(super) fn value_q(&self, q: f64, v: f64, lambda_nm: f64) -> f64 {
         let (num, den) = self.ratio(q, self.groove_factor(v, lambda_nm), v, lambda_nm);
         let f = num / den;
         if (self.d * q).is_finite() && f.is_finite() {

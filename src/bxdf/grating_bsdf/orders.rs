@@ -27,8 +27,8 @@ pub const DEFENSIVE_ORDER_SHARE: f64 = 0.125;
 pub const MAX_WEIGHTED_ORDERS: i64 = 256;
 /// x = d·u/λ beyond this magnitude is not sampled (orders would not fit an `i64` exactly).
 const MAX_PHASE: f64 = 4.0e15;
-/// Orders |m| ≤ this have their weights w_m summed in a table, so that the order choice and its
-/// probability cost O(log K) and O(1) instead of O(K).
+/// Orders |m| ≤ this have their weights w_m and prefix sums in a table, so that the candidates'
+/// total and an order's probability cost O(1) instead of O(K).
 const TABLE_ORDERS: usize = 64;
 
 /// The candidate orders for one (wo, λ) and the normaliser of their weights.
@@ -42,8 +42,8 @@ pub(super) struct Candidates {
     pub uniform: bool,
 }
 
-/// The order weights of one grating: w_m for |m| ≤ 64 and their prefix sums, so that the order
-/// choice and its probability cost O(log K) and O(1); other orders are weighed on the fly.
+/// The order weights of one grating: w_m for |m| ≤ 64 and their prefix sums, so that the
+/// candidates' total costs O(1); other orders are weighed on the fly.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct OrderDistribution {
     slits: Slits,
@@ -116,11 +116,13 @@ impl OrderDistribution {
         lo >= -(TABLE_ORDERS as i64) && hi <= TABLE_ORDERS as i64
     }
 
-    /// The candidate orders for wo at step λ/d (u per order), or `None` when there are none.
-    #[inline]
-    pub(super) fn candidates(&self, wo: DVec3, step: f64) -> Option<Candidates> {
-        let x_lo = (wo.x - 1.0) / step;
-        let x_hi = (wo.x + 1.0) / step;
+    /// The candidate orders for wo, given the orders per unit of u, d/λ (the inverse of the
+    /// step λ/d: products, not quotients, on the path of every sample), or `None` when there
+    /// are none. Inlined so that the result stays in registers.
+    #[inline(always)]
+    pub(super) fn candidates(&self, wo: DVec3, inv_step: f64) -> Option<Candidates> {
+        let x_lo = (wo.x - 1.0) * inv_step;
+        let x_hi = (wo.x + 1.0) * inv_step;
         if !(x_lo.abs() < MAX_PHASE && x_hi.abs() < MAX_PHASE) {
             return None;
         }
@@ -174,17 +176,15 @@ impl OrderDistribution {
         }
         let target = uc * c.total;
         if Self::tabled(c.lo, c.hi) {
-            // The first m with Σ_{lo}^{m} w > target, by bisection on the table's sums.
-            let (mut a, mut b) = (c.lo, c.hi);
-            while a < b {
-                let mid = a + (b - a) / 2;
-                if self.sum(c.lo, mid) > target {
-                    b = mid;
-                } else {
-                    a = mid + 1;
-                }
+            // The first m with Σ_{lo}^{m} w > target (hi if none), by a scan of the table's
+            // weights: a handful of candidates in practice, and one mispredicted branch where a
+            // bisection has one per step.
+            let mut m = c.lo;
+            let mut acc = self.weight[m.unsigned_abs() as usize];
+            while acc <= target && m < c.hi {
+                m += 1;
+                acc += self.weight[m.unsigned_abs() as usize];
             }
-            let mut m = a;
             while m > c.lo && self.weight(m) == 0.0 {
                 m -= 1;
             }
