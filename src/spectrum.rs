@@ -322,6 +322,17 @@ impl Spectral {
         self.white
     }
 
+    /// The spectral envelope's factor at λ times the normalisation: the part of a sample's
+    /// weight besides the tables (1 where there is no envelope, without evaluating it).
+    #[inline]
+    pub(crate) fn envelope_norm(&self, lambda_nm: f64) -> f64 {
+        if self.envelope.is_one() {
+            self.norm
+        } else {
+            self.envelope.at(lambda_nm) * self.norm
+        }
+    }
+
     /// E(λ)·cmf(λ)·norm at one wavelength, the weight of a spectral sample.
     #[inline]
     pub(crate) fn weight(&self, lambda_nm: f64) -> DVec3 {

@@ -444,12 +444,7 @@ impl Walk<'_, '_> {
         let k = |lambda: f64| {
             let x = l.q / lambda;
             let sx = sinpi(x - rint(x));
-            let env = if s.envelope.is_one() {
-                1.0
-            } else {
-                s.envelope.at(lambda)
-            };
-            single_slit_cycles(l.duty * x) * env * s.norm / (2.0 * sx * sx)
+            single_slit_cycles(l.duty * x) * s.envelope_norm(lambda) / (2.0 * sx * sx)
         };
         order0::integrate(s.illuminant, first, last, &k)
     }

@@ -298,12 +298,7 @@ impl Spectral {
             let x = q / l;
             let (num, den) = intensity_ratio_flat(x, duty * x, n_int);
             let r = num / den;
-            let env = if self.envelope.is_one() {
-                1.0
-            } else {
-                self.envelope.at(l)
-            };
-            (r * r).min(1.0) * env * self.norm
+            (r * r).min(1.0) * self.envelope_norm(l)
         };
         integrate(self.illuminant, &frequency, &k)
     }
