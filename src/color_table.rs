@@ -185,7 +185,7 @@ pub struct ColorTable {
 impl ColorTable {
     /// The smallest `accuracy` at which nodes are computed by [`Strategy::ASYMPTOTIC`] (for
     /// N ≥ 5, where it meets the tolerance: see the [Cost](Self#cost) section); below it every
-    /// node is [`Strategy::EXACT`]. `Asymptotic` is within 2.1·10⁻⁴ of the brightest order
+    /// node is [`Strategy::EXACT`]. `Asymptotic` is within 1.3·10⁻⁴ of the brightest order
     /// (measured, `tests/asymptotic.rs`); the tables built with it at 10⁻⁴ were measured within
     /// 0.027 ΔE2000 of `Exact` (docs/color_table.md).
     ///

@@ -21,8 +21,8 @@
 //! | `PeakSearch { refine: false }` | O(visible orders), independent of N (a few µs where order 0's light reaches the band) | 3.5/N of the brightest order; 2e-3 of order 0's light |
 //! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
 //! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
-//! | `Asymptotic` | O(visible orders): 4 lobes × 6 points per bright order, one point per faint order, the envelope in 3-point pieces of 16-64 nm (order 0's: a product rule, 4 points per 30 nm) | 5e-4 of the brightest order (worst measured 2.1e-4, N ≥ 5); 2e-4 of order 0's light (measured 8.7e-5) |
-//! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere; where the band lies inside order 0's half period with at most about 80 lobes, a product rule of 128-512 points against the tables (`smooth_band`) | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
+//! | `Asymptotic` | O(visible orders): 4 lobes × 6 points per bright order, one point per faint order, the envelope in 3-point pieces of 16-64 nm (order 0's: a product rule, 4 points per 30 nm); where N·d·\|u\| ≤ about 47,000 nm, and over the band's long end where lobes are wider than 5-8 nm, a product rule of 4-32 points per 30 nm against the tables (`smooth_band`) | 5e-4 of the brightest order (worst measured 1.3e-4, N ≥ 5); 2e-4 of order 0's light (measured 1.9e-5) |
+//! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere; where N·d·\|u\| ≤ about 29,000 nm (at most about 45 lobes over the band), a product rule of 64-512 points against the tables (`smooth_band`) | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
 //! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
 //!
 //! Δx = d·|u|·(1/360 − 1/830) is the range of the phase in cycles over the band.
@@ -82,7 +82,13 @@
 //!   (Δ/h)·λ/(m·N) relative to the order, 10⁻² and more for D65 at N ≤ 1000.)
 //! - **Lobes wider than 8 nm** (or than the illuminant's node spacing) in wavelength, q/(N·x²),
 //!   which occur for small N and in order 0's half period near the mirror direction: the
-//!   expansion needs h smooth on the scale of a lobe, so they too are integrated lobe by lobe.
+//!   expansion needs h smooth on the scale of a lobe. Where N·q is at most about 47,000 nm (about
+//!   74 lobes over the band) the whole band, and otherwise the fixed 30 nm pieces from the one
+//!   where a lobe is that wide on to 830 nm, take the product rule of `smooth_band`: the whole
+//!   integrand S·F_N·env, a trigonometric polynomial in x times a power of it, interpolated at
+//!   4-32 points per piece by its local frequency 2π·N·q/λ² and integrated against the tables'
+//!   weight exactly (within 4.3·10⁻⁶ of the lobe walk at its limits); the rest of such lobes
+//!   are integrated lobe by lobe.
 //! - **Between the windows**, ∫G in 3-point pieces (split at the illuminant's nodes in order 0's
 //!   half period only, where G is the whole colour), at most 16 nm in order 0's half period and
 //!   16·(N/5)^(1/6) nm, at most 64, next to the orders m ≠ 0 (there G's share of the colour
@@ -104,8 +110,8 @@
 //!
 //! Below 5 slits the strategy is `Exact`. Measured against `Exact` (`tests/asymptotic.rs`: N = 5
 //! … 10⁶, d = 400 nm … 100 µm, w = d/2 and d/10, 128 directions, E and D65) and the python
-//! reference: at most 2.1e-4 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
-//! and 8.7e-5 of max(colour, brightest order) where order 0's half period does; `Spectral::choose`
+//! reference: at most 1.3e-4 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
+//! and 1.9e-5 of max(colour, brightest order) where order 0's half period does; `Spectral::choose`
 //! relies on 5e-4 and 2e-4.
 //!
 //! **The paper's peak colours** (its rendering steps 6-8) evaluate eq. 13 at the peak wavelengths

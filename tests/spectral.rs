@@ -240,7 +240,8 @@ proptest! {
 
     /// Uniform and Gauss-Legendre converge to Exact for a broad pattern (N = 1). Gauss-Legendre
     /// on the 470 one-nanometre steps of the tables never straddles a kink of their linear
-    /// interpolation, so it is exact to rounding; the midpoint rule is second order.
+    /// interpolation, so it is exact to rounding (and `Exact`'s product rule within its weights'
+    /// accuracy of it); the midpoint rule is second order.
     #[test]
     fn quadratures_converge_for_one_slit(d in 300.0f64..3000.0, u in -2.0f64..2.0) {
         let g = Grating::new(d, 0.5 * d, 1).unwrap();

@@ -19,6 +19,7 @@ use super::bounds;
 use super::lobes::Lobes;
 use super::order0;
 use super::rules::{gl2, gl3, gl4, gl6};
+use super::smooth_band::Limits;
 use super::{Spectral, BAND};
 use crate::cie::Illuminant;
 use crate::kernel::{single_slit_cycles, sinpi};
@@ -112,14 +113,25 @@ impl Spectral {
             // (bounded work, see `dense`).
             return self.exact(grating, u);
         }
+        if let Some(c) = self.smooth_band(grating, q, n, Limits::FAST) {
+            // N·q up to about 47,000 nm (at most about 74 lobes over the band): the product
+            // rule against the tables, within about 10⁻⁶ of the lobe walk (`smooth_band`).
+            return c;
+        }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());
         let lobe_nm = self.lobe_nm();
+        // Lobes wider than lobe_nm at the band's long end: the fixed pieces from the one where a
+        // lobe is lobe_nm wide (λ² = lobe_nm·N·q) on by the same product rule (there ω·h is at
+        // most 30π/lobe_nm·(390/360)², inside its limits), the rest walked.
+        let (mut long_end, mut x_lo) = (DVec3::ZERO, x_lo);
         if q / (n * x_lo * x_lo) > lobe_nm {
-            // Lobes wider than lobe_nm at the band's long end, walked lobe by lobe: where the
-            // band lies inside order 0's half period with at most about 80 lobes, `Exact`'s
-            // product rule is cheaper (and exact).
-            if let Some(c) = self.smooth_band(grating, q, n) {
-                return c;
+            let at = (sqrt(lobe_nm * n * q) - BAND.min_nm()) / order0::PIECE_NM;
+            let first = floor(at.max(0.0)) as usize;
+            if first < order0::PIECES {
+                if let Some(c) = self.smooth_pieces(grating, q, n, Limits::FAST, first) {
+                    long_end = c;
+                    x_lo = q / order0::piece_bounds(first).0;
+                }
             }
         }
         let lobes = Lobes::new(self, grating, q, n);
@@ -136,7 +148,7 @@ impl Spectral {
             peak_rule: None,
         };
         if x_lo.is_nan() || x_hi.is_nan() || x_lo >= x_hi {
-            return walk.acc;
+            return long_end;
         }
         let t = PEAK_LOBES / n;
         // The band end, and every lobe wider than LOBE_NM (the envelope's expansion needs h
@@ -175,7 +187,7 @@ impl Spectral {
         walk.finish();
         // The integral is non-negative; the corrections can undershoot a vanishing channel by
         // rounding.
-        walk.acc.max(DVec3::ZERO)
+        (long_end + walk.acc).max(DVec3::ZERO)
     }
 }
 

@@ -31,11 +31,11 @@ pub const PEAK_SEARCH_PER_SLIT: f64 = 8.0;
 pub const PEAK_SEARCH_ORDER0: f64 = 2e-3;
 
 /// `Asymptotic`'s bound where only orders m ≠ 0 reach the band, of the accuracy unit, for
-/// N ≥ [`ASYMPTOTIC_MIN_SLITS`] (worst measured 2.1·10⁻⁴, `tests/asymptotic.rs`).
+/// N ≥ [`ASYMPTOTIC_MIN_SLITS`] (worst measured 1.3·10⁻⁴, `tests/asymptotic.rs`).
 pub const ASYMPTOTIC_ORDERS: f64 = 5e-4;
 
 /// `Asymptotic`'s bound relative to order 0's own light where its half period reaches the band
-/// (worst measured 8.7·10⁻⁵, `tests/asymptotic.rs`).
+/// (worst measured 1.9·10⁻⁵, `tests/asymptotic.rs`).
 pub const ASYMPTOTIC_ORDER0: f64 = 2e-4;
 
 /// Below this many slits `Asymptotic` is `Exact` (the expansion needs a few lobes per period).

@@ -15,6 +15,7 @@
 use glam::DVec3;
 
 use super::lobes::Lobes;
+use super::smooth_band::Limits;
 use super::{Spectral, BAND};
 use crate::math::{ceil, floor};
 use crate::quadrature::{GL4, GL8};
@@ -30,9 +31,9 @@ impl Spectral {
         if Self::order0_everywhere(grating, q) {
             return self.flat_dvec3();
         }
-        if let Some(c) = self.smooth_band(grating, q, n) {
-            // The band inside order 0's half period with at most about 80 lobes: the product
-            // rule against the tables (`smooth_band`, within 3.5·10⁻¹¹ of the lobe walk).
+        if let Some(c) = self.smooth_band(grating, q, n, Limits::EXACT) {
+            // N·q up to about 29,000 nm (at most about 45 lobes over the band): the product rule
+            // against the tables (`smooth_band`, within 3.5·10⁻¹¹ of the lobe walk).
             return c;
         }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());

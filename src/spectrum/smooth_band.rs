@@ -1,20 +1,25 @@
-//! The band inside order 0's half period (d·|u| ≤ 180 nm, so x = d·|u|/λ ≤ ½ at every λ) by
-//! product integration against the tables: ∫ W(λ)·K(λ) dλ with W = E·cmf the tables' weight
-//! (quadratic between the 1 nm rows, kinks included) and K = S(ρ·q/λ)·F_N(q/λ)·env(λ)·norm,
-//! analytic on the band. On each 30 nm piece of `order0`, K is replaced by its interpolant at 16
-//! or 32 Chebyshev points (by K's largest local frequency on the piece, 2π·N·q/λ² radians per nm
-//! at its short end) and the product with W integrated exactly, with weights computed from the
-//! tables at compile time. Where a piece would need more than 32 points (about 80 lobes of F_N
-//! over the band) the caller walks the lobes instead.
+//! The band by product integration against the tables, where K = S·F_N oscillates slowly
+//! enough: ∫ W(λ)·K(λ) dλ with W = E·cmf the tables' weight (quadratic between the 1 nm rows,
+//! kinks included) and K = S(ρ·q/λ)·F_N(q/λ)·env(λ)·norm, analytic on the band (S·F_N is a
+//! trigonometric polynomial of frequency at most N − 1 + ρ ≤ N in x times a power of x, so its
+//! local frequency in λ is at most 2π·N·q/λ² radians per nm, largest at the band's short end).
+//! On each 30 nm piece of `order0`, K is replaced by its interpolant at 8, 16 or 32 Chebyshev
+//! points, or at `order0`'s 4 Gauss-Legendre points (by ω·h, that frequency at the piece's short
+//! end times its half width, against the [`Limits`]), and the product with W integrated
+//! exactly, with weights computed from the tables at compile time. Where the first piece would
+//! need more than 32 points (N·q above about 29,000 nm for `Exact`, 47,000 nm for
+//! `Asymptotic`) the caller walks the lobes instead.
 //!
-//! Chebyshev interpolation of e^{iωt} with n points on [−1, 1] is off by about
-//! (ω/2)ⁿ/(n!·2ⁿ⁻¹): with ω·(half width) ≤ 0.5 for 8 points, ≤ 5 for 16 and ≤ 21 for 32 that
-//! is below 4·10⁻¹² of K's largest value on the piece; `tests` checks the rule against the lobe walk.
+//! Chebyshev interpolation of e^{iωt} at n points on [−1, 1] is off by about 2·J_n(ω) of its
+//! amplitude (7.5·10⁻¹⁰ for n = 8, ω = ½; 1.1·10⁻⁴ for n = 32, ω = 21), but the error
+//! oscillates as fast as K and integrates against the smooth W to far less: at the limits of
+//! [`Limits::EXACT`] the rule is within 3.5·10⁻¹¹ of the lobe walk, at those of
+//! [`Limits::FAST`] within 4.3·10⁻⁶ (`tests`, which put the band's first piece at each limit).
 
 use glam::DVec3;
 
-use super::order0::{piece_bounds, PIECES};
-use super::{Spectral, BAND};
+use super::order0::{self, piece_bounds, PIECES};
+use super::Spectral;
 use crate::cie::Illuminant;
 use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
 use crate::kernel::intensity_ratio_flat;
@@ -22,12 +27,42 @@ use crate::Grating;
 
 /// Rows of the tables.
 const ROWS: usize = (LAST_NM - FIRST_NM) as usize + 1;
-/// The largest ω·(half width) of a piece for 8 points (see the module docs: 3·10⁻¹²).
-const LIMIT_8: f64 = 0.5;
-/// The largest ω·(half width) of a piece for 16 points (see the module docs).
-const LIMIT_16: f64 = 5.0;
-/// The largest ω·(half width) of a piece for 32 points.
-const LIMIT_32: f64 = 21.0;
+
+/// The largest ω·h of a piece (its largest local frequency times its half width) for 8, 16 and
+/// 32 points (see the module docs).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Limits {
+    l4: f64,
+    l8: f64,
+    l16: f64,
+    l32: f64,
+}
+
+impl Limits {
+    /// `Exact`'s: within 3.5·10⁻¹¹ of the lobe walk (measured at each limit, `tests`).
+    pub(super) const EXACT: Limits = Limits {
+        l4: L4_EXACT,
+        l8: 0.5,
+        l16: 5.0,
+        l32: 21.0,
+    };
+    /// `Asymptotic`'s, far inside its own bound (`bounds::ASYMPTOTIC_ORDER0`, 2·10⁻⁴): measured
+    /// at each limit 4.7·10⁻⁸ (4 points), 7.6·10⁻⁸ (8), 2.7·10⁻⁷ (16) and 4.3·10⁻⁶ (32) of the
+    /// lobe walk.
+    pub(super) const FAST: Limits = Limits {
+        l4: L4_FAST,
+        l8: 3.0,
+        l16: 12.0,
+        l32: 34.0,
+    };
+}
+
+/// ω·h up to which `order0`'s cubic rule (4 Gauss-Legendre points) takes a piece: none for
+/// `Exact` (there the cubic rule would leave 3·10⁻¹¹ at ω·h = 0.02, and 5·10⁻¹³ of one slit's
+/// colour, which `Exact` gives to rounding); 0.5 for `Asymptotic` (measured 4.7·10⁻⁸ at it).
+const L4_EXACT: f64 = 0.0;
+/// See L4_EXACT.
+const L4_FAST: f64 = 0.5;
 /// The rule is taken where the spectral envelope's sinc² argument stays below this over the band
 /// (no zero in it).
 const SINC_CYCLES: f64 = 0.5;
@@ -233,48 +268,59 @@ fn weights_of(illuminant: Illuminant) -> Sets {
     }
 }
 
-/// Σᵢ K(mid + half·tᵢ)·Ωᵢ for one piece.
-fn piece_sum<const K: usize>(
+/// Σᵢ K(mid + half·tᵢ)·Ωᵢ for one piece, four points side by side (K is a chain of dependent
+/// operations: four independent chains keep the processor busy).
+#[inline(always)]
+fn piece_sum<const K: usize, F: Fn(f64) -> f64>(
     t: &[f64; K],
     w: &[[f64; 3]; K],
     mid: f64,
     half: f64,
-    k: &dyn Fn(f64) -> f64,
+    k: &F,
 ) -> DVec3 {
-    let mut acc = DVec3::ZERO;
-    for (t, w) in t.iter().zip(w) {
-        acc += DVec3::from_array(*w) * k(mid + half * t);
+    let mut acc = [DVec3::ZERO; 4];
+    for (t, w) in t.chunks_exact(4).zip(w.chunks_exact(4)) {
+        let v = [0, 1, 2, 3].map(|i| k(mid + half * t[i]));
+        for i in 0..4 {
+            acc[i] += DVec3::from_array(w[i]) * v[i];
+        }
     }
-    acc
+    (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
-/// Σ over the pieces of Σᵢ K(λᵢ)·Ωᵢ for K of largest local frequency `frequency`(λ) radians
-/// per nm at λ and above; `None` where a piece would need more than 32 points.
-fn integrate(
+/// Σ over the pieces from `first` on of Σᵢ K(λᵢ)·Ωᵢ for K of largest local frequency
+/// `frequency`(λ) radians per nm at λ and above; `None` where a piece would need more than 32
+/// points under `limits`.
+fn integrate<F: Fn(f64) -> f64>(
     illuminant: Illuminant,
+    limits: Limits,
+    first: usize,
     frequency: &dyn Fn(f64) -> f64,
-    k: &dyn Fn(f64) -> f64,
+    k: &F,
 ) -> Option<DVec3> {
     let sets = weights_of(illuminant);
     let mut count = [0usize; PIECES];
-    for (p, c) in count.iter_mut().enumerate() {
+    for (p, c) in count.iter_mut().enumerate().skip(first) {
         let (lo, hi) = piece_bounds(p);
         let wh = frequency(lo) * 0.5 * (hi - lo);
-        *c = if wh <= LIMIT_8 {
+        *c = if wh <= limits.l4 {
+            4
+        } else if wh <= limits.l8 {
             8
-        } else if wh <= LIMIT_16 {
+        } else if wh <= limits.l16 {
             16
-        } else if wh <= LIMIT_32 {
+        } else if wh <= limits.l32 {
             32
         } else {
             return None;
         };
     }
     let mut acc = DVec3::ZERO;
-    for (p, &c) in count.iter().enumerate() {
+    for (p, &c) in count.iter().enumerate().skip(first) {
         let (lo, hi) = piece_bounds(p);
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
         acc += match c {
+            4 => order0::integrate(illuminant, p, p + 1, k),
             8 => piece_sum(&T8, &sets.w8[p], mid, half, k),
             16 => piece_sum(&T16, &sets.w16[p], mid, half, k),
             _ => piece_sum(&T32, &sets.w32[p], mid, half, k),
@@ -285,10 +331,30 @@ fn integrate(
 
 impl Spectral {
     /// The colour of `grating` (N = `n` slits) at q = d·|u| by the product rule (module docs)
-    /// where the band lies inside order 0's half period and the rule's 32 points per piece
-    /// suffice; `None` elsewhere.
-    pub(super) fn smooth_band(&self, grating: &Grating, q: f64, n: f64) -> Option<DVec3> {
-        if !(q / BAND.min_nm() <= 0.5 && self.envelope.band_sinc_cycles() <= SINC_CYCLES) {
+    /// where its 32 points per piece suffice under `limits` and the spectral envelope is smooth
+    /// over the band; `None` elsewhere.
+    pub(super) fn smooth_band(
+        &self,
+        grating: &Grating,
+        q: f64,
+        n: f64,
+        limits: Limits,
+    ) -> Option<DVec3> {
+        self.smooth_pieces(grating, q, n, limits, 0)
+    }
+
+    /// [`smooth_band`](Self::smooth_band) over the fixed pieces from `first` on (the band's
+    /// long-wavelength end from `order0::piece_bounds(first).0` nm; nothing for `first` ≥
+    /// `PIECES`).
+    pub(super) fn smooth_pieces(
+        &self,
+        grating: &Grating,
+        q: f64,
+        n: f64,
+        limits: Limits,
+        first: usize,
+    ) -> Option<DVec3> {
+        if !(q.is_finite() && self.envelope.band_sinc_cycles() <= SINC_CYCLES) {
             return None;
         }
         let duty = grating.slit_width_nm() / grating.period_nm();
@@ -300,7 +366,7 @@ impl Spectral {
             let r = num / den;
             (r * r).min(1.0) * self.envelope_norm(l)
         };
-        integrate(self.illuminant, &frequency, &k)
+        integrate(self.illuminant, limits, first, &frequency, &k)
     }
 }
 
@@ -308,15 +374,26 @@ impl Spectral {
 mod tests {
     use super::*;
     use crate::spectrum::lobes::Lobes;
+    use crate::spectrum::BAND;
 
     /// The weights against a row-by-row 16-point rule of the tables' own interpolation for K =
     /// T_31 on every piece (the highest degree the 32 points integrate exactly), every
     /// illuminant, relative to Σ|Ωᵢ|. Measured 2.1e-14; margin 10×.
     const WEIGHTS_EXACT: f64 = 2e-13;
     /// The rule against the lobe walk of the same integrand (`Lobes::lobes`: 8 points on every
-    /// piece between the zeros of sin(πNx) and the 1 nm rows), relative to each component.
-    /// Measured 3.5e-11 (d = 10 µm, N = 300, u = 0.003, E); margin 9×.
+    /// piece between the zeros of sin(πNx) and the 1 nm rows), relative to each component, for
+    /// [`Limits::EXACT`]. Measured 3.5e-11 (d = 10 µm, N = 300, u = 0.003, E); margin 9×.
     const AGAINST_LOBES: f64 = 3e-10;
+    /// The same for [`Limits::FAST`], with the band's first piece at each limit. Measured
+    /// 4.3e-6 (32 points, d = 1600 nm, N = 1000); margin 7×.
+    const FAST_AGAINST_LOBES: f64 = 3e-5;
+
+    /// u that puts the band's first piece of a grating (d, N) at ω·h = `limit` (just inside).
+    fn u_at_limit(d: f64, n: u32, limit: f64) -> f64 {
+        let (lo, hi) = piece_bounds(0);
+        let per_q = 2.0 * core::f64::consts::PI * n as f64 / (lo * lo) * 0.5 * (hi - lo);
+        limit / per_q / d * (1.0 - 1e-9)
+    }
 
     #[test]
     fn weights_integrate_the_highest_degree_exactly() {
@@ -360,44 +437,85 @@ mod tests {
         std::println!("Chebyshev product weights: worst {worst:.2e}");
     }
 
-    #[test]
-    fn the_rule_matches_the_lobe_walk() {
+    /// The rule against the lobe walk for `limits` on `cases` (d, w, N, u), every illuminant;
+    /// the worst relative error.
+    fn against_lobes(limits: Limits, cases: &[(f64, f64, u32, f64)], bound: f64) -> f64 {
         let mut worst = 0.0f64;
         for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
             let s = Spectral::new(ill);
-            for (d, w, n, u) in [
-                (1600.0, 800.0, 1000u32, 1e-8),
-                (1600.0, 800.0, 1000, 1e-4),
-                (1600.0, 800.0, 1000, 2e-3),
-                (1600.0, 800.0, 1000, 1.5e-2),
-                (740.0, 74.0, 30, 0.2),
-                (400.0, 200.0, 5, 0.44),
-                (10_000.0, 5000.0, 300, 3e-3),
-                (100_000.0, 10_000.0, 1_000_000, 1e-7),
-            ] {
+            for &(d, w, n, u) in cases {
                 let g = Grating::new(d, w, n).unwrap();
                 let q = d * u;
-                let Some(got) = s.smooth_band(&g, q, n as f64) else {
+                let Some(got) = s.smooth_band(&g, q, n as f64, limits) else {
                     panic!("{d} {n} {u}: outside the rule");
                 };
                 let l = Lobes::new(&s, &g, q, n as f64);
                 let want = l.lobes(q / BAND.max_nm(), q / BAND.min_nm());
                 let rel = ((got - want).abs() / want.abs()).max_element();
-                assert!(
-                    rel <= AGAINST_LOBES,
-                    "{ill:?} {d} {w} {n} {u}: {got} vs {want}"
-                );
+                assert!(rel <= bound, "{ill:?} {d} {w} {n} {u}: {got} vs {want}");
                 worst = worst.max(rel);
             }
         }
+        worst
+    }
+
+    #[test]
+    fn the_rule_matches_the_lobe_walk() {
+        let limits = Limits::EXACT;
+        let cases = [
+            (1600.0, 800.0, 1000u32, 1e-8),
+            (1600.0, 800.0, 1000, 1e-4),
+            (1600.0, 800.0, 1000, 2e-3),
+            (1600.0, 800.0, 1000, 1.5e-2),
+            (740.0, 74.0, 30, 0.2),
+            (400.0, 200.0, 5, 0.44),
+            (10_000.0, 5000.0, 300, 3e-3),
+            (100_000.0, 10_000.0, 1_000_000, 1e-7),
+            // Orders in the band (x > ½) and a single slit.
+            (10_000.0, 5000.0, 5, 0.5),
+            (10_000.0, 5000.0, 20, 0.12),
+            (3000.0, 1000.0, 1, 1.9),
+            (3000.0, 1000.0, 10, u_at_limit(3000.0, 10, limits.l32)),
+            // Each limit.
+            (1600.0, 800.0, 1000, u_at_limit(1600.0, 1000, limits.l8)),
+            (1600.0, 800.0, 1000, u_at_limit(1600.0, 1000, limits.l16)),
+            (1600.0, 800.0, 1000, u_at_limit(1600.0, 1000, limits.l32)),
+        ];
+        let worst = against_lobes(limits, &cases, AGAINST_LOBES);
         std::println!("smooth band against the lobe walk: worst {worst:.2e}");
     }
 
     #[test]
-    fn the_rule_declines_beyond_its_points_and_order_0() {
+    fn the_fast_rule_matches_the_lobe_walk_at_its_limits() {
+        let limits = Limits::FAST;
+        let cases = [
+            (1600.0, 800.0, 1000u32, u_at_limit(1600.0, 1000, limits.l4)),
+            (1600.0, 800.0, 1000, u_at_limit(1600.0, 1000, limits.l8)),
+            (1600.0, 800.0, 1000, u_at_limit(1600.0, 1000, limits.l16)),
+            (1600.0, 800.0, 1000, u_at_limit(1600.0, 1000, limits.l32)),
+            // Orders in the band (x > ½) and a single slit.
+            (10_000.0, 5000.0, 5, u_at_limit(10_000.0, 5, limits.l32)),
+            (3000.0, 1000.0, 10, u_at_limit(3000.0, 10, limits.l16)),
+            (10_000.0, 5000.0, 5, 0.5),
+            (10_000.0, 5000.0, 20, 0.15),
+            (3000.0, 1000.0, 1, 1.9),
+        ];
+        let worst = against_lobes(limits, &cases, FAST_AGAINST_LOBES);
+        std::println!("fast smooth band against the lobe walk: worst {worst:.2e}");
+    }
+
+    #[test]
+    fn the_rule_declines_beyond_its_points() {
         let s = Spectral::new(Illuminant::D65);
         let g = Grating::new(1600.0, 800.0, 1000).unwrap();
-        assert!(s.smooth_band(&g, 1600.0 * 0.05, 1000.0).is_none()); // ~130 lobes
-        assert!(s.smooth_band(&g, 200.0, 1000.0).is_none()); // order 1 in the band
+        assert!(s
+            .smooth_band(&g, 1600.0 * 0.05, 1000.0, Limits::FAST)
+            .is_none()); // ~130 lobes
+        for limits in [Limits::EXACT, Limits::FAST] {
+            let u = u_at_limit(1600.0, 1000, limits.l32);
+            assert!(s.smooth_band(&g, 1600.0 * u, 1000.0, limits).is_some());
+            let above = 1600.0 * u * (1.0 + 1e-6);
+            assert!(s.smooth_band(&g, above, 1000.0, limits).is_none());
+        }
     }
 }
