@@ -5,9 +5,10 @@
 //!   `uniform:471` (the baseline), `asymptotic`, `auto:1e-3` and `exact`, on a CD-like grating
 //!   (d = 1600 nm, N = 1000) and on d = 740 nm, N = 10⁶; ratios auto / uniform and the
 //!   per-XYZ medians.
-//! * `goals/asymptotic_worst/*`: single directions where `Asymptotic` is slowest (found by a
-//!   scan of the report's grid for N ≥ 5: near the mirror direction with huge N, and coarse
-//!   gratings with few slits), against `uniform:471` at the same u.
+//! * `goals/asymptotic_worst/*`: single directions where `Asymptotic` is slowest, against
+//!   `uniform:471` at the same u: the slowest of a scan of the report's 64 u for d ∈ {400, 740,
+//!   1600, 10⁴, 10⁵} nm and N ∈ {5, …, 10⁶} (coarse gratings with few slits: d = 100 µm,
+//!   N = 5 and 10), and the slowest of earlier scans (near the mirror direction with huge N).
 //! * `goals/table_build/*`: `ColorTable::new` at `DEFAULT_ACCURACY` for the gratings of the
 //!   goal (d ≤ 2 µm and a coarse one), against one `uniform:471` XYZ.
 //! * `goals/bsdf/*`: `sample` + `pdf` of `GratingBsdf` against `AguHill::eval`, batches of 1024
@@ -74,6 +75,8 @@ fn bench_asymptotic_worst(c: &mut Criterion) {
         (740.0, 3000, 0.020_449_296_327_101_688),
         (10_000.0, 5, 0.919_431_818_181_818_3),
         (100_000.0, 5, 0.669_886_363_636_363_7),
+        (100_000.0, 5, 0.877_840_909_090_909_1),
+        (100_000.0, 10, 0.586_704_545_454_545_4),
     ] {
         let grating = Grating::new(d, d / 2.0, n).expect("valid grating");
         for st in [Strategy::uniform(471).expect("valid"), Strategy::ASYMPTOTIC] {

@@ -32,7 +32,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 FLOOR = 1e-6  # ΔE2000 below this is drawn at this value (log axes)
-TABLE_PARAM = "1e-4"  # the accuracy of the report's ColorTable rows (ColorTable::DEFAULT_ACCURACY)
+# The accuracy of the report's ColorTable rows (`spectrum::DEFAULT_ACCURACY`), read from the CSV
+# by `read` (the report writes it as the rows' `param`).
+TABLE_PARAM = "1e-3"
 
 # Strategy families: (CSV name, label, colour, marker, how to order the parameter).
 FAMILIES = [
@@ -61,6 +63,10 @@ def read(path: Path) -> list[dict]:
         # Older CSVs have no table columns.
         r["build_ms"] = float(r.get("build_ms") or 0.0)
         r["table_bytes"] = int(r.get("table_bytes") or 0)
+    global TABLE_PARAM
+    params = {r["param"] for r in rows if r["strategy"] == "table"}
+    if len(params) == 1:
+        TABLE_PARAM = params.pop()
     return rows
 
 

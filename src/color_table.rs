@@ -119,10 +119,11 @@ const DARK_SHARE: f64 = (6.0 / 29.0) * (6.0 / 29.0);
 /// # Cost
 ///
 /// A build costs about twice the node count (100-5200 nodes) in calls of [`Spectral::xyz`]: at the
-/// default accuracy 8-14 ms on one core for the gratings of `benches/goals.rs` (d = 740 nm to
-/// 100 µm, N = 21 to 10⁶; docs/accuracy.md), at 10⁻⁴ up to about 0.4 s (N = 10⁶, d = 400 nm). For
+/// default accuracy 2.5-5.2 ms on one core for the gratings of `benches/goals.rs` (d = 740 nm to
+/// 100 µm, N = 21 to 10⁶) and 0.4-6.2 ms for the 36 of the accuracy report (docs/accuracy.md),
+/// at 10⁻⁴ up to about 0.4 s (N = 10⁶, d = 400 nm, measured before the product rules). For
 /// N ≥ 5 and `accuracy` ≥ [`ASYMPTOTIC_ACCURACY`](Self::ASYMPTOTIC_ACCURACY) a node is
-/// [`Strategy::ASYMPTOTIC`] (2-30 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
+/// [`Strategy::ASYMPTOTIC`] (1-25 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
 /// where order 0's light reaches it but the colour is dark enough for `Asymptotic`'s bound
 /// (2·10⁻⁴ of that light) to move CIELAB's f(t) by less than accuracy/3
 /// (t ≤ (accuracy/(2·10⁻⁴))³: every node at the default accuracy 10⁻³, the darker ones at 10⁻⁴);
