@@ -279,7 +279,8 @@ impl GrooveSpread {
     pub(crate) fn proxy_inverse_scale(self, lambda_nm: f64) -> f64 {
         match self.0 {
             GrooveKind::CoherenceLength { length_nm } => {
-                (PI / SINC2_PROXY_SCALE) * length_nm / lambda_nm
+                // The factor L/λ the lobe's value forms too (one division for both).
+                (PI / SINC2_PROXY_SCALE) * (length_nm / lambda_nm)
             }
             GrooveKind::Gaussian { sigma } => 1.0 / sigma,
             GrooveKind::Ideal => 0.0,
@@ -312,9 +313,9 @@ impl GrooveSpread {
         s.min(f64::MAX)
     }
 
-    /// Samples v from the proxy: v = s·tan(π·(ξ − ½)), ξ by the crate's rule for random
-    /// numbers ([`unit_random`]). The ideal lobe gives v = 0. Its density is
-    /// [`pdf`](Self::pdf).
+    /// Samples v from the proxy: v = s·tan(π·(ξ − ½)) (the tangent taken in cycles, to a few
+    /// ulp), ξ by the crate's rule for random numbers ([`unit_random`]). The ideal lobe gives
+    /// v = 0. Its density is [`pdf`](Self::pdf).
     ///
     /// ```
     /// use diffraction::GrooveSpread;
@@ -329,8 +330,29 @@ impl GrooveSpread {
         if !(s > 0.0 && s.is_finite()) {
             return 0.0;
         }
-        let xi = unit_random(xi);
-        let v = s * crate::special::tan(PI * (xi - 0.5));
+        Self::sample_scaled(unit_random(xi), s)
+    }
+
+    /// The proxy's scale as s = s₀ + s₁·λ: (0, 1.2/(π·L)) for the coherence length, (σ, 0) for
+    /// the Gaussian, (0, 0) for the ideal lobe; for a caller that samples many λ of one groove
+    /// ([`sample_scaled`](Self::sample_scaled); equal to [`proxy_scale`](Self::proxy_scale) to
+    /// rounding).
+    #[inline]
+    pub(crate) fn proxy_scale_affine(self) -> (f64, f64) {
+        match self.0 {
+            GrooveKind::CoherenceLength { length_nm } => {
+                (0.0, SINC2_PROXY_SCALE / (PI * length_nm))
+            }
+            GrooveKind::Gaussian { sigma } => (sigma, 0.0),
+            GrooveKind::Ideal => (0.0, 0.0),
+        }
+    }
+
+    /// v = s·tan(π·(ξ − ½)) for ξ in [0, 1) and a scale s ≥ 0 (the tangent in cycles, without a
+    /// library call); 0 where that is not finite.
+    #[inline(always)]
+    pub(crate) fn sample_scaled(xi: f64, s: f64) -> f64 {
+        let v = s * crate::kernel::tanpi_flat(xi - 0.5);
         if v.is_finite() {
             v
         } else {

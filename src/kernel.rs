@@ -56,6 +56,21 @@ const SIN_PI_TAYLOR: [f64; 12] = [
     -1.0518471716932065e-11,
 ];
 
+/// The Taylor coefficients (−1)^k π^(2k)/(2k)! of cos(π·z), k = 0..9, rounded to f64 (mpmath,
+/// 40 digits), for |z| ≤ ¼ (`sinpi`, `tanpi_flat`).
+const COS_PI_TAYLOR: [f64; 10] = [
+    1.0,
+    -4.934802200544679,
+    4.0587121264167685,
+    -1.3352627688545895,
+    0.2353306303588932,
+    -0.02580689139001406,
+    0.0019295743094039231,
+    -0.0001046381049248457,
+    4.303069587032947e-06,
+    -1.3878952462213771e-07,
+];
+
 /// (sin πt, cos πt) with exact reduction of t to [−½, ½].
 pub(crate) fn sincospi(t: f64) -> (f64, f64) {
     let n = rint(t);
@@ -71,21 +86,9 @@ pub(crate) fn sincospi(t: f64) -> (f64, f64) {
 /// sin(π·z) for |z| ≤ ½ (accurate to a few ulp; larger |z| is not expected).
 #[inline]
 pub(crate) fn sinpi(z: f64) -> f64 {
-    // The first 9 sine coefficients, and (−1)^k π^(2k)/(2k)! for the cosine, rounded to f64
-    // (mpmath, 40 digits).
+    // The first 9 sine coefficients, and the cosine's.
     const S: &[f64; 12] = &SIN_PI_TAYLOR; // S[0..=8] are used
-    const C: [f64; 10] = [
-        1.0,
-        -4.934802200544679,
-        4.0587121264167685,
-        -1.3352627688545895,
-        0.2353306303588932,
-        -0.02580689139001406,
-        0.0019295743094039231,
-        -0.0001046381049248457,
-        4.303069587032947e-06,
-        -1.3878952462213771e-07,
-    ];
+    const C: &[f64; 10] = &COS_PI_TAYLOR;
     let a = z.abs();
     if a <= 0.25 {
         let z2 = z * z;
@@ -199,6 +202,34 @@ pub(crate) fn intensity_cycles(x: f64, y: f64, n: u32) -> f64 {
     }
 }
 
+/// Σ c_k·x^k for k < K ≤ 12 by Estrin's scheme: pairs c_2j + c_2j+1·x, combined with x², x⁴
+/// and x⁸ (a dependency chain of four products and sums where Horner's has K − 1), so that the
+/// flat kernels' polynomials do not serialise a sample's arithmetic.
+#[inline(always)]
+fn estrin<const K: usize>(c: &[f64; K], x: f64) -> f64 {
+    let at = |k: usize| if k < K { c[k] } else { 0.0 };
+    let pair = |j: usize| {
+        if 2 * j + 1 < K {
+            c[2 * j] + c[2 * j + 1] * x
+        } else {
+            at(2 * j)
+        }
+    };
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let (a0, a1, a2, a3, a4, a5) = (pair(0), pair(1), pair(2), pair(3), pair(4), pair(5));
+    let b0 = a0 + a1 * x2;
+    let b1 = a2 + a3 * x2;
+    let b2 = a4 + a5 * x2;
+    if K <= 4 {
+        b0
+    } else if K <= 8 {
+        b0 + b1 * x4
+    } else {
+        b0 + x4 * (b1 + b2 * x4)
+    }
+}
+
 /// sin(π·z) for |z| ≤ ½ without branches: one Taylor polynomial of degree 23 (truncation below
 /// 2·10⁻¹⁸; measured 1.5 ulp relative against mpmath on a grid), for callers that evaluate
 /// several phases at once and lose more to mispredicted branches than to the longer polynomial.
@@ -219,6 +250,42 @@ pub(crate) fn sinpi_flat(z: f64) -> f64 {
     let tail = (a0 + a1 * w2) + (a2 + a3 * w2) * w4;
     let p = S[0] + w * (S[1] + w * (S[2] + w * (S[3] + w * tail)));
     p * z
+}
+
+/// The first 9 sine coefficients (degree 17, for |w| ≤ ¼).
+const SIN_PI_TAYLOR_9: [f64; 9] = [
+    SIN_PI_TAYLOR[0],
+    SIN_PI_TAYLOR[1],
+    SIN_PI_TAYLOR[2],
+    SIN_PI_TAYLOR[3],
+    SIN_PI_TAYLOR[4],
+    SIN_PI_TAYLOR[5],
+    SIN_PI_TAYLOR[6],
+    SIN_PI_TAYLOR[7],
+    SIN_PI_TAYLOR[8],
+];
+
+/// tan(π·z) for |z| ≤ ½ without branches (selects only): with a = |z| folded to w = a (a ≤ ¼)
+/// or w = ½ − a (exact for a ≥ ¼), the sine and cosine of π·w from the same Taylor polynomials
+/// as [`sinpi`] (degrees 17 and 18 on |w| ≤ ¼, in parallel, by Estrin's scheme), and
+/// tan = sin/cos or cos/sin: one division, no library call. Measured 2.3 ulp relative against
+/// mpmath on 40,000 points of |z| < ½; ±∞ is never returned: at |z| = ½ the divisor is
+/// taken as the smallest normal `f64` (a finite ±4.5·10³⁰⁷).
+#[inline(always)]
+pub(crate) fn tanpi_flat(z: f64) -> f64 {
+    let a = z.abs();
+    let low = a <= 0.25;
+    let w = if low { a } else { 0.5 - a };
+    let w2 = w * w;
+    let sw = estrin(&SIN_PI_TAYLOR_9, w2) * w;
+    let cp = estrin(&COS_PI_TAYLOR, w2);
+    let (num, den) = if low { (sw, cp) } else { (cp, sw) };
+    let t = num / den.max(f64::MIN_POSITIVE);
+    if z < 0.0 {
+        -t
+    } else {
+        t
+    }
 }
 
 /// sin(π·y)/(π·y) as a numerator and a denominator without branches (selects only), y in
@@ -425,6 +492,42 @@ mod tests {
         assert_eq!(sinpi(0.5), 1.0);
         assert_eq!(sinpi(-0.5), -1.0);
         assert_eq!(sinpi(0.0), 0.0);
+    }
+
+    /// tan(π·z) against the standard library's: tan(π·z) where π·z rounds harmlessly
+    /// (|z| ≤ 0.4, condition number below 5), and 1/tan(π·(½ − |z|)) (with ½ − |z| exact) in
+    /// the outer part where tan itself is ill-conditioned. Measured 4.0 ulp relative at worst;
+    /// asserted below 8 ulp.
+    #[test]
+    fn tanpi_flat_matches_std() {
+        let pi = core::f64::consts::PI;
+        let mut worst: f64 = 0.0;
+        for i in -100_000..=100_000 {
+            let z = i as f64 / 200_000.0 + 1.37e-7 * (i % 7) as f64;
+            let z = z.clamp(-0.5, 0.5);
+            let a = z.abs();
+            let want = if a <= 0.4 {
+                (pi * z).tan()
+            } else if a < 0.5 {
+                z.signum() / (pi * (0.5 - a)).tan()
+            } else {
+                continue;
+            };
+            let got = tanpi_flat(z);
+            if want != 0.0 {
+                worst = worst.max(((got - want) / want).abs());
+            } else {
+                assert_eq!(got, 0.0);
+            }
+        }
+        eprintln!("tanpi_flat: worst {:.2} ulp", worst / f64::EPSILON);
+        assert!(worst < 8.0 * f64::EPSILON, "worst {worst:e}");
+        // tan(π/4) = 1 to the quotient's rounding, odd.
+        assert!((tanpi_flat(0.25) - 1.0).abs() <= 2.0 * f64::EPSILON);
+        assert_eq!(tanpi_flat(-0.25), -tanpi_flat(0.25));
+        // The poles stay finite, with the sign of z.
+        assert!(tanpi_flat(0.5).is_finite() && tanpi_flat(0.5) > 1e300);
+        assert!(tanpi_flat(-0.5).is_finite() && tanpi_flat(-0.5) < -1e300);
     }
 
     #[test]

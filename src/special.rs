@@ -1,5 +1,5 @@
-//! Special functions for the radiometric model: atan and tan behind one name (from `std` or
-//! `libm`), and the crate's own erf, erfc and sine integral Si (neither `std` nor every `libm`
+//! Special functions for the radiometric model: atan behind one name (from `std` or `libm`;
+//! the samplers' tangents are the kernel's `tanpi_flat`), and the crate's own erf, erfc and sine integral Si (neither `std` nor every `libm`
 //! target has Si; one implementation keeps `std` and `no_std` builds identical).
 //!
 //! Accuracy (unit tests below, against mpmath at 30 digits): erf and erfc within 2·10⁻¹⁵
@@ -15,10 +15,6 @@ mod imp {
     pub fn atan(x: f64) -> f64 {
         x.atan()
     }
-    #[inline]
-    pub fn tan(x: f64) -> f64 {
-        x.tan()
-    }
 }
 
 #[cfg(all(not(feature = "std"), feature = "libm"))]
@@ -26,10 +22,6 @@ mod imp {
     #[inline]
     pub fn atan(x: f64) -> f64 {
         libm::atan(x)
-    }
-    #[inline]
-    pub fn tan(x: f64) -> f64 {
-        libm::tan(x)
     }
 }
 

@@ -16,11 +16,12 @@ const PERIOD: f64 = 1600.0;
 const WIDTH: f64 = 800.0;
 /// Wavelengths of the tests, nm.
 const LAMBDAS: [f64; 2] = [450.0, 633.0];
-/// `sample_weight_bound` for the CD-like grating: measured 10.3 (N = 1) to 21.7 (N = 10⁶,
-/// normal incidence, 450 nm); asserted below 25.
+/// `sample_weight_bound` for the CD-like grating: measured 6.57 (N = 1, whose uniform period
+/// proxy has B_1 = 1) to 21.7 (N = 10⁶, normal incidence, 450 nm); asserted below 25.
 const WEIGHT_BOUND_CAP: f64 = 25.0;
-/// The largest f·cos θi/pdf seen in the furnace runs: measured 2.65 (N = 1, normal incidence,
-/// 450 nm; 1.23 at N = 10⁶); asserted below 10 (under 4× margin), far inside the bound.
+/// The largest f·cos θi/pdf seen in the furnace runs: measured 2.20 (N = 5, normal incidence,
+/// 450 nm; 1.71 at N = 1, 1.23 at N = 10⁶); asserted below 10 (over 4× margin), far inside
+/// the bound.
 const WEIGHT_MEASURED_CAP: f64 = 10.0;
 
 fn bsdf(n: u32) -> GratingBsdf {
@@ -486,7 +487,12 @@ mod formulas {
                 let m = x.round_ties_even();
                 let r = x - m;
                 let pm = order_weight(rho, m as i64) / total;
-                let q = nf / ((1.0 + 4.0 * nf * nf * r * r) * nf.atan());
+                // The period proxy: uniform for N = 1, the Lorentzian otherwise.
+                let q = if nf == 1.0 {
+                    1.0
+                } else {
+                    nf / ((1.0 + 4.0 * nf * nf * r * r) * nf.atan())
+                };
                 let want = pm * q / step * b.groove().pdf(v, l) * wi.z;
                 let got = b.pdf(wo, wi, l);
                 worst = worst.max(rel(got, want));

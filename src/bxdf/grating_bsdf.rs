@@ -28,7 +28,8 @@
 //! tabulated efficiencies of a relief grating on a metal ([`OrderEfficiency::Tabulated`]):
 //! f = η̃_m·ℓ_m(u, v) with ℓ_m = (N·d/λ)·F_N·g the order's unit-integral lobe and
 //! η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) (unpolarised), exactly reciprocal; the sampler
-//! picks m ∝ η_m(−wo.x, λ) (the weight is then at most Σ η·2·atan N·sup g/q_v), and the albedo
+//! picks m ∝ η_m(−wo.x, λ) (the weight is then at most Σ η·B_N·sup g/q_v, B_N below), and the
+//! albedo
 //! is at most Σ_m η_m(−wo.x, λ) ≤ 1. Off the plane across the grooves (v ≠ 0) the tables are
 //! still read at sin θi = −wi.x: the classical-mount approximation. `efficiency.rs` has the
 //! details and `docs/radiometry.md` the measurements.
@@ -44,10 +45,11 @@
 //!    keeps P(m) > 0 for missing orders (η_m = 0), where f is small but not 0 for finite N.
 //!    When more than [`MAX_WEIGHTED_ORDERS`] orders are candidates (d/λ above about 127) the
 //!    choice is uniform instead (bounded work).
-//! 2. **u inside the period** (finite N), from the Lorentzian proxy of F_N (`lobe.rs`):
-//!    r = tan((2ξ − 1)·atan N)/(2N), x = m + r, u = x·λ/d, with density
-//!    q(r) = N/((1 + 4N²r²)·atan N) on |r| < ½. F_N(π·r) ≤ 2/(1 + 4N²r²) makes
-//!    N·F_N/q ≤ 2·atan N < π for every N.
+//! 2. **u inside the period** (finite N), from a proxy of F_N (`lobe.rs`), x = m + r,
+//!    u = x·λ/d. For N ≥ 2 the Lorentzian r = tan((2ξ − 1)·atan N)/(2N), with density
+//!    q(r) = N/((1 + 4N²r²)·atan N) on |r| < ½; F_N(π·r) ≤ 2/(1 + 4N²r²) makes
+//!    N·F_N/q ≤ B_N = 2·atan N < π. For N = 1 (F_1 ≡ 1) the uniform r = ξ − ½, q(r) = 1 on
+//!    |r| < ½, so N·F_N/q = B_1 = 1 exactly (and no tangent is taken).
 //! 3. **v** from the Cauchy proxy of g ([`GrooveSpread::sample`]); g/q_v is at most
 //!    [`GrooveSpread::proxy_bound`] (1.4504 for the coherence length, 1.5204 for the Gaussian).
 //! 4. **Direction** wi = (u − wo.x, v − wo.y, +√(1 − …)), rejected (`None`) outside the disk.
@@ -59,15 +61,15 @@
 //!
 //! ```text
 //! f·cos θi / pdf = ρ²·S(π·ρ·x)/P(m) · N·F_N/q · g/q_v
-//!                ≤ ρ²·(Σ w)·max_m(U_m/w_m) · 2·atan N · sup g/q_v,
+//!                ≤ ρ²·(Σ w)·max_m(U_m/w_m) · B_N · sup g/q_v,
 //! ```
 //!
-//! computed by [`GratingBsdf::sample_weight_bound`] (10-22 for a CD-like grating; the largest
-//! weight measured in the furnace tests is 2.65, at N = 1); for N = ∞ with an ideal groove the
+//! computed by [`GratingBsdf::sample_weight_bound`] (6.6-22 for a CD-like grating; the largest
+//! weight measured in the furnace tests is 2.2, at N = 5); for N = ∞ with an ideal groove the
 //! weight is the constant ρ²·Σ S(π·ρ·m). The bound holds for every input, also where a lobe is
 //! narrower than the rounding of the phase x = d·u/λ (N·|x| beyond about 2⁵²: the sampled r
 //! is then lost to rounding when u is re-derived from wi): `eval` and `pdf` read the same
-//! rounded phase d·(u/λ), so N·F_N/q ≤ 2·atan N holds at whatever r the returned direction
+//! rounded phase d·(u/λ), so N·F_N/q ≤ B_N holds at whatever r the returned direction
 //! has.
 //!
 //! # Flags and the specular threshold
@@ -172,6 +174,9 @@ pub struct GratingBsdf {
     atan_n: f64,
     /// The proxy of F_N inside a period that u is drawn from (finite N).
     proxy: PeriodProxy,
+    /// 1/d, and the groove proxy's scale s = s₀ + s₁·λ ([`GrooveSpread::proxy_scale_affine`]).
+    inv_d: f64,
+    v_scale: (f64, f64),
 }
 
 #[cfg(feature = "serde")]
@@ -231,6 +236,8 @@ impl GratingBsdf {
             },
             atan_n: atan(grating.slits().as_f64()),
             proxy: PeriodProxy::new(n, atan(grating.slits().as_f64())),
+            inv_d: 1.0 / grating.period_nm(),
+            v_scale: groove.proxy_scale_affine(),
             grating,
             groove,
             efficiency,
@@ -321,9 +328,10 @@ impl GratingBsdf {
     }
 
     /// The bound of f·cos θi/pdf for samples from `wo` at λ (see the [module docs](self)):
-    /// ρ²·(Σ w)·max_m(U_m/w_m)·2·atan N·sup g/q_v for finite N; ρ²·Σ w·sup g/q_v for N = ∞.
-    /// 0 where nothing is sampled; for the uniform order choice (K candidates)
-    /// ρ²·K·max_m U_m·2·atan N·sup g/q_v.
+    /// ρ²·(Σ w)·max_m(U_m/w_m)·B_N·sup g/q_v for finite N (B_N = 2·atan N, the Lorentzian
+    /// proxy's bound of N·F_N/q, for N ≥ 2; B_1 = 1, the uniform proxy's); ρ²·Σ w·sup g/q_v
+    /// for N = ∞. 0 where nothing is sampled; for the uniform order choice (K candidates)
+    /// ρ²·K·max_m U_m·B_N·sup g/q_v.
     ///
     /// ```
     /// use diffraction::{Grating, GratingBsdf};
@@ -532,7 +540,8 @@ impl Bsdf for GratingBsdf {
             return None;
         }
         let (uc, ux, uy) = (unit_random(uc), unit_random(u2.x), unit_random(u2.y));
-        let step = lambda_nm / self.grating.period_nm();
+        // λ/d by a product: u is re-derived from the direction, so its rounding is free.
+        let step = lambda_nm * self.inv_d;
         let c = self
             .orders
             .candidates(wo, self.grating.period_nm() / lambda_nm)?;
@@ -644,8 +653,9 @@ impl Bsdf for GratingBsdf {
 
 impl GratingBsdf {
     /// The direction of order m's sample, shared by both efficiency models: u from the
-    /// Lorentzian proxy (`ux`; u = m·λ/d for N = ∞), v from the groove's proxy (`uy`), and
+    /// period proxy (`ux`; u = m·λ/d for N = ∞), v from the groove's proxy (`uy`), and
     /// wi = (u − wo.x, v − wo.y, +√(1 − …)); `None` below the surface. Returns (wi, u, r, v).
+    #[inline(always)]
     fn sample_direction(
         &self,
         wo: DVec3,
@@ -662,7 +672,9 @@ impl GratingBsdf {
             }
             Slits::Infinite => (m as f64 * step, 0.0),
         };
-        let v = self.groove.sample(uy, lambda_nm);
+        // GrooveSpread::sample with the scale's constants precomputed (`uy` is in [0, 1)).
+        let s = self.v_scale.0 + self.v_scale.1 * lambda_nm;
+        let v = GrooveSpread::sample_scaled(uy, s);
         let (x, y) = (u - wo.x, v - wo.y);
         let z2 = 1.0 - x * x - y * y;
         if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {

@@ -58,7 +58,8 @@ fn diffraction_bsdf_total(b: DiffractionBsdf, lo: i32, hi: i32) -> f32 {
 
 // pdf = P(m) * q(r) * (d/lambda) * q_v(v) * cos(theta_i) for the order m = round(x) owning
 // u: P(m) = w_m / (sum of w over the orders whose period meets wo.x +- 1, uniform beyond 256
-// of them), q the Lorentzian proxy of F_N, q_v the Cauchy proxy of g.
+// of them), q the proxy of F_N (the Lorentzian N/((1 + (2N*r)^2)*atan N), the uniform 1 for
+// N = 1), q_v the Cauchy proxy of g.
 fn diffraction_bsdf_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>, lambda_nm: f32) -> f32 {
     if b.groove >= 2u || wo.z <= 0.0 || wi.z <= 0.0 || lambda_nm <= 0.0 {
         return 0.0;
@@ -93,7 +94,10 @@ fn diffraction_bsdf_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>, lambda
         return 0.0;
     }
     let nf = f32(b.slits);
-    let t = 2.0 * nf * r;
+    // N = 1: the uniform proxy, q = 1 (c = 0 and the peak 1 below).
+    let one = b.slits <= 1u;
+    let t = select(2.0 * nf * r, 0.0, one);
+    let peak = select(nf / b.atan_n, 1.0, one);
     var inv_s: f32;
     if b.groove == 0u {
         inv_s = (3.141592653589793 / 1.2) * b.groove_param / lambda_nm;
@@ -101,7 +105,7 @@ fn diffraction_bsdf_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>, lambda
         inv_s = 1.0 / b.groove_param;
     }
     let tv = v * inv_s;
-    let a = (w * nf * b.period_nm) / (total * (1.0 + t * t) * b.atan_n * lambda_nm);
+    let a = (w * peak * b.period_nm) / (total * (1.0 + t * t) * lambda_nm);
     let c = (inv_s * wi.z) / (3.141592653589793 * (1.0 + tv * tv));
     return a * c;
 }

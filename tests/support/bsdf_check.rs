@@ -165,9 +165,32 @@ pub fn slits_f64(b: &GratingBsdf) -> f64 {
     b.grating().slits().as_f64()
 }
 
+/// The period proxy's documented inverse CDF and its derivative: r = tan((2ξ − 1)·atan N)/(2N)
+/// and dr/dξ = atan N·(1 + 4N²r²)/N for N ≥ 2 (the Lorentzian), r = ξ − ½ and 1 for N = 1 (the
+/// uniform proxy).
+pub fn period_r(n: f64, xu: f64) -> (f64, f64) {
+    if n == 1.0 {
+        return (xu - 0.5, 1.0);
+    }
+    let a = n.atan();
+    let r = ((2.0 * xu - 1.0) * a).tan() / (2.0 * n);
+    (r, a * (1.0 + 4.0 * n * n * r * r) / n)
+}
+
+/// The period proxy's CDF ξ ∈ [0, 1] at r ∈ [−½, ½], the inverse of [`period_r`].
+pub fn period_xi(n: f64, r: f64) -> f64 {
+    let r = r.clamp(-0.5, 0.5);
+    let xi = if n == 1.0 {
+        r + 0.5
+    } else {
+        0.5 * ((2.0 * n * r).atan() / n.atan() + 1.0)
+    };
+    xi.clamp(0.0, 1.0)
+}
+
 /// The lobe-adapted coordinates of a direction for the grating sampler: the order m owning u,
 /// the proxy's CDF ξ_u ∈ [0, 1] of r = x − m and the groove proxy's CDF ξ_v ∈ [0, 1] of v
-/// (the documented maps r = tan((2ξ − 1)·atan N)/(2N), v = s·tan(π(ξ − ½))).
+/// (the documented maps [`period_r`] and v = s·tan(π(ξ − ½))).
 pub fn lobe_coordinates(b: &GratingBsdf, wo: DVec3, wi: DVec3, lambda: f64) -> (i64, f64, f64) {
     let n = match b.grating().slits() {
         Slits::Finite(n) => n as f64,
@@ -178,10 +201,10 @@ pub fn lobe_coordinates(b: &GratingBsdf, wo: DVec3, wi: DVec3, lambda: f64) -> (
     let x = u / step;
     let m = x.round();
     let r = x - m;
-    let xu = 0.5 * ((2.0 * n * r).atan() / n.atan() + 1.0);
+    let xu = period_xi(n, r);
     let s = b.groove().proxy_scale(lambda);
     let xv = 0.5 + (v / s).atan() / std::f64::consts::PI;
-    (m as i64, xu.clamp(0.0, 1.0), xv.clamp(0.0, 1.0))
+    (m as i64, xu, xv.clamp(0.0, 1.0))
 }
 
 /// The inverse of [`lobe_coordinates`] with the Jacobian |dω/dξ_u dξ_v| (None below the
@@ -196,9 +219,7 @@ pub fn lobe_direction(
 ) -> Option<(DVec3, f64)> {
     let n = slits_f64(b);
     let step = lambda / b.grating().period_nm();
-    let a = n.atan();
-    let r = ((2.0 * xu - 1.0) * a).tan() / (2.0 * n);
-    let dr = a * (1.0 + 4.0 * n * n * r * r) / n; // dr/dξ_u
+    let (r, dr) = period_r(n, xu);
     let s = b.groove().proxy_scale(lambda);
     let v = s * (std::f64::consts::PI * (xv - 0.5)).tan();
     let dv = std::f64::consts::PI * s * (1.0 + (v / s).powi(2));
@@ -253,12 +274,11 @@ pub fn chi2_grating(
     // and the inside's ξ_u-range is known), so the quadrature sees a smooth integrand.
     let (gx, gw) = (&quadrature::X8, &quadrature::W8);
     let n = slits_f64(b);
-    let atan_n = n.atan();
     let s = b.groove().proxy_scale(lambda);
     let xi_v = |v: f64| 0.5 + (v / s).atan() / std::f64::consts::PI;
     let xi_u_of_u = |m: i64, u: f64| {
         let r = u / step - m as f64;
-        (0.5 * ((2.0 * n * r.clamp(-0.5, 0.5)).atan() / atan_n + 1.0)).clamp(0.0, 1.0)
+        period_xi(n, r)
     };
     let mut expected = vec![0.0; cells];
     let mut total = 0.0;
@@ -284,7 +304,7 @@ pub fn chi2_grating(
                     );
                     for i in 0..8 {
                         let xu = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * gx[i];
-                        let r = ((2.0 * xu - 1.0) * atan_n).tan() / (2.0 * n);
+                        let (r, _) = period_r(n, xu);
                         let u = (m as f64 + r) * step;
                         let h2 = 1.0 - (u - wo.x).powi(2);
                         if h2 <= 0.0 {

@@ -27,8 +27,9 @@
 //! P(m) = η_m(−wo.x, λ)/Σ η, every stored order's efficiency read once per call into a stack
 //! buffer of [`MAX_TABULATED_ORDERS`] entries (no allocation). No defensive share is needed: f
 //! vanishes wherever η_m(−wo.x, λ) does (the min), so P(m) > 0 wherever f > 0. The rest (u from
-//! the Lorentzian proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and
-//! the weight f·cos θi/pdf = (η̃_m/η_m)·Σ η·N·F_N/q·g/q_v ≤ Σ η·2·atan N·sup g/q_v < 2π·1.53.
+//! the period proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and
+//! the weight f·cos θi/pdf = (η̃_m/η_m)·Σ η·N·F_N/q·g/q_v ≤ Σ η·B_N·sup g/q_v < 2π·1.53
+//! (B_N = 2·atan N for N ≥ 2, 1 for N = 1).
 //!
 //! **The albedo** of a tabulated model integrates η̃_m(u)·ℓ_m over the disk period by period
 //! with the lobe-by-lobe rule (η̃ varies along u through −wi.x = wo.x − u and has the
@@ -518,7 +519,8 @@ impl GratingBsdf {
     }
 
     /// The weight bound of a tabulated model: f·cos θi/pdf = (η̃_m/η_m(−wo.x))·Σ η ·
-    /// N·F_N/q · g/q_v ≤ Σ η·2·atan N·sup g/q_v (Σ η·sup g/q_v for N = ∞), since η̃ ≤ η
+    /// N·F_N/q · g/q_v ≤ Σ η·B_N·sup g/q_v (B_N = 2·atan N, 1 for N = 1; Σ η·sup g/q_v for
+    /// N = ∞), since η̃ ≤ η
     /// (times 1 + 10⁻¹² for rounding).
     pub(super) fn tab_weight_bound(
         &self,

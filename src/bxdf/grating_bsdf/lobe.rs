@@ -2,18 +2,21 @@
 //! factor, the N-slit factor and the groove spread, fused into one division) and the proxy of F_N
 //! inside one period that the sampler draws u from ([`PeriodProxy`]).
 //!
-//! F_N(π·r) ≤ 2/(1 + 4N²r²) on |r| ≤ ½, so the Lorentzian density
+//! For N ≥ 2, F_N(π·r) ≤ 2/(1 + 4N²r²) on |r| ≤ ½, so the Lorentzian density
 //! q(r) = N/((1 + 4N²r²)·atan N) on |r| < ½ (inverse CDF r = tan((2ξ − 1)·atan N)/(2N)) bounds
-//! N·F_N/q by 2·atan N < π for every N.
+//! N·F_N/q by 2·atan N < π. For N = 1, F_1 ≡ 1 and the proxy is F_1 itself: the uniform
+//! density q(r) = 1 (r = ξ − ½, no tangent), for which N·F_N/q = 1 exactly.
 
 use crate::groove::{GrooveKind, GrooveSpread};
-use crate::kernel::{intensity_ratio_flat, sinc_ratio_flat};
-use crate::special::tan;
+use core::f64::consts::FRAC_1_PI;
 
-/// The Lorentzian proxy's inverse CDF: r = tan((2t − 1)·atan N)/(2N), |r| ≤ ½ (a = atan N).
+use crate::kernel::{intensity_ratio_flat, sinc_ratio_flat, tanpi_flat};
+
+/// The Lorentzian proxy's inverse CDF: r = tan((2t − 1)·atan N)/(2N), |r| ≤ ½ (a = atan N),
+/// with the tangent taken in cycles (`tanpi_flat` at (2t − 1)·a/π: no library call).
 #[inline]
 pub(super) fn lorentz_r(n: f64, atan_n: f64, t: f64) -> f64 {
-    let r = tan((2.0 * t - 1.0) * atan_n) / (2.0 * n);
+    let r = tanpi_flat((2.0 * t - 1.0) * (atan_n * FRAC_1_PI)) / (2.0 * n);
     r.clamp(-0.5, 0.5)
 }
 
@@ -28,42 +31,57 @@ pub(super) fn lorentz_q(n: f64, atan_n: f64, r: f64) -> f64 {
 }
 
 /// The direction sampler's proxy of N·F_N(π·r) inside one period, r ∈ [−½, ½): the Lorentzian
-/// q(r) = (N/atan N)/(1 + (2N·r)²), with its constants precomputed.
+/// q(r) = (N/atan N)/(1 + (2N·r)²) for N ≥ 2, the uniform q(r) = 1 for N = 1 (F_1 itself), with
+/// its constants precomputed. Both densities have the form peak/(1 + (c·r)²) (c = 0 for the
+/// uniform one), so the density is branch-free; only the inverse CDF tells them apart.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct PeriodProxy {
-    /// N.
-    n: f64,
-    /// 2N.
-    two_n: f64,
+    /// c: 2N for the Lorentzian, 0 for the uniform proxy.
+    c: f64,
     /// atan N.
     atan_n: f64,
-    /// q(0) = N/atan N.
+    /// atan N/π and 1/(2N): the Lorentzian's inverse CDF in cycles.
+    a_pi: f64,
+    inv_c: f64,
+    /// q(0): N/atan N for the Lorentzian, 1 for the uniform proxy.
     peak: f64,
+    /// The uniform proxy (N = 1).
+    uniform: bool,
 }
 
 impl PeriodProxy {
-    /// The proxy for N ≥ 1 slits (atan N given, the value every other part uses).
+    /// The proxy for N ≥ 1 slits (atan N given, the value every other part uses): uniform for
+    /// N = 1, the Lorentzian otherwise.
     pub(super) fn new(n: u32, atan_n: f64) -> PeriodProxy {
         let nf = n as f64;
+        let uniform = n <= 1;
         PeriodProxy {
-            n: nf,
-            two_n: 2.0 * nf,
+            c: if uniform { 0.0 } else { 2.0 * nf },
             atan_n,
-            peak: nf / atan_n,
+            a_pi: atan_n * FRAC_1_PI,
+            inv_c: 1.0 / (2.0 * nf),
+            peak: if uniform { 1.0 } else { nf / atan_n },
+            uniform,
         }
     }
 
-    /// r ∈ [−½, ½] from t ∈ [0, 1): the Lorentzian's inverse CDF ([`lorentz_r`]).
+    /// r ∈ [−½, ½] from t ∈ [0, 1): t − ½ (uniform) or the Lorentzian's inverse CDF
+    /// r = tan((2t − 1)·atan N)/(2N) ([`lorentz_r`], here with the constants precomputed).
     #[inline(always)]
     pub(super) fn r(&self, t: f64) -> f64 {
-        lorentz_r(self.n, self.atan_n, t)
+        if self.uniform {
+            t - 0.5
+        } else {
+            let r = tanpi_flat((2.0 * t - 1.0) * self.a_pi) * self.inv_c;
+            r.clamp(-0.5, 0.5)
+        }
     }
 
-    /// q(r) for |r| ≤ ½ (the caller's range) as (peak, 1 + (2N·r)²), for a caller that folds
+    /// q(r) for |r| ≤ ½ (the caller's range) as (peak, 1 + (c·r)²), for a caller that folds
     /// the division into its own.
     #[inline(always)]
     pub(super) fn ratio(&self, r: f64) -> (f64, f64) {
-        let t = self.two_n * r;
+        let t = self.c * r;
         (self.peak, 1.0 + t * t)
     }
 
@@ -77,10 +95,14 @@ impl PeriodProxy {
         a / b
     }
 
-    /// sup over the period of N·F_N/q: 2·atan N.
+    /// sup over the period of N·F_N/q: 2·atan N for the Lorentzian, 1 for the uniform proxy.
     #[inline]
     pub(super) fn bound(&self) -> f64 {
-        2.0 * self.atan_n
+        if self.uniform {
+            1.0
+        } else {
+            2.0 * self.atan_n
+        }
     }
 }
 

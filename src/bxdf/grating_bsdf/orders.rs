@@ -30,6 +30,13 @@ const MAX_PHASE: f64 = 4.0e15;
 /// Orders |m| ≤ this have their weights w_m and prefix sums in a table, so that the candidates'
 /// total and an order's probability cost O(1) instead of O(K).
 const TABLE_ORDERS: usize = 64;
+/// Windows of at most this many candidates that contain order 0 are chosen from without a
+/// data-dependent branch (a count over this many lanes).
+const CHOICE_LANES: usize = 16;
+/// The index of order m = 0 in [`OrderDistribution`]'s `cum` table (which starts at m = −65).
+const CUM_ZERO: i64 = TABLE_ORDERS as i64 + 1;
+/// The `cum` table's length: m = −65 ..= 64, and `CHOICE_LANES` entries of padding.
+const CUM_LEN: usize = 2 * TABLE_ORDERS + 2 + CHOICE_LANES;
 
 /// The candidate orders for one (wo, λ) and the normaliser of their weights.
 #[derive(Debug, Clone, Copy)]
@@ -55,6 +62,10 @@ pub(super) struct OrderDistribution {
     prefix: [f64; TABLE_ORDERS + 1],
     /// weight\[k\] = w_k = w_{−k}, exactly as [`OrderDistribution::weight_of`] computes it.
     weight: [f64; TABLE_ORDERS + 1],
+    /// cum\[m + 65\] = C(m), the cumulative weight anchored at order 0: Σ_{j=0}^{m} w_j for
+    /// m ≥ 0 and −Σ_{j=m+1}^{−1} w_j for m < 0, so that Σ_{j=a}^{b} w_j = C(b) − C(a − 1); for
+    /// m = −65 ..= 64, then padded with C(64).
+    cum: [f64; CUM_LEN],
 }
 
 impl OrderDistribution {
@@ -66,12 +77,22 @@ impl OrderDistribution {
             w0: 0.0,
             prefix: [0.0; TABLE_ORDERS + 1],
             weight: [0.0; TABLE_ORDERS + 1],
+            cum: [0.0; CUM_LEN],
         };
         d.w0 = d.weight_of(0);
         d.weight[0] = d.w0;
         for k in 1..=TABLE_ORDERS {
             d.weight[k] = d.weight_of(k as i64);
             d.prefix[k] = d.prefix[k - 1] + d.weight[k];
+        }
+        // C(m) = prefix[m] + w_0 for m ≥ 0, C(−1) = 0, C(m) = −prefix[−m − 1] for m < −1.
+        for (i, c) in d.cum.iter_mut().enumerate() {
+            let m = (i as i64 - CUM_ZERO).min(TABLE_ORDERS as i64);
+            *c = if m >= 0 {
+                d.prefix[m as usize] + d.w0
+            } else {
+                -d.prefix[(-m - 1) as usize]
+            };
         }
         d
     }
@@ -98,7 +119,7 @@ impl OrderDistribution {
     }
 
     /// Σ_{k=a}^{b} w_k for −64 ≤ a ≤ b ≤ 64.
-    #[inline]
+    #[inline(always)]
     fn sum(&self, a: i64, b: i64) -> f64 {
         let p = |k: i64| self.prefix[k as usize];
         if a >= 1 {
@@ -169,12 +190,35 @@ impl OrderDistribution {
     }
 
     /// Chooses an order from `uc` in [0, 1); returns it with its probability.
+    #[inline]
     pub(super) fn choose(&self, c: &Candidates, uc: f64) -> (i64, f64) {
         if c.uniform {
             let k = ((uc * c.total) as i64).clamp(0, c.hi - c.lo);
             return (c.lo + k, 1.0 / c.total);
         }
         let target = uc * c.total;
+        if c.lo <= 0 && c.hi >= 0 && c.hi - c.lo < CHOICE_LANES as i64 {
+            // The first m with Σ_{lo}^{m} w = C(m) − C(lo − 1) > target (hi if none), as the
+            // number of m ≥ lo with C(m) − C(lo − 1) ≤ target, at most hi − lo: a count over
+            // fixed lanes, without a branch on uc (C is non-decreasing, so the lanes past hi
+            // count only where target rounds to the total, and the cap takes them back).
+            // Order 0 lies in the window, so |C| is at most the window's total and the
+            // differences round like a running sum. An order of weight 0 has C(m) = C(m − 1)
+            // and is never the first above target, except as hi.
+            let start = (c.lo + CUM_ZERO) as usize;
+            if let Some(lanes) = self.cum.get(start..start + CHOICE_LANES) {
+                let base = self.cum[start - 1];
+                let mut k = 0u32;
+                for &cm in lanes {
+                    k += u32::from(cm - base <= target);
+                }
+                let mut m = c.lo + (k as i64).min(c.hi - c.lo);
+                while m > c.lo && self.weight(m) == 0.0 {
+                    m -= 1;
+                }
+                return (m, self.weight(m) / c.total);
+            }
+        }
         if Self::tabled(c.lo, c.hi) {
             // The first m with Σ_{lo}^{m} w > target (hi if none), by a scan of the table's
             // weights: a handful of candidates in practice, and one mispredicted branch where a
@@ -248,7 +292,61 @@ pub(super) fn ceil_exact(a: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{ceil_exact, floor_exact};
+    use super::{ceil_exact, floor_exact, OrderDistribution, CHOICE_LANES};
+    use crate::bxdf::grating_bsdf::efficiency::OrderEfficiency;
+    use crate::Grating;
+    use glam::DVec3;
+
+    /// The order choice is the inverse CDF of w_m/Σ w over the candidates: the first m whose
+    /// running sum from lo exceeds uc·Σ w, with its probability w_m/Σ w (a direct running sum
+    /// here), for the branch-free windows around order 0 and for the scanned ones, finite N
+    /// (every weight positive) and N = ∞ (the even orders of ρ = ½ weigh 0 and are never
+    /// chosen).
+    #[test]
+    fn choice_is_the_inverse_cdf() {
+        let (mut lanes, mut scanned) = (0, 0);
+        for g in [
+            Grating::new(1600.0, 800.0, 30).unwrap(),
+            Grating::infinite(1600.0, 800.0).unwrap(),
+            Grating::new(10_000.0, 2500.0, 5).unwrap(),
+        ] {
+            let o = OrderDistribution::new(&g, &OrderEfficiency::Amplitude);
+            for wx in [-0.95, -0.6, 0.0, 0.3, 0.9] {
+                for l in [360.0, 450.0, 633.0, 830.0] {
+                    let wo = DVec3::new(wx, 0.0, (1.0 - wx * wx).sqrt());
+                    let Some(c) = o.candidates(wo, g.period_nm() / l) else {
+                        continue;
+                    };
+                    if c.lo <= 0 && c.hi >= 0 && c.hi - c.lo < CHOICE_LANES as i64 {
+                        lanes += 1;
+                    } else {
+                        scanned += 1;
+                    }
+                    for i in 0..1000 {
+                        let uc = (i as f64 + 0.37) / 1000.0;
+                        let target = uc * c.total;
+                        let mut acc = 0.0;
+                        let mut want = c.hi;
+                        for m in c.lo..=c.hi {
+                            acc += o.weight(m);
+                            if acc > target {
+                                want = m;
+                                break;
+                            }
+                        }
+                        while want > c.lo && o.weight(want) == 0.0 {
+                            want -= 1;
+                        }
+                        let (m, p) = o.choose(&c, uc);
+                        assert_eq!(m, want, "{g:?} wo.x={wx} λ={l} uc={uc}");
+                        assert!(o.weight(m) > 0.0);
+                        assert_eq!(p, o.weight(m) / c.total);
+                    }
+                }
+            }
+        }
+        assert!(lanes > 10 && scanned > 10, "{lanes} {scanned}");
+    }
 
     /// `floor_exact` and `ceil_exact` agree with `floor` and `ceil` on the ties, the signed
     /// zeros, the largest exact integers and a dense grid of fractions.
