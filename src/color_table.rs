@@ -120,7 +120,7 @@ const DARK_SHARE: f64 = (6.0 / 29.0) * (6.0 / 29.0);
 ///
 /// A build costs about twice the node count (100-5200 nodes) in calls of [`Spectral::xyz`]: at the
 /// default accuracy 2.5-5.2 ms on one core for the gratings of `benches/goals.rs` (d = 740 nm to
-/// 100 µm, N = 21 to 10⁶) and 0.4-6.2 ms for the 36 of the accuracy report (docs/accuracy.md),
+/// 100 µm, N = 21 to 10⁶) and 0.4-7 ms for the 36 of the accuracy report (docs/accuracy.md),
 /// at 10⁻⁴ up to about 0.4 s (N = 10⁶, d = 400 nm, measured before the product rules). For
 /// N ≥ 5 and `accuracy` ≥ [`ASYMPTOTIC_ACCURACY`](Self::ASYMPTOTIC_ACCURACY) a node is
 /// [`Strategy::ASYMPTOTIC`] (1-25 µs) where only orders m ≠ 0 reach the band (d·|u| ≥ 415 nm), and
