@@ -115,7 +115,7 @@ impl Spectral {
         }
         if let Some(c) = self.smooth_band(grating, q, n, Limits::FAST) {
             // N·q up to about 47,000 nm (at most about 74 lobes over the band): the product
-            // rule against the tables, within about 10⁻⁶ of the lobe walk (`smooth_band`).
+            // rule against the tables, within 4.3·10⁻⁶ of the lobe walk (`smooth_band`).
             return c;
         }
         let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());

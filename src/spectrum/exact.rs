@@ -174,11 +174,11 @@ fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3)
     *acc += sum * (0.5 * h);
 }
 
-/// j_0(ω) … j_{terms−1}(ω) (terms ≤ 8, ω ≥ FILON_MIN_LOBES·π) from ω and (sin ω, cos ω): by the upward recurrence
-/// j_{k+1} = (2k + 1)/ω·j_k − j_{k−1} from the closed forms of j_0 and j_1 where ω ≥ terms (it is
-/// stable for k < ω), and below by Miller's downward recurrence from MILLER_START (where j_k is
-/// below 10⁻¹⁶ of j_7 for ω < 8), normalised by Σ_k (2k + 1)·j_k² = 1 and signed by the larger of
-/// the closed forms of j_0 and j_1.
+/// j_0(ω) … j_{terms−1}(ω) (terms ≤ 8, ω ≥ FILON_MIN_LOBES·π) from ω and (sin ω, cos ω): by
+/// the upward recurrence j_{k+1} = (2k + 1)/ω·j_k − j_{k−1} from the closed forms of j_0 and j_1
+/// where ω ≥ terms (it is stable for k < ω), and below by Miller's downward recurrence from
+/// MILLER_START, normalised by Σ_k (2k + 1)·j_k² = 1 and signed by the larger of the closed forms
+/// of j_0 and j_1.
 fn spherical_bessel(omega: f64, (sw, cw): (f64, f64), terms: usize) -> [f64; 8] {
     use crate::math::sqrt;
     let (j0, j1) = (sw / omega, sw / (omega * omega) - cw / omega);
