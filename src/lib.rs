@@ -139,8 +139,8 @@
 //! * `libm`: maths from the `libm` crate, for `no_std` (disable default features).
 //! * `serde`: `Serialize`/`Deserialize` for the parameter types, validated on the way in, and
 //!   (with `alloc`) for the colour tables, as caches with a format version.
-//! * `stam`: the `stam` module with Stam's model (adds the `num-complex` dependency, without its
-//!   default features: it works with `std` and with `libm`).
+//! * `stam`: the `stam` module with Stam's model (no dependency; it works with `std` and with
+//!   `libm`).
 //!
 //! One of `std` and `libm` must be enabled.
 //!
@@ -167,6 +167,7 @@ mod cie_data;
 pub mod color;
 #[cfg(feature = "alloc")]
 mod color_table;
+mod complex;
 // The presets' tables; their grating descriptions (profile, depth, metal, cover) are not read.
 // Measured efficiencies such as 0.3183 and 0.4342 are data, not 1/π or log10(e).
 #[allow(dead_code, clippy::approx_constant)]

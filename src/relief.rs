@@ -25,7 +25,6 @@
 //! # Ok::<(), diffraction::Error>(())
 //! ```
 
-mod complex;
 mod fresnel;
 mod metal;
 mod scalar;

@@ -3,9 +3,8 @@
 
 use core::f64::consts::PI;
 
-use num_complex::Complex64;
-
 use crate::bessel::{bessel_j, bessel_j_bounded};
+use crate::complex::Complex;
 use crate::kernel::sincospi;
 use crate::math;
 
@@ -84,14 +83,14 @@ impl Profile {
 }
 
 /// The Fourier coefficient c_m of the binary profile (see [`Profile::Binary`]).
-pub(crate) fn binary_coefficient(a: f64, m: i32, phase: f64) -> Complex64 {
+pub(crate) fn binary_coefficient(a: f64, m: i32, phase: f64) -> Complex {
     let (s, c) = (math::sin(0.5 * phase), math::cos(0.5 * phase));
     // e^{iφ} − 1 = 2i·sin(φ/2)·e^{iφ/2} = −2 sin²(φ/2) + 2i·sin(φ/2)·cos(φ/2).
-    let step = Complex64::new(-2.0 * s * s, 2.0 * s * c);
+    let step = Complex::new(-2.0 * s * s, 2.0 * s * c);
     if m == 0 {
-        return Complex64::new(1.0, 0.0) + step * a;
+        return Complex::new(1.0, 0.0) + step.scale(a);
     }
     let (sn, cs) = sincospi(m as f64 * a);
     // a·sinc(m·a) = sin(πma)/(πm).
-    step * Complex64::new(cs, -sn) * (sn / (PI * m as f64))
+    (step * Complex::new(cs, -sn)).scale(sn / (PI * m as f64))
 }

@@ -7,9 +7,9 @@ use alloc::vec::Vec;
 use core::f64::consts::TAU;
 use core::f64::consts::{FRAC_PI_2, PI};
 
-#[cfg(feature = "alloc")]
-use super::complex::Complex;
 use crate::bessel::bessel_j_bounded;
+#[cfg(feature = "alloc")]
+use crate::complex::Complex;
 use crate::error::{Error, Requirement};
 use crate::kernel::sincospi;
 use crate::math;

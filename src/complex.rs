@@ -1,5 +1,7 @@
-//! The few complex operations the Fresnel equations and the Fourier coefficients of a relief
-//! need (no complex-number dependency: these are all of them).
+//! The few complex operations the crate needs: the Fresnel equations and the Fourier
+//! coefficients of a relief (`relief`), and the binary profile's coefficients (Stam's model).
+//! No complex-number dependency: these are all of them, with the crate's own `std`/`libm`
+//! maths.
 
 use core::ops::{Add, Mul, Sub};
 
