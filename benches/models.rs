@@ -1,5 +1,5 @@
 //! Cost of the three grating models side by side: Agu-Hill (the paper), Thorman (peaks only) and
-//! Stam (Fourier optics, feature `stam`, sinusoidal and binary profiles).
+//! Stam (Fourier optics, feature `baselines`, sinusoidal and binary profiles).
 //!
 //! * `eval`: one spectral evaluation; each iteration evaluates a fixed, deterministic batch of
 //!   1024 (wi, wo, λ), half of them near a peak of order 1-3 (for Stam also near the plane of
@@ -65,7 +65,7 @@ fn models() -> Models {
     v
 }
 
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 fn stam_models() -> Models {
     use diffraction::{Profile, Stam};
     let coherence = SLITS as f64 * PERIOD / (2.0 * std::f64::consts::PI.sqrt());
@@ -83,7 +83,7 @@ fn stam_models() -> Models {
     ]
 }
 
-#[cfg(not(feature = "stam"))]
+#[cfg(not(feature = "baselines"))]
 fn stam_models() -> Models {
     Vec::new()
 }

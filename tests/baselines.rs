@@ -1,5 +1,5 @@
 //! The baselines of the paper's related work beside the paper's model: Thorman (peak directions
-//! only) and Stam (Fourier optics, feature `stam`). Shared peaks, the reference order
+//! only) and Stam (Fourier optics, feature `baselines`). Shared peaks, the reference order
 //! efficiencies, and the energy and reciprocity properties each model claims.
 
 #[path = "support/fixed_seed.rs"]
@@ -46,7 +46,7 @@ fn models(d: f64) -> Models {
     v
 }
 
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 fn stam_models(d: f64) -> Models {
     use diffraction::{Profile, Stam};
     vec![
@@ -61,7 +61,7 @@ fn stam_models(d: f64) -> Models {
     ]
 }
 
-#[cfg(not(feature = "stam"))]
+#[cfg(not(feature = "baselines"))]
 fn stam_models(_: f64) -> Models {
     Vec::new()
 }
@@ -234,7 +234,7 @@ fn thorman_rejects_bad_parameters() {
     assert_eq!(t.response(wo, wi, 500.0), t.eval(wo, wi, 500.0));
 }
 
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 mod stam {
     use super::*;
     use diffraction::stam::bessel_j;

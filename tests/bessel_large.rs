@@ -2,7 +2,6 @@
 //! cost limit of 10⁵ steps and Debye's expansions take over: the values against the mpmath
 //! oracle of `tests/data/bessel_large.csv` (`python_ref/stam.py`), and bounded, finite output at
 //! the extremes of the input range.
-#![cfg(feature = "stam")]
 
 use std::f64::consts::PI;
 

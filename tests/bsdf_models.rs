@@ -23,7 +23,7 @@ const HEMI_THETA_PIECES: usize = 160;
 const HEMI_PHI_PIECES: usize = 320;
 
 fn models() -> Vec<(String, Box<dyn Bsdf>)> {
-    #[cfg_attr(not(feature = "stam"), allow(unused_mut))]
+    #[cfg_attr(not(feature = "baselines"), allow(unused_mut))]
     let mut v: Vec<(String, Box<dyn Bsdf>)> = vec![(
         "grating N=30 gaussian".into(),
         Box::new(
@@ -31,7 +31,7 @@ fn models() -> Vec<(String, Box<dyn Bsdf>)> {
                 .with_groove(GrooveSpread::gaussian(0.05).unwrap()),
         ),
     )];
-    #[cfg(feature = "stam")]
+    #[cfg(feature = "baselines")]
     v.push((
         "stam".into(),
         Box::new(

@@ -19,9 +19,8 @@
 //! Every property fails the sweep at its first failure, printing a reproducer; the cases that
 //! failed once have reproducers of their own in `tests/extremes_handover.rs`.
 //!
-//! It covers the `stam` models too, so it is built with that feature (the README's test command
-//! enables every feature).
-#![cfg(feature = "stam")]
+//! It covers the baselines (Thorman, Stam) too, so it needs the feature `baselines` (Cargo.toml's
+//! `required-features`; the README's test command enables every feature).
 
 use std::cell::Cell;
 

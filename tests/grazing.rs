@@ -5,7 +5,6 @@
 //! A deterministic sweep over fixed cosines and azimuths, and property tests on a fixed seed
 //! with their regressions in a file named by its path from the package root (not by the
 //! source file's path), so that a fresh clone runs the same cases in the same order.
-#![cfg(feature = "stam")]
 
 use diffraction::stam::{GRAZING_COS, MAX_COHERENCE_NM};
 use diffraction::{

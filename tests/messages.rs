@@ -4,7 +4,6 @@
 //! round-trip form, scientific outside [10⁻⁴, 10¹⁶)), and `ParseError`'s
 //! (`unknown WHAT: expected …`). Deserialisation (feature `serde`) goes through the same
 //! constructors, so the same texts appear in serde's errors.
-#![cfg(feature = "stam")]
 
 use diffraction::frame::{GratingField, Tile};
 use diffraction::spectrum::{GenericStrategy, Strategy};

@@ -1,5 +1,5 @@
 //! Where the order-efficiency models agree with rigorous electromagnetics: the scalar relief
-//! model, the amplitude grating of `GratingBsdf` and Stam's model (feature `stam`) against the
+//! model, the amplitude grating of `GratingBsdf` and Stam's model (feature `baselines`) against the
 //! rigorous efficiencies of `tests/data/rigorous_orders.csv` (831 cases; lamellar by the Fourier
 //! modal method, sinusoid and sawtooth by the C method, `python_ref/rigorous.py`).
 //!
@@ -146,7 +146,7 @@ fn amplitude_etas(case: &Case) -> Vec<f64> {
 /// Stam's order efficiency F²·(G/w²)·|c_m(φ)|² (the per-order power of its documented BRDF,
 /// `diffraction::stam`), with R₀ the metal's normal reflectance; `None` for the sawtooth, which
 /// Stam's model has no profile for.
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 fn stam_etas(case: &Case) -> Option<Vec<f64>> {
     use diffraction::{Profile, Stam};
     use glam::DVec3;
@@ -185,7 +185,7 @@ fn stam_etas(case: &Case) -> Option<Vec<f64>> {
     )
 }
 
-#[cfg(not(feature = "stam"))]
+#[cfg(not(feature = "baselines"))]
 fn stam_etas(_case: &Case) -> Option<Vec<f64>> {
     None
 }

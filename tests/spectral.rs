@@ -12,7 +12,7 @@ mod tolerance;
 
 use diffraction::cie::{cmf, Illuminant};
 use diffraction::spectrum::{GenericStrategy, Spectral, Strategy};
-use diffraction::{AguHill, Band, Grating, SpectralResponse, Thorman};
+use diffraction::{AguHill, Band, Grating, SpectralResponse};
 use fine_quadrature::reference_xyz;
 use generic_models::{sharpest, unit_upper, Model};
 use glam::DVec3;
@@ -298,27 +298,11 @@ proptest! {
 }
 
 /// The models of the generic-path tests: Thorman with narrow, broad and sub-nanometre lobes,
-/// Stam (feature `stam`), and the Agu-Hill grating, which is outside the generic path's
+/// Stam (feature `baselines`), and the Agu-Hill grating, which is outside the generic path's
 /// contract (its F_N side lobes are narrow features it does not report).
 fn generic_models() -> Vec<(&'static str, Box<dyn Model>)> {
-    #[cfg_attr(not(feature = "stam"), allow(unused_mut))]
+    #[cfg_attr(not(feature = "baselines"), allow(unused_mut))]
     let mut v: Vec<(&'static str, Box<dyn Model>)> = vec![
-        (
-            "thorman σ=0.002",
-            Box::new(Thorman::new(1600.0, 0.002).unwrap()),
-        ),
-        (
-            "thorman σ=0.02",
-            Box::new(Thorman::new(1600.0, 0.02).unwrap()),
-        ),
-        (
-            "thorman σ=1e-4 d=10000",
-            Box::new(Thorman::new(10_000.0, 1e-4).unwrap()),
-        ),
-        (
-            "thorman σ=0.01 d=10000",
-            Box::new(Thorman::new(10_000.0, 0.01).unwrap()),
-        ),
         (
             "agu-hill N=30",
             Box::new(AguHill::new(Grating::new(1600.0, 800.0, 30).unwrap())),
@@ -328,9 +312,14 @@ fn generic_models() -> Vec<(&'static str, Box<dyn Model>)> {
             Box::new(AguHill::new(Grating::new(10_000.0, 3000.0, 300).unwrap())),
         ),
     ];
-    #[cfg(feature = "stam")]
+    #[cfg(feature = "baselines")]
     {
-        use diffraction::{Profile, Stam};
+        use diffraction::{Profile, Stam, Thorman};
+        let thorman = |d: f64, s: f64| -> Box<dyn Model> { Box::new(Thorman::new(d, s).unwrap()) };
+        v.push(("thorman σ=0.002", thorman(1600.0, 0.002)));
+        v.push(("thorman σ=0.02", thorman(1600.0, 0.02)));
+        v.push(("thorman σ=1e-4 d=10000", thorman(10_000.0, 1e-4)));
+        v.push(("thorman σ=0.01 d=10000", thorman(10_000.0, 0.01)));
         v.push((
             "stam sine",
             Box::new(Stam::new(Profile::Sine, 1600.0, 90.0, 32_000.0).unwrap()),
