@@ -93,6 +93,7 @@ pub struct RadiometricTable {
 /// on the directions or λ, and its groove spread not on λ. Errors name `efficiency` or `groove`.
 pub(super) fn factorises(bsdf: &GratingBsdf) -> Result<(), Error> {
     // An efficiency model that depends on incidence or λ does not factorise into one C(u).
+    #[cfg(feature = "relief")]
     if let Some(t) = bsdf.order_efficiency().table() {
         return Err(Error::invalid(
             "efficiency",
