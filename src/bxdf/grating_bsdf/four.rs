@@ -31,10 +31,11 @@ impl GratingBsdf {
             let l = lambdas.lambda();
             for k in 1..4 {
                 if l[k] > 0.0 && l[k].is_finite() {
-                    f[k] = match self.table() {
-                        Some(t) => self.tab_value(t, wo, wi, l[k]),
-                        None => self.lobe.value(u, v, l[k]),
-                    };
+                    #[cfg(feature = "relief")]
+                    let tabulated = self.table().map(|t| self.tab_value(t, wo, wi, l[k]));
+                    #[cfg(not(feature = "relief"))]
+                    let tabulated = None;
+                    f[k] = tabulated.unwrap_or_else(|| self.lobe.value(u, v, l[k]));
                     pdf[k] = self.pdf_finite(wo, wi, l[k]);
                 }
             }
