@@ -47,14 +47,10 @@ use alloc::sync::Arc;
 
 use glam::DVec3;
 
-use super::lobe::GrooveFactor;
-use super::orders::Candidates;
 use super::GratingBsdf;
-use crate::bxdf::bsdf::{BsdfFlags, BsdfSample};
 use crate::error::{Error, Requirement};
 use crate::kernel::single_slit_cycles;
-use crate::math;
-use crate::relief::{EfficiencyTable, Polarised, Preset};
+use crate::relief::{EfficiencyTable, Preset};
 use crate::{Grating, Slits};
 
 /// The most orders a tabulated model's table may store: the sampler reads every order's
@@ -191,24 +187,18 @@ impl OrderEfficiency {
         self.table().is_some()
     }
 
-    /// η_m for a grating of open fraction `rho` (amplitude reading).
+    /// The table holder of a tabulated model.
     #[inline]
-    pub(crate) fn efficiency(&self, rho: f64, order: i64) -> f64 {
-        rho * rho * self.relative(rho, order)
-    }
-
-    /// η_m/ρ²: the efficiency relative to that of order 0 of a flat strip (the order weights of
-    /// the sampler use it). For a tabulated model: 1 (its weights are computed per call).
-    #[inline]
-    pub(crate) fn relative(&self, rho: f64, order: i64) -> f64 {
+    pub(super) fn tabulated(&self) -> Option<&Tabulated> {
         match self {
-            OrderEfficiency::Amplitude => single_slit_cycles(rho * order as f64),
-            OrderEfficiency::Tabulated(_) => 1.0,
+            OrderEfficiency::Amplitude => None,
+            OrderEfficiency::Tabulated(t) => Some(t),
         }
     }
 }
 
-/// Unpolarised η of one order of a table, 0 outside its orders.
+/// Unpolarised η of one order of a table, 0 outside its orders and where it is not a finite
+/// positive number.
 #[inline]
 pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: f64) -> f64 {
     if order < i64::from(*t.orders().start()) || order > i64::from(*t.orders().end()) {
@@ -221,50 +211,6 @@ pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: 
         e
     } else {
         0.0
-    }
-}
-
-/// The sampler's order weights for a tabulated model at one (wo, λ): η_m(−wo.x, λ) of every
-/// stored order, the candidate range clipped to the table and Σ η over it.
-pub(super) struct TabOrders {
-    buf: [Polarised; MAX_TABULATED_ORDERS],
-    first: i64,
-    pub lo: i64,
-    pub hi: i64,
-    pub total: f64,
-}
-
-impl TabOrders {
-    /// η_m(−wo.x, λ) of order m (0 outside the candidates).
-    #[inline]
-    pub(super) fn weight(&self, m: i64) -> f64 {
-        if m < self.lo || m > self.hi {
-            return 0.0;
-        }
-        let e = self.buf[(m - self.first) as usize].unpolarised();
-        if e.is_finite() && e > 0.0 {
-            e
-        } else {
-            0.0
-        }
-    }
-
-    /// Chooses an order ∝ η_m(−wo.x, λ) from `uc` in [0, 1): the order and its probability.
-    pub(super) fn choose(&self, uc: f64) -> (i64, f64) {
-        let target = uc * self.total;
-        let mut acc = 0.0;
-        let mut last = self.lo;
-        for m in self.lo..=self.hi {
-            let w = self.weight(m);
-            if w > 0.0 {
-                last = m;
-                acc += w;
-                if target < acc {
-                    return (m, w / self.total);
-                }
-            }
-        }
-        (last, self.weight(last) / self.total)
     }
 }
 
@@ -358,9 +304,10 @@ impl GratingBsdf {
     #[must_use]
     pub fn efficiency(&self, order: i32) -> f64 {
         match self.table() {
-            None => self
-                .efficiency
-                .efficiency(self.grating.open_fraction(), order as i64),
+            None => {
+                let rho = self.grating.open_fraction();
+                rho * rho * single_slit_cycles(rho * f64::from(order))
+            }
             Some(t) => eta(t, i64::from(order), 0.0, 550.0),
         }
     }
@@ -369,32 +316,6 @@ impl GratingBsdf {
     #[inline]
     pub(super) fn table(&self) -> Option<&EfficiencyTable> {
         self.efficiency.table()
-    }
-
-    /// η_m(−wo.x, λ) of the candidates `c`, `None` when they carry nothing.
-    pub(super) fn tab_orders(
-        &self,
-        t: &EfficiencyTable,
-        wo: DVec3,
-        lambda_nm: f64,
-        c: &Candidates,
-    ) -> Option<TabOrders> {
-        let (first, last) = (i64::from(*t.orders().start()), i64::from(*t.orders().end()));
-        let count = ((last - first + 1) as usize).min(MAX_TABULATED_ORDERS);
-        let mut o = TabOrders {
-            buf: [Polarised::default(); MAX_TABULATED_ORDERS],
-            first,
-            lo: c.lo.max(first),
-            hi: c.hi.min(first + count as i64 - 1),
-            total: 0.0,
-        };
-        t.efficiencies(-wo.x, lambda_nm, &mut o.buf[..count]);
-        let mut total = 0.0;
-        for m in o.lo..=o.hi {
-            total += o.weight(m);
-        }
-        o.total = total;
-        (total > 0.0 && total.is_finite()).then_some(o)
     }
 
     /// η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) of a tabulated model (see the
@@ -423,121 +344,5 @@ impl GratingBsdf {
                 eta(t, m, -wi.x, lambda_nm).min(eta(t, m, -wo.x, lambda_nm))
             }
         }
-    }
-}
-
-impl GratingBsdf {
-    /// f of a tabulated model with finite N and a groove spread: η̃_m·ℓ_m(u, v) for the order
-    /// m owning u (the phase `eval` reads), after the hemisphere checks.
-    #[inline]
-    pub(super) fn tab_value(&self, t: &EfficiencyTable, wo: DVec3, wi: DVec3, l: f64) -> f64 {
-        let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        let m = math::rint(self.lobe.phase(u, l));
-        if !m.is_finite() {
-            return 0.0;
-        }
-        let m = m as i64;
-        let e = eta(t, m, -wo.x, l);
-        if e == 0.0 {
-            return 0.0;
-        }
-        let e = e.min(eta(t, m, -wi.x, l));
-        if e == 0.0 {
-            return 0.0;
-        }
-        e * self.lobe.value(u, v, l)
-    }
-
-    /// [`Bsdf::sample`](crate::Bsdf::sample) for a tabulated model: the order ∝ η_m(−wo.x, λ)
-    /// among the candidates `c`, then u, v and the direction as for the amplitude model. Not
-    /// inlined: its order buffer would otherwise enlarge the amplitude model's stack frame.
-    #[inline(never)]
-    pub(super) fn tab_sample(
-        &self,
-        t: &EfficiencyTable,
-        wo: DVec3,
-        lambda_nm: f64,
-        c: &Candidates,
-        [uc, ux, uy]: [f64; 3],
-    ) -> Option<BsdfSample> {
-        let o = self.tab_orders(t, wo, lambda_nm, c)?;
-        let (m, pm) = o.choose(uc);
-        let step = lambda_nm / self.grating.period_nm();
-        let (wi, u, r, v) = self.sample_direction(wo, m, step, ux, uy, lambda_nm)?;
-        let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
-        let specular = BsdfFlags::REFLECTION | BsdfFlags::SPECULAR;
-        let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
-            (Slits::Finite(_), false) => {
-                // From the returned direction itself, as `eval` and `pdf` (see `sample`).
-                let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-                let xr = self.lobe.phase(u, lambda_nm);
-                let mr = math::rint(xr) as i64;
-                let w = o.weight(mr);
-                let e = w.min(eta(t, mr, -wi.x, lambda_nm));
-                let f = if e == 0.0 {
-                    0.0
-                } else {
-                    e * self.lobe.value(u, v, lambda_nm)
-                };
-                (
-                    f,
-                    self.pdf_w(w, o.total, xr, v, wi.z, lambda_nm),
-                    BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
-                )
-            }
-            (Slits::Finite(_), true) => {
-                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
-                let unit = GrooveFactor {
-                    big: 1.0,
-                    coherent: false,
-                };
-                let (num, den) = self.lobe.ratio(u / lambda_nm, unit, 0.0, lambda_nm);
-                (
-                    e * (num / den),
-                    pm * (self.proxy.q(r) / step) * wi.z,
-                    specular,
-                )
-            }
-            (Slits::Infinite, false) => {
-                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
-                let pv = self.groove.pdf(v, lambda_nm);
-                (
-                    e * self.groove.value(v, lambda_nm),
-                    pm * pv * wi.z,
-                    specular,
-                )
-            }
-            (Slits::Infinite, true) => {
-                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
-                (e / wi.z, pm, specular)
-            }
-        };
-        if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
-            return None;
-        }
-        Some(BsdfSample::new(wi, f, pdf, flags).with_order(order))
-    }
-
-    /// The weight bound of a tabulated model: f·cos θi/pdf = (η̃_m/η_m(−wo.x))·Σ η ·
-    /// N·F_N/q · g/q_v ≤ Σ η·B_N·sup g/q_v (B_N = 2·atan N, 1 for N = 1; Σ η·sup g/q_v for
-    /// N = ∞), since η̃ ≤ η
-    /// (times 1 + 10⁻¹² for rounding).
-    pub(super) fn tab_weight_bound(
-        &self,
-        t: &EfficiencyTable,
-        wo: DVec3,
-        lambda_nm: f64,
-        c: &Candidates,
-    ) -> f64 {
-        let Some(o) = self.tab_orders(t, wo, lambda_nm, c) else {
-            return 0.0;
-        };
-        let gv = self.groove.proxy_bound();
-        // The relative 10⁻¹² covers the rounding of the weight's products and quotients.
-        let b = match self.grating.slits() {
-            Slits::Infinite => o.total * gv,
-            Slits::Finite(_) => o.total * self.proxy.bound() * gv,
-        };
-        b * (1.0 + 1e-12)
     }
 }
