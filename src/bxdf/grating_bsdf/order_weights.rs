@@ -26,8 +26,6 @@ use crate::Slits;
 
 /// The order weights of one (wo, λ): what the sampler, the density and the weight bound need.
 pub(super) trait OrderWeights {
-    /// The first and last candidate order.
-    fn range(&self) -> (i64, i64);
     /// Σ w over the candidates.
     fn total(&self) -> f64;
     /// The weight w_m of order m (0 outside the candidates).
@@ -54,11 +52,6 @@ pub(super) struct AmplitudeWeights<'a> {
 }
 
 impl OrderWeights for AmplitudeWeights<'_> {
-    #[inline(always)]
-    fn range(&self) -> (i64, i64) {
-        (self.c.lo, self.c.hi)
-    }
-
     #[inline(always)]
     fn total(&self) -> f64 {
         self.c.total
@@ -154,11 +147,6 @@ impl<'a> TabulatedWeights<'a> {
 }
 
 impl OrderWeights for TabulatedWeights<'_> {
-    #[inline]
-    fn range(&self) -> (i64, i64) {
-        (self.lo, self.hi)
-    }
-
     #[inline]
     fn total(&self) -> f64 {
         self.total

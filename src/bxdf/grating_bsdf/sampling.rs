@@ -168,12 +168,15 @@ impl GratingBsdf {
         cos_i: f64,
         lambda_nm: f64,
     ) -> f64 {
-        let (lo, hi) = w.range();
-        let mi = math::rint(x) as i64;
-        if mi < lo || mi > hi {
-            return 0.0;
-        }
-        self.pdf_w(w.weight(mi), w.total(), x, v, cos_i, lambda_nm)
+        // The weight is 0 outside the candidates, and so is the density.
+        self.pdf_w(
+            w.weight(math::rint(x) as i64),
+            w.total(),
+            x,
+            v,
+            cos_i,
+            lambda_nm,
+        )
     }
 
     /// [`Bsdf::sample`] with the order weights `w`: order m from `uc`, u from the period proxy
@@ -200,16 +203,14 @@ impl GratingBsdf {
                 // q = u/λ once: the lobe's value is f at q and the phase is d·q.
                 let q = u / lambda_nm;
                 let x = self.lobe.d * q;
-                let k = match self.orders {
-                    OrderSource::Amplitude(_) => 1.0,
+                let f = match self.orders {
+                    OrderSource::Amplitude(_) => self.lobe.value_q(q, v, lambda_nm),
                     OrderSource::Tabulated { .. } => {
-                        w.lobe_factor(math::rint(x) as i64, wi, lambda_nm)
+                        match w.lobe_factor(math::rint(x) as i64, wi, lambda_nm) {
+                            0.0 => 0.0,
+                            k => k * self.lobe.value_q(q, v, lambda_nm),
+                        }
                     }
-                };
-                let f = if k == 0.0 {
-                    0.0
-                } else {
-                    k * self.lobe.value_q(q, v, lambda_nm)
                 };
                 (
                     f,
