@@ -37,7 +37,7 @@
 //!
 //! # Sampling, with its exact density
 //!
-//! 1. **Order** (the order distribution, `orders.rs`). The candidate orders are those whose
+//! 1. **Order** (the order weights, `order_weights.rs` and `orders.rs`). The candidate orders are those whose
 //!    period [(m − ½)·λ/d, (m + ½)·λ/d) meets the u-range (wo.x − 1, wo.x + 1) of D (for
 //!    N = ∞: whose delta u = m·λ/d lies in it). Order m is chosen with probability
 //!    P(m) = w_m/Σ w over the candidates, with w_m = η_m/ρ² + ε·U_m for finite N
@@ -94,9 +94,13 @@
 //! # Parts
 //!
 //! One file each beside this one: the order efficiencies (`efficiency.rs`,
-//! [`OrderEfficiency`]), the order distribution (`orders.rs`), the lobes and their proxy
-//! (`lobe.rs`), the albedo (`albedo.rs`), the wavelength sampler (`wavelength.rs`) and the
-//! near-specular threshold with regularisation (`regularize.rs`).
+//! [`OrderEfficiency`]), the order weights the BSDF delegates to (`order_weights.rs`: for one
+//! (wo, λ) the candidates, w_m, the choice, each order's factor in f and the order part of the
+//! weight bound, built from either efficiency model, so that `eval`, `pdf`, `sample`, their
+//! four-wavelength forms, the weight bound and the albedo are written once), the amplitude
+//! reading's order distribution (`orders.rs`), the lobes and their proxy (`lobe.rs`), the
+//! albedo (`albedo.rs`), the wavelength sampler (`wavelength.rs`) and the near-specular
+//! threshold with regularisation (`regularize.rs`).
 //!
 //! ```
 //! use diffraction::{DiffractionBrdf, Grating, GratingBsdf};
@@ -114,14 +118,11 @@
 //! # Ok::<(), diffraction::Error>(())
 //! ```
 
-use core::f64::consts::PI;
-
 use glam::{DVec2, DVec3};
 
 use crate::bxdf::bsdf::{Bsdf, BsdfFlags, BsdfSample};
 use crate::bxdf::{both_above, SpectralResponse, MIN_COS_THETA};
 use crate::groove::{GrooveKind, GrooveSpread};
-use crate::math;
 use crate::random::unit_random;
 use crate::special::atan;
 use crate::wavelengths::SampledWavelengths;
@@ -132,16 +133,19 @@ mod albedo;
 mod efficiency;
 mod four;
 mod lobe;
+mod order_weights;
 mod orders;
 mod regularize;
+mod sampling;
 mod wavelength;
 
 pub use albedo::{ALBEDO_CUT_MARGIN, MAX_ALBEDO_ORDERS};
 pub use efficiency::OrderEfficiency;
 #[cfg(feature = "relief")]
 pub use efficiency::{Tabulated, MAX_TABULATED_ORDERS};
-use lobe::{GrooveFactor, Lobe, PeriodProxy};
-use orders::{Candidates, OrderDistribution};
+use lobe::{Lobe, PeriodProxy};
+use order_weights::{AmplitudeWeights, OrderSource};
+use orders::AmplitudeOrders;
 pub use orders::{DEFENSIVE_ORDER_SHARE, MAX_WEIGHTED_ORDERS};
 pub use regularize::{
     NEAR_SPECULAR_HALF_WIDTH, REGULARIZE_MAX_HALF_WIDTH, REGULARIZE_MIN_HALF_WIDTH,
@@ -170,9 +174,9 @@ pub struct GratingBsdf {
     grating: Grating,
     groove: GrooveSpread,
     efficiency: OrderEfficiency,
-    /// Derived from the above by [`GratingBsdf::build`]: the order weights, the lobe's
-    /// constants and atan N (π/2 for N = ∞).
-    orders: OrderDistribution,
+    /// Derived from the above by [`GratingBsdf::build`]: where the order weights come from
+    /// (the delegate of `order_weights.rs`), the lobe's constants and atan N (π/2 for N = ∞).
+    orders: OrderSource,
     lobe: Lobe,
     atan_n: f64,
     /// The proxy of F_N inside a period that u is drawn from (finite N).
@@ -220,8 +224,18 @@ impl GratingBsdf {
             Slits::Finite(n) => (n, n as f64 * grating.period_nm()),
             Slits::Infinite => (0, 0.0),
         };
+        let orders = match efficiency.tabulated() {
+            None => OrderSource::Amplitude(AmplitudeOrders::new(&grating)),
+            #[cfg(feature = "relief")]
+            Some(t) => OrderSource::Tabulated {
+                table: t.clone(),
+                slits: grating.slits(),
+            },
+            #[cfg(not(feature = "relief"))]
+            Some(t) => match *t {},
+        };
         GratingBsdf {
-            orders: OrderDistribution::new(&grating, &efficiency),
+            orders,
             lobe: Lobe {
                 d: grating.period_nm(),
                 w: if tabulated {
@@ -349,26 +363,14 @@ impl GratingBsdf {
         if !(wo.z >= MIN_COS_THETA && wo.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return 0.0;
         }
-        let Some(c) = self
-            .orders
-            .candidates(wo, self.grating.period_nm() / lambda_nm)
-        else {
-            return 0.0;
+        let order = self
+            .with_weights(wo, lambda_nm, |w| w.order_bound())
+            .unwrap_or(0.0);
+        let fu = match self.grating.slits() {
+            Slits::Infinite => 1.0,
+            Slits::Finite(_) => self.proxy.bound(),
         };
-        #[cfg(feature = "relief")]
-        if let Some(t) = self.table() {
-            return self.tab_weight_bound(t, wo, lambda_nm, &c).min(f64::MAX);
-        }
-        let rho = self.grating.open_fraction();
-        let gv = self.groove.proxy_bound();
-        let b = match self.grating.slits() {
-            Slits::Infinite => rho * rho * c.total * gv,
-            Slits::Finite(_) => {
-                let fu = self.proxy.bound();
-                rho * rho * c.total * self.orders.worst_envelope_ratio(&c) * fu * gv
-            }
-        };
-        b.min(f64::MAX)
+        (order * fu * self.groove.proxy_bound()).min(f64::MAX)
     }
 }
 
@@ -383,11 +385,7 @@ impl DiffractionBrdf for GratingBsdf {
         if !self.is_glossy() {
             return 0.0;
         }
-        #[cfg(feature = "relief")]
-        if let Some(t) = self.table() {
-            return self.tab_value(t, wo, wi, lambda_nm);
-        }
-        self.lobe.value(wi.x + wo.x, wi.y + wo.y, lambda_nm)
+        self.value(wo, wi, lambda_nm)
     }
 
     /// Shares the hemisphere checks, u, v and (Gaussian groove) g(v) between the four
@@ -398,8 +396,7 @@ impl DiffractionBrdf for GratingBsdf {
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
         }
-        #[cfg(feature = "relief")]
-        if self.table().is_some() {
+        if let OrderSource::Tabulated { .. } = self.orders {
             return lambdas.lambda().map(|l| self.eval(wo, wi, l));
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
@@ -511,8 +508,7 @@ impl SpectralResponse for GratingBsdf {
         let Slits::Finite(n) = self.grating.slits() else {
             return None;
         };
-        #[cfg(feature = "relief")]
-        if self.table().is_some() {
+        if let OrderSource::Tabulated { .. } = self.orders {
             // η̃ depends on λ, which the envelope cannot express: the generic colour path.
             return None;
         }
@@ -546,67 +542,17 @@ impl Bsdf for GratingBsdf {
         if !(wo.z >= MIN_COS_THETA && wo.is_finite() && lambda_nm > 0.0 && lambda_nm.is_finite()) {
             return None;
         }
-        let (uc, ux, uy) = (unit_random(uc), unit_random(u2.x), unit_random(u2.y));
-        // λ/d by a product: u is re-derived from the direction, so its rounding is free.
-        let step = lambda_nm * self.inv_d;
-        let c = self
-            .orders
-            .candidates(wo, self.grating.period_nm() / lambda_nm)?;
-        #[cfg(feature = "relief")]
-        if let Some(t) = self.table() {
-            return self.tab_sample(t, wo, lambda_nm, &c, [uc, ux, uy]);
-        }
-        let (m, pm) = self.orders.choose(&c, uc);
-        let (wi, u, r, v) = self.sample_direction(wo, m, step, ux, uy, lambda_nm)?;
-        let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
-        let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
-            (Slits::Finite(_), false) => {
-                // f and pdf from the returned direction itself (u and v re-derived from wi, the
-                // same operations as `eval` and `pdf`, sharing q = u/λ and the candidates), so
-                // the sample agrees with them exactly.
-                let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-                // q = u/λ once: `value` is f at q and `phase` is d·q.
-                let q = u / lambda_nm;
-                (
-                    self.lobe.value_q(q, v, lambda_nm),
-                    self.pdf_x(&c, self.lobe.d * q, v, wi.z, lambda_nm),
-                    BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
-                )
-            }
-            (Slits::Finite(_), true) => {
-                // δ(v) omitted from both f and pdf: the lobe's value with g = 1, the same fused
-                // kernel as `eval`.
-                let unit = GrooveFactor {
-                    big: 1.0,
-                    coherent: false,
+        let xi = [unit_random(uc), unit_random(u2.x), unit_random(u2.y)];
+        match &self.orders {
+            OrderSource::Amplitude(a) => {
+                let w = AmplitudeWeights {
+                    dist: a,
+                    c: a.candidates(wo, self.grating.period_nm() / lambda_nm)?,
                 };
-                let (num, den) = self.lobe.ratio(u / lambda_nm, unit, 0.0, lambda_nm);
-                (
-                    num / den,
-                    pm * (self.proxy.q(r) / step) * wi.z,
-                    BsdfFlags::REFLECTION | BsdfFlags::SPECULAR,
-                )
+                self.sample_with(&w, wo, lambda_nm, xi)
             }
-            (Slits::Infinite, false) => {
-                // The true order m, not the i32 it is reported as: beyond 2³¹ the two differ.
-                let eta = self.efficiency.efficiency(self.grating.open_fraction(), m);
-                let pv = self.groove.pdf(v, lambda_nm);
-                (
-                    eta * self.groove.value(v, lambda_nm),
-                    pm * pv * wi.z,
-                    BsdfFlags::REFLECTION | BsdfFlags::SPECULAR,
-                )
-            }
-            (Slits::Infinite, true) => {
-                // The true order m, not the i32 it is reported as: beyond 2³¹ the two differ.
-                let eta = self.efficiency.efficiency(self.grating.open_fraction(), m);
-                (eta / wi.z, pm, BsdfFlags::REFLECTION | BsdfFlags::SPECULAR)
-            }
-        };
-        if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
-            return None;
+            OrderSource::Tabulated { .. } => self.sample_tabulated(wo, lambda_nm, xi),
         }
-        Some(BsdfSample::new(wi, f, pdf, flags).with_order(order))
     }
 
     /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi for the order m owning u (see the [module docs](self));
@@ -656,131 +602,5 @@ impl Bsdf for GratingBsdf {
     /// Widens narrow lobes (see [`REGULARIZE_MAX_HALF_WIDTH`] and the [module docs](self)).
     fn regularize(&mut self) {
         *self = self.regularized();
-    }
-}
-
-impl GratingBsdf {
-    /// The direction of order m's sample, shared by both efficiency models: u from the
-    /// period proxy (`ux`; u = m·λ/d for N = ∞), v from the groove's proxy (`uy`), and
-    /// wi = (u − wo.x, v − wo.y, +√(1 − …)); `None` below the surface. Returns (wi, u, r, v).
-    #[inline(always)]
-    fn sample_direction(
-        &self,
-        wo: DVec3,
-        m: i64,
-        step: f64,
-        ux: f64,
-        uy: f64,
-        lambda_nm: f64,
-    ) -> Option<(DVec3, f64, f64, f64)> {
-        let (u, r) = match self.grating.slits() {
-            Slits::Finite(_) => {
-                let r = self.proxy.r(ux);
-                ((m as f64 + r) * step, r)
-            }
-            Slits::Infinite => (m as f64 * step, 0.0),
-        };
-        // GrooveSpread::sample with the scale's constants precomputed (`uy` is in [0, 1)).
-        let s = self.v_scale.0 + self.v_scale.1 * lambda_nm;
-        let v = GrooveSpread::sample_scaled(uy, s);
-        let (x, y) = (u - wo.x, v - wo.y);
-        let z2 = 1.0 - x * x - y * y;
-        if z2.is_nan() || z2 < MIN_COS_THETA * MIN_COS_THETA {
-            return None;
-        }
-        Some((DVec3::new(x, y, math::sqrt(z2)), u, r, v))
-    }
-
-    /// Finite N with a groove spread: the lobes have a density (`eval` and `pdf` are not 0).
-    #[inline]
-    fn is_glossy(&self) -> bool {
-        matches!(self.grating.slits(), Slits::Finite(_)) && !self.groove.is_delta()
-    }
-
-    /// The density for finite N and a non-ideal groove, after the checks.
-    #[inline]
-    fn pdf_finite(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        let Some(c) = self
-            .orders
-            .candidates(wo, self.grating.period_nm() / lambda_nm)
-        else {
-            return 0.0;
-        };
-        let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        let x = self.lobe.phase(u, lambda_nm);
-        #[cfg(feature = "relief")]
-        if let Some(t) = self.table() {
-            return self.tab_pdf(t, &c, wo, x, v, wi.z, lambda_nm);
-        }
-        self.pdf_x(&c, x, v, wi.z, lambda_nm)
-    }
-
-    /// [`pdf_finite`](Self::pdf_finite) for a tabulated model at the phase x. Not inlined: its
-    /// order buffer would otherwise enlarge the amplitude model's stack frame.
-    #[cfg(feature = "relief")]
-    #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
-    fn tab_pdf(
-        &self,
-        t: &crate::relief::EfficiencyTable,
-        c: &Candidates,
-        wo: DVec3,
-        x: f64,
-        v: f64,
-        cos_i: f64,
-        lambda_nm: f64,
-    ) -> f64 {
-        let Some(o) = self.tab_orders(t, wo, lambda_nm, c) else {
-            return 0.0;
-        };
-        let m = math::rint(x);
-        if !m.is_finite() {
-            return 0.0;
-        }
-        let w = o.weight(m as i64);
-        self.pdf_w(w, o.total, x, v, cos_i, lambda_nm)
-    }
-
-    /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi at the phase x = d·(u/λ) (m = round(x), r = x − m; the
-    /// phase `eval` evaluates F_N at, rounded the same way: `Lobe::phase`) for the
-    /// candidates `c`, with two divisions: the order and u factors, and the v and cosine
-    /// factors (q_v = (1/s)/(π·(1 + (v/s)²)), [`GrooveSpread::pdf`] to rounding).
-    #[inline(always)]
-    fn pdf_x(&self, c: &Candidates, x: f64, v: f64, cos_i: f64, lambda_nm: f64) -> f64 {
-        let mi = math::rint(x) as i64;
-        if mi < c.lo || mi > c.hi {
-            return 0.0;
-        }
-        let w = self.orders.candidate_weight(c, mi);
-        self.pdf_w(w, c.total, x, v, cos_i, lambda_nm)
-    }
-
-    /// P(m)·q(r)·(d/λ)·q_v(v)·cos θi with P(m) = w/total (see [`pdf_x`](Self::pdf_x)).
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn pdf_w(
-        &self,
-        w: f64,
-        total: f64,
-        x: f64,
-        v: f64,
-        cos_i: f64,
-        lambda_nm: f64,
-    ) -> f64 {
-        if w == 0.0 {
-            return 0.0;
-        }
-        let r = x - math::rint(x);
-        let (qa, qb) = self.proxy.ratio(r);
-        let inv_s = self.groove.proxy_inverse_scale(lambda_nm);
-        let tv = v * inv_s;
-        let a = (w * qa * self.grating.period_nm()) / (total * qb * lambda_nm);
-        let b = (inv_s * cos_i) / (PI * (1.0 + tv * tv));
-        let p = a * b;
-        if p.is_finite() {
-            p
-        } else {
-            0.0
-        }
     }
 }

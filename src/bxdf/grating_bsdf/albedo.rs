@@ -3,8 +3,7 @@
 
 use glam::DVec3;
 
-#[cfg(feature = "relief")]
-use super::efficiency::eta;
+use super::order_weights::{OrderSource, OrderWeights};
 use super::GratingBsdf;
 use crate::bxdf::MIN_COS_THETA;
 use crate::groove::GrooveKind;
@@ -82,41 +81,30 @@ impl GratingBsdf {
             return Some(0.0);
         }
         let step = lambda_nm / self.grating.period_nm();
-        let Some(c) = self
-            .orders
-            .candidates(wo, self.grating.period_nm() / lambda_nm)
-        else {
+        let Some((lo, hi)) = OrderSource::range(
+            self.grating.slits(),
+            wo,
+            self.grating.period_nm() / lambda_nm,
+        ) else {
             return Some(0.0);
         };
-        if c.hi - c.lo + 1 > MAX_ALBEDO_ORDERS {
+        if hi - lo + 1 > MAX_ALBEDO_ORDERS {
             return None;
         }
         let rho = self.grating.open_fraction();
-        // A tabulated model: η_m(−wo.x, λ) of the candidates, and η̃_m at u (the min with
-        // η_m(−wi.x, λ), wi.x = u − wo.x); every period lobe by lobe (η̃ has the table's kinks).
-        #[cfg(feature = "relief")]
-        let tab = match self.table() {
-            Some(t) => match self.tab_orders(t, wo, lambda_nm, &c) {
-                Some(o) => Some((t, o)),
+        // A tabulated model: the order weights η_m(−wo.x, λ) of the candidates, and η̃_m at u
+        // (the min with η_m(−wi.x, λ), wi.x = u − wo.x); every period lobe by lobe (η̃ has the
+        // table's kinks).
+        let tab = match self.orders {
+            OrderSource::Amplitude(_) => None,
+            OrderSource::Tabulated { .. } => match self.tabulated_weights(wo, lambda_nm) {
+                Some(o) => Some(o),
                 None => return Some(0.0),
             },
-            None => None,
         };
-        #[cfg(not(feature = "relief"))]
-        let tab: Option<core::convert::Infallible> = None;
         let moments = moments && tab.is_none();
-        #[cfg(not(feature = "relief"))]
-        let eta_at = |_: i64, _: f64| 0.0;
-        #[cfg(feature = "relief")]
         let eta_at = |m: i64, u: f64| match &tab {
-            Some((t, o)) => {
-                let w = o.weight(m);
-                if w == 0.0 {
-                    0.0
-                } else {
-                    w.min(eta(t, m, wo.x - u, lambda_nm))
-                }
-            }
+            Some(o) => o.eta_at_u(m, u, wo.x, lambda_nm),
             None => 0.0,
         };
         // ∫ g over the chord of D at u.
@@ -132,12 +120,12 @@ impl GratingBsdf {
         let mut sum = 0.0;
         match self.grating.slits() {
             Slits::Infinite => {
-                for m in c.lo..=c.hi {
+                for m in lo..=hi {
                     let u = m as f64 * step;
                     let e = if tab.is_some() {
                         eta_at(m, u)
                     } else {
-                        self.efficiency.efficiency(rho, m)
+                        rho * rho * single_slit_cycles(rho * m as f64)
                     };
                     sum += e * chord(u);
                 }
@@ -163,9 +151,8 @@ impl GratingBsdf {
                     ALBEDO_CUT_MARGIN + groove_du / step,
                 ];
                 let mut rule: Option<MomentRule> = None;
-                for m in c.lo..=c.hi {
-                    #[cfg(feature = "relief")]
-                    if tab.as_ref().is_some_and(|(_, o)| o.weight(m) == 0.0) {
+                for m in lo..=hi {
+                    if tab.as_ref().is_some_and(|o| o.weight(m) == 0.0) {
                         // f = 0 on the period (η̃ ≤ η_m(−wo.x) = 0).
                         continue;
                     }
@@ -205,11 +192,11 @@ impl GratingBsdf {
                 }
             }
         }
-        #[cfg(feature = "relief")]
-        if let Some((_, o)) = &tab {
-            return Some(sum.clamp(0.0, o.total.min(1.0)));
-        }
-        Some(sum.clamp(0.0, rho))
+        let cap = match &tab {
+            Some(o) => o.total().min(1.0),
+            None => rho,
+        };
+        Some(sum.clamp(0.0, cap))
     }
 }
 

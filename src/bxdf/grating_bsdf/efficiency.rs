@@ -47,24 +47,20 @@ use alloc::sync::Arc;
 
 use glam::DVec3;
 
-#[cfg(feature = "relief")]
-use super::lobe::GrooveFactor;
-#[cfg(feature = "relief")]
-use super::orders::Candidates;
 use super::GratingBsdf;
+#[cfg(all(feature = "relief", not(feature = "presets")))]
+use crate::error::Error;
 #[cfg(feature = "relief")]
-use crate::bxdf::bsdf::{BsdfFlags, BsdfSample};
-#[cfg(feature = "relief")]
-use crate::error::{Error, Requirement};
+use crate::error::Requirement;
 use crate::kernel::single_slit_cycles;
 #[cfg(feature = "relief")]
-use crate::math;
+use crate::relief::EfficiencyTable;
 #[cfg(feature = "presets")]
 use crate::relief::Preset;
 #[cfg(feature = "relief")]
-use crate::relief::{EfficiencyTable, Polarised};
-#[cfg(feature = "relief")]
-use crate::{Grating, Slits};
+use crate::Grating;
+#[cfg(feature = "presets")]
+use crate::{error::Error, Slits};
 
 /// The most orders a tabulated model's table may store: the sampler reads every order's
 /// efficiency for `wo` into a buffer of this many entries on the stack (no allocation). The
@@ -116,6 +112,12 @@ pub enum OrderEfficiency {
 #[cfg(feature = "relief")]
 #[derive(Debug, Clone)]
 pub struct Tabulated(Held);
+
+/// Without the feature `relief` no table exists: the tabulated source of the order weights is
+/// uninhabited, and the compiler removes its paths.
+#[cfg(not(feature = "relief"))]
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Tabulated {}
 
 #[cfg(feature = "relief")]
 #[derive(Debug, Clone)]
@@ -208,32 +210,22 @@ impl OrderEfficiency {
     /// false without the feature `relief`.
     #[must_use]
     pub fn is_tabulated(&self) -> bool {
-        match self {
-            OrderEfficiency::Amplitude => false,
-            #[cfg(feature = "relief")]
-            OrderEfficiency::Tabulated(_) => true,
-        }
+        self.tabulated().is_some()
     }
 
-    /// η_m for a grating of open fraction `rho` (amplitude reading).
+    /// The table holder of a tabulated model.
     #[inline]
-    pub(crate) fn efficiency(&self, rho: f64, order: i64) -> f64 {
-        rho * rho * self.relative(rho, order)
-    }
-
-    /// η_m/ρ²: the efficiency relative to that of order 0 of a flat strip (the order weights of
-    /// the sampler use it). For a tabulated model: 1 (its weights are computed per call).
-    #[inline]
-    pub(crate) fn relative(&self, rho: f64, order: i64) -> f64 {
+    pub(super) fn tabulated(&self) -> Option<&Tabulated> {
         match self {
-            OrderEfficiency::Amplitude => single_slit_cycles(rho * order as f64),
+            OrderEfficiency::Amplitude => None,
             #[cfg(feature = "relief")]
-            OrderEfficiency::Tabulated(_) => 1.0,
+            OrderEfficiency::Tabulated(t) => Some(t),
         }
     }
 }
 
-/// Unpolarised η of one order of a table, 0 outside its orders.
+/// Unpolarised η of one order of a table, 0 outside its orders and where it is not a finite
+/// positive number.
 #[cfg(feature = "relief")]
 #[inline]
 pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: f64) -> f64 {
@@ -250,52 +242,6 @@ pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: 
     }
 }
 
-/// The sampler's order weights for a tabulated model at one (wo, λ): η_m(−wo.x, λ) of every
-/// stored order, the candidate range clipped to the table and Σ η over it.
-#[cfg(feature = "relief")]
-pub(super) struct TabOrders {
-    buf: [Polarised; MAX_TABULATED_ORDERS],
-    first: i64,
-    pub lo: i64,
-    pub hi: i64,
-    pub total: f64,
-}
-
-#[cfg(feature = "relief")]
-impl TabOrders {
-    /// η_m(−wo.x, λ) of order m (0 outside the candidates).
-    #[inline]
-    pub(super) fn weight(&self, m: i64) -> f64 {
-        if m < self.lo || m > self.hi {
-            return 0.0;
-        }
-        let e = self.buf[(m - self.first) as usize].unpolarised();
-        if e.is_finite() && e > 0.0 {
-            e
-        } else {
-            0.0
-        }
-    }
-
-    /// Chooses an order ∝ η_m(−wo.x, λ) from `uc` in [0, 1): the order and its probability.
-    pub(super) fn choose(&self, uc: f64) -> (i64, f64) {
-        let target = uc * self.total;
-        let mut acc = 0.0;
-        let mut last = self.lo;
-        for m in self.lo..=self.hi {
-            let w = self.weight(m);
-            if w > 0.0 {
-                last = m;
-                acc += w;
-                if target < acc {
-                    return (m, w / self.total);
-                }
-            }
-        }
-        (last, self.weight(last) / self.total)
-    }
-}
-
 impl GratingBsdf {
     /// The same grating with the order efficiencies `efficiency`. A tabulated model brings its
     /// own period: the grating takes the table's period d (keeping N and the open fraction
@@ -303,7 +249,6 @@ impl GratingBsdf {
     /// single-slit factor, and the orders' powers are the table's). The groove spread is kept.
     ///
     /// ```
-    /// # #[cfg(feature = "presets")] {
     /// use diffraction::grating_bsdf::OrderEfficiency;
     /// use diffraction::relief::Preset;
     /// use diffraction::{Grating, GratingBsdf};
@@ -311,21 +256,21 @@ impl GratingBsdf {
     ///     .with_efficiency(OrderEfficiency::preset(Preset::Cd));
     /// assert_eq!(b.grating().period_nm(), 1600.0);
     /// assert!(b.order_efficiency().is_tabulated());
-    /// # }
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn with_efficiency(&self, efficiency: OrderEfficiency) -> GratingBsdf {
-        #[cfg_attr(not(feature = "relief"), allow(unused_mut))]
-        let mut grating = self.grating;
         #[cfg(feature = "relief")]
-        if let Some(t) = efficiency.table() {
-            let d = t.period_nm();
-            if d != grating.period_nm() {
-                grating = Grating::with_slits(d, grating.open_fraction() * d, grating.slits())
-                    .unwrap_or(grating);
+        let grating = match efficiency.table() {
+            Some(t) if t.period_nm() != self.grating.period_nm() => {
+                let d = t.period_nm();
+                Grating::with_slits(d, self.grating.open_fraction() * d, self.grating.slits())
+                    .unwrap_or(self.grating)
             }
-        }
+            _ => self.grating,
+        };
+        #[cfg(not(feature = "relief"))]
+        let grating = self.grating;
         GratingBsdf::build(grating, self.groove, efficiency)
     }
 
@@ -394,8 +339,8 @@ impl GratingBsdf {
         if let Some(t) = self.table() {
             return eta(t, i64::from(order), 0.0, 550.0);
         }
-        self.efficiency
-            .efficiency(self.grating.open_fraction(), order as i64)
+        let rho = self.grating.open_fraction();
+        rho * rho * single_slit_cycles(rho * f64::from(order))
     }
 
     /// The table of a tabulated model.
@@ -405,39 +350,11 @@ impl GratingBsdf {
         self.efficiency.table()
     }
 
-    /// η_m(−wo.x, λ) of the candidates `c`, `None` when they carry nothing.
-    #[cfg(feature = "relief")]
-    pub(super) fn tab_orders(
-        &self,
-        t: &EfficiencyTable,
-        wo: DVec3,
-        lambda_nm: f64,
-        c: &Candidates,
-    ) -> Option<TabOrders> {
-        let (first, last) = (i64::from(*t.orders().start()), i64::from(*t.orders().end()));
-        let count = ((last - first + 1) as usize).min(MAX_TABULATED_ORDERS);
-        let mut o = TabOrders {
-            buf: [Polarised::default(); MAX_TABULATED_ORDERS],
-            first,
-            lo: c.lo.max(first),
-            hi: c.hi.min(first + count as i64 - 1),
-            total: 0.0,
-        };
-        t.efficiencies(-wo.x, lambda_nm, &mut o.buf[..count]);
-        let mut total = 0.0;
-        for m in o.lo..=o.hi {
-            total += o.weight(m);
-        }
-        o.total = total;
-        (total > 0.0 && total.is_finite()).then_some(o)
-    }
-
     /// η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) of a tabulated model (see the
     /// [module docs](super)), unpolarised; the amplitude reading's η_m otherwise. Symmetric in
     /// (wo, wi) and ≥ 0; 0 for orders the table does not store and for non-finite input.
     ///
     /// ```
-    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// use diffraction::GratingBsdf;
     /// use glam::DVec3;
@@ -448,7 +365,6 @@ impl GratingBsdf {
     /// let e = cd.efficiency_at(1, wo, wi, 550.0);
     /// assert!(e > 0.0 && e < 1.0);
     /// assert_eq!(e, cd.efficiency_at(1, wi, wo, 550.0)); // reciprocal
-    /// # }
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
@@ -461,122 +377,5 @@ impl GratingBsdf {
         #[cfg(not(feature = "relief"))]
         let _ = (wo, wi, lambda_nm);
         self.efficiency(order)
-    }
-}
-
-#[cfg(feature = "relief")]
-impl GratingBsdf {
-    /// f of a tabulated model with finite N and a groove spread: η̃_m·ℓ_m(u, v) for the order
-    /// m owning u (the phase `eval` reads), after the hemisphere checks.
-    #[inline]
-    pub(super) fn tab_value(&self, t: &EfficiencyTable, wo: DVec3, wi: DVec3, l: f64) -> f64 {
-        let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-        let m = math::rint(self.lobe.phase(u, l));
-        if !m.is_finite() {
-            return 0.0;
-        }
-        let m = m as i64;
-        let e = eta(t, m, -wo.x, l);
-        if e == 0.0 {
-            return 0.0;
-        }
-        let e = e.min(eta(t, m, -wi.x, l));
-        if e == 0.0 {
-            return 0.0;
-        }
-        e * self.lobe.value(u, v, l)
-    }
-
-    /// [`Bsdf::sample`](crate::Bsdf::sample) for a tabulated model: the order ∝ η_m(−wo.x, λ)
-    /// among the candidates `c`, then u, v and the direction as for the amplitude model. Not
-    /// inlined: its order buffer would otherwise enlarge the amplitude model's stack frame.
-    #[inline(never)]
-    pub(super) fn tab_sample(
-        &self,
-        t: &EfficiencyTable,
-        wo: DVec3,
-        lambda_nm: f64,
-        c: &Candidates,
-        [uc, ux, uy]: [f64; 3],
-    ) -> Option<BsdfSample> {
-        let o = self.tab_orders(t, wo, lambda_nm, c)?;
-        let (m, pm) = o.choose(uc);
-        let step = lambda_nm / self.grating.period_nm();
-        let (wi, u, r, v) = self.sample_direction(wo, m, step, ux, uy, lambda_nm)?;
-        let order = m.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
-        let specular = BsdfFlags::REFLECTION | BsdfFlags::SPECULAR;
-        let (f, pdf, flags) = match (self.grating.slits(), self.groove.is_delta()) {
-            (Slits::Finite(_), false) => {
-                // From the returned direction itself, as `eval` and `pdf` (see `sample`).
-                let (u, v) = (wi.x + wo.x, wi.y + wo.y);
-                let xr = self.lobe.phase(u, lambda_nm);
-                let mr = math::rint(xr) as i64;
-                let w = o.weight(mr);
-                let e = w.min(eta(t, mr, -wi.x, lambda_nm));
-                let f = if e == 0.0 {
-                    0.0
-                } else {
-                    e * self.lobe.value(u, v, lambda_nm)
-                };
-                (
-                    f,
-                    self.pdf_w(w, o.total, xr, v, wi.z, lambda_nm),
-                    BsdfFlags::REFLECTION | BsdfFlags::GLOSSY,
-                )
-            }
-            (Slits::Finite(_), true) => {
-                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
-                let unit = GrooveFactor {
-                    big: 1.0,
-                    coherent: false,
-                };
-                let (num, den) = self.lobe.ratio(u / lambda_nm, unit, 0.0, lambda_nm);
-                (
-                    e * (num / den),
-                    pm * (self.proxy.q(r) / step) * wi.z,
-                    specular,
-                )
-            }
-            (Slits::Infinite, false) => {
-                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
-                let pv = self.groove.pdf(v, lambda_nm);
-                (
-                    e * self.groove.value(v, lambda_nm),
-                    pm * pv * wi.z,
-                    specular,
-                )
-            }
-            (Slits::Infinite, true) => {
-                let e = o.weight(m).min(eta(t, m, -wi.x, lambda_nm));
-                (e / wi.z, pm, specular)
-            }
-        };
-        if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
-            return None;
-        }
-        Some(BsdfSample::new(wi, f, pdf, flags).with_order(order))
-    }
-
-    /// The weight bound of a tabulated model: f·cos θi/pdf = (η̃_m/η_m(−wo.x))·Σ η ·
-    /// N·F_N/q · g/q_v ≤ Σ η·B_N·sup g/q_v (B_N = 2·atan N, 1 for N = 1; Σ η·sup g/q_v for
-    /// N = ∞), since η̃ ≤ η
-    /// (times 1 + 10⁻¹² for rounding).
-    pub(super) fn tab_weight_bound(
-        &self,
-        t: &EfficiencyTable,
-        wo: DVec3,
-        lambda_nm: f64,
-        c: &Candidates,
-    ) -> f64 {
-        let Some(o) = self.tab_orders(t, wo, lambda_nm, c) else {
-            return 0.0;
-        };
-        let gv = self.groove.proxy_bound();
-        // The relative 10⁻¹² covers the rounding of the weight's products and quotients.
-        let b = match self.grating.slits() {
-            Slits::Infinite => o.total * gv,
-            Slits::Finite(_) => o.total * self.proxy.bound() * gv,
-        };
-        b * (1.0 + 1e-12)
     }
 }

@@ -27,15 +27,10 @@ impl GratingBsdf {
         let mut pdf = [hero.pdf, 0.0, 0.0, 0.0];
         if !hero.flags.is_specular() {
             let wi = hero.wi;
-            let (u, v) = (wi.x + wo.x, wi.y + wo.y);
             let l = lambdas.lambda();
             for k in 1..4 {
                 if l[k] > 0.0 && l[k].is_finite() {
-                    #[cfg(feature = "relief")]
-                    let tabulated = self.table().map(|t| self.tab_value(t, wo, wi, l[k]));
-                    #[cfg(not(feature = "relief"))]
-                    let tabulated = None;
-                    f[k] = tabulated.unwrap_or_else(|| self.lobe.value(u, v, l[k]));
+                    f[k] = self.value(wo, wi, l[k]);
                     pdf[k] = self.pdf_finite(wo, wi, l[k]);
                 }
             }

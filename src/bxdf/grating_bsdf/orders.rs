@@ -1,4 +1,4 @@
-//! The order distribution of the grating's sampler (the counterpart of pbrt's microfacet
+//! The amplitude reading's order distribution of the grating's sampler (the counterpart of pbrt's microfacet
 //! distribution): which orders a direction `wo` can reach at λ, their weights, the choice of one
 //! order and its probability.
 //!
@@ -17,7 +17,7 @@ use core::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::efficiency::OrderEfficiency;
+use crate::kernel::single_slit_cycles;
 use crate::math;
 use crate::{Grating, Slits};
 
@@ -33,7 +33,7 @@ const TABLE_ORDERS: usize = 64;
 /// Windows of at most this many candidates that contain order 0 are chosen from without a
 /// data-dependent branch (a count over this many lanes).
 const CHOICE_LANES: usize = 16;
-/// The index of order m = 0 in [`OrderDistribution`]'s `cum` table (which starts at m = −65).
+/// The index of order m = 0 in [`AmplitudeOrders`]'s `cum` table (which starts at m = −65).
 const CUM_ZERO: i64 = TABLE_ORDERS as i64 + 1;
 /// The `cum` table's length: m = −65 ..= 64, and `CHOICE_LANES` entries of padding.
 const CUM_LEN: usize = 2 * TABLE_ORDERS + 2 + CHOICE_LANES;
@@ -49,18 +49,17 @@ pub(super) struct Candidates {
     pub uniform: bool,
 }
 
-/// The order weights of one grating: w_m for |m| ≤ 64 and their prefix sums, so that the
-/// candidates' total costs O(1); other orders are weighed on the fly.
+/// The amplitude reading's order weights of one grating: w_m for |m| ≤ 64 and their prefix
+/// sums, so that the candidates' total costs O(1); other orders are weighed on the fly.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct OrderDistribution {
+pub(super) struct AmplitudeOrders {
     slits: Slits,
     rho: f64,
-    efficiency: OrderEfficiency,
     /// w_0.
     w0: f64,
     /// prefix\[k\] = Σ_{j=1}^{k} w_j (w is even in m).
     prefix: [f64; TABLE_ORDERS + 1],
-    /// weight\[k\] = w_k = w_{−k}, exactly as [`OrderDistribution::weight_of`] computes it.
+    /// weight\[k\] = w_k = w_{−k}, exactly as [`AmplitudeOrders::weight_of`] computes it.
     weight: [f64; TABLE_ORDERS + 1],
     /// cum\[m + 65\] = C(m), the cumulative weight anchored at order 0: Σ_{j=0}^{m} w_j for
     /// m ≥ 0 and −Σ_{j=m+1}^{−1} w_j for m < 0, so that Σ_{j=a}^{b} w_j = C(b) − C(a − 1); for
@@ -68,12 +67,11 @@ pub(super) struct OrderDistribution {
     cum: [f64; CUM_LEN],
 }
 
-impl OrderDistribution {
-    pub(super) fn new(grating: &Grating, efficiency: &OrderEfficiency) -> OrderDistribution {
-        let mut d = OrderDistribution {
+impl AmplitudeOrders {
+    pub(super) fn new(grating: &Grating) -> AmplitudeOrders {
+        let mut d = AmplitudeOrders {
             slits: grating.slits(),
             rho: grating.open_fraction(),
-            efficiency: efficiency.clone(),
             w0: 0.0,
             prefix: [0.0; TABLE_ORDERS + 1],
             weight: [0.0; TABLE_ORDERS + 1],
@@ -97,10 +95,28 @@ impl OrderDistribution {
         d
     }
 
+    /// The open fraction ρ = w/d.
+    #[inline]
+    pub(super) fn rho(&self) -> f64 {
+        self.rho
+    }
+
+    /// The grating's N.
+    #[inline]
+    pub(super) fn slits(&self) -> Slits {
+        self.slits
+    }
+
+    /// η_m = ρ²·S(π·ρ·m), the amplitude reading's efficiency of order m.
+    #[inline]
+    pub(super) fn efficiency(&self, m: i64) -> f64 {
+        self.rho * self.rho * single_slit_cycles(self.rho * m as f64)
+    }
+
     /// The weight w_m of order m, computed.
     #[inline]
     fn weight_of(&self, m: i64) -> f64 {
-        let s = self.efficiency.relative(self.rho, m);
+        let s = single_slit_cycles(self.rho * m as f64);
         match self.slits {
             Slits::Infinite => s,
             Slits::Finite(_) => s + DEFENSIVE_ORDER_SHARE * envelope_bound(self.rho, m),
@@ -142,21 +158,7 @@ impl OrderDistribution {
     /// are none. Inlined so that the result stays in registers.
     #[inline(always)]
     pub(super) fn candidates(&self, wo: DVec3, inv_step: f64) -> Option<Candidates> {
-        let x_lo = (wo.x - 1.0) * inv_step;
-        let x_hi = (wo.x + 1.0) * inv_step;
-        if !(x_lo.abs() < MAX_PHASE && x_hi.abs() < MAX_PHASE) {
-            return None;
-        }
-        let (lo, hi) = match self.slits {
-            Slits::Finite(_) => (
-                floor_exact(x_lo - 0.5) as i64 + 1,
-                ceil_exact(x_hi + 0.5) as i64 - 1,
-            ),
-            Slits::Infinite => (floor_exact(x_lo) as i64 + 1, ceil_exact(x_hi) as i64 - 1),
-        };
-        if hi < lo {
-            return None;
-        }
+        let (lo, hi) = candidate_range(self.slits, wo, inv_step)?;
         let count = hi - lo + 1;
         if count > MAX_WEIGHTED_ORDERS {
             return Some(Candidates {
@@ -261,6 +263,26 @@ impl OrderDistribution {
     }
 }
 
+/// The candidate orders [lo, hi] for wo, given the orders per unit of u, d/λ: those whose
+/// period [m − ½, m + ½) in the phase (finite N) or point m (N = ∞) meets the disk's u-range
+/// (wo.x − 1, wo.x + 1); `None` when there are none or the phase is beyond [`MAX_PHASE`].
+#[inline(always)]
+pub(super) fn candidate_range(slits: Slits, wo: DVec3, inv_step: f64) -> Option<(i64, i64)> {
+    let x_lo = (wo.x - 1.0) * inv_step;
+    let x_hi = (wo.x + 1.0) * inv_step;
+    if !(x_lo.abs() < MAX_PHASE && x_hi.abs() < MAX_PHASE) {
+        return None;
+    }
+    let (lo, hi) = match slits {
+        Slits::Finite(_) => (
+            floor_exact(x_lo - 0.5) as i64 + 1,
+            ceil_exact(x_hi + 0.5) as i64 - 1,
+        ),
+        Slits::Infinite => (floor_exact(x_lo) as i64 + 1, ceil_exact(x_hi) as i64 - 1),
+    };
+    (hi >= lo).then_some((lo, hi))
+}
+
 /// U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²) ≥ S(π·ρ·x) on the period of m, since S(β) ≤ 3/(3 + β²).
 #[inline]
 fn envelope_bound(rho: f64, m: i64) -> f64 {
@@ -292,8 +314,7 @@ pub(super) fn ceil_exact(a: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{ceil_exact, floor_exact, OrderDistribution, CHOICE_LANES};
-    use crate::bxdf::grating_bsdf::efficiency::OrderEfficiency;
+    use super::{ceil_exact, floor_exact, AmplitudeOrders, CHOICE_LANES};
     use crate::Grating;
     use glam::DVec3;
 
@@ -310,7 +331,7 @@ mod tests {
             Grating::infinite(1600.0, 800.0).unwrap(),
             Grating::new(10_000.0, 2500.0, 5).unwrap(),
         ] {
-            let o = OrderDistribution::new(&g, &OrderEfficiency::Amplitude);
+            let o = AmplitudeOrders::new(&g);
             for wx in [-0.95, -0.6, 0.0, 0.3, 0.9] {
                 for l in [360.0, 450.0, 633.0, 830.0] {
                     let wo = DVec3::new(wx, 0.0, (1.0 - wx * wx).sqrt());

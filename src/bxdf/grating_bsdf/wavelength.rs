@@ -195,11 +195,7 @@ impl GratingBsdf {
                 self.groove.value(v, mid)
             };
             let rho = self.grating.open_fraction();
-            #[cfg(feature = "relief")]
-            let tabulated = self.table().is_some();
-            #[cfg(not(feature = "relief"))]
-            let tabulated = false;
-            let f = if tabulated {
+            let f = if self.efficiency.is_tabulated() {
                 // η̃_0(λ)·(N·d/λ)·F_N·g at the middle of the range.
                 self.efficiency_at(0, wo, wi, mid)
                     * (mix.n * self.grating.period_nm() / mid)
