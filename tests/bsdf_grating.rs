@@ -266,12 +266,14 @@ fn samples_agree_with_f_and_pdf() {
     let mut rng = Rng::new(11);
     for n in SLITS {
         let b = bsdf(n);
+        let mut sampled = 0;
         for _ in 0..3000 {
             let wo = rng.direction(0.05);
             let lambda = 360.0 + 470.0 * rng.next_f64();
             let Some(s) = b.sample(wo, lambda, rng.next_f64(), rng.u2()) else {
                 continue;
             };
+            sampled += 1;
             assert!(s.wi.z > 0.0 && (s.wi.length() - 1.0).abs() < 1e-12);
             let (f, p) = (b.eval(wo, s.wi, lambda), b.pdf(wo, s.wi, lambda));
             assert!(
@@ -282,6 +284,12 @@ fn samples_agree_with_f_and_pdf() {
             assert!((s.pdf - p).abs() <= SAMPLE_CONSISTENCY * p.max(s.pdf));
             assert!(s.pdf > 0.0 && !s.flags.is_specular());
         }
+        println!("N={n}: {sampled} of 3000 draws sampled a direction");
+        // Measured 1982-2597 of 3000 (N = 1 to 10⁶; directions below the horizon refused).
+        assert!(
+            2 * sampled >= 3000,
+            "N={n}: only {sampled} of 3000 draws sampled"
+        );
     }
 }
 

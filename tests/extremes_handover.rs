@@ -15,9 +15,8 @@ fn grating_response_u_is_finite() {
     let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100).unwrap())
         .with_groove(GrooveSpread::gaussian(0.05).unwrap());
     let w = DVec3::new(f64::MAX, 0.0, 1.0);
-    if let Some(r) = b.grating_response(w, w) {
-        assert!(r.u.is_finite() && r.scale.is_finite(), "{r:?}");
-    }
+    let r = b.grating_response(w, w);
+    assert!(r.is_none(), "u = wi.x + wo.x overflows: {r:?}");
 }
 
 /// A strategy name with a count outside its range says "unknown strategy", as for a misspelt
@@ -56,10 +55,12 @@ fn sample_weight_bound_beyond_i32_orders() {
     let b =
         GratingBsdf::new(Grating::infinite(1e12, 3e11).unwrap()).with_groove(GrooveSpread::IDEAL);
     let wo = DVec3::new(0.6, 0.0, 0.8);
+    let mut sampled = 0;
     for k in 0..64 {
         let uc = (k as f64 + 0.5) / 64.0;
         let bound = b.sample_weight_bound(wo, 500.0);
         if let Some(x) = b.sample(wo, 500.0, uc, DVec2::new(0.5, 0.5)) {
+            sampled += 1;
             assert!(
                 x.weight() <= bound * (1.0 + 1e-9),
                 "uc {uc}: {} > {bound:e}",
@@ -67,4 +68,10 @@ fn sample_weight_bound_beyond_i32_orders() {
             );
         }
     }
+    println!("{sampled} of 64 choices sampled an order");
+    // Measured 64 of 64.
+    assert!(
+        2 * sampled >= 64,
+        "only {sampled} of 64 choices sampled an order"
+    );
 }
