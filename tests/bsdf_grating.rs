@@ -16,13 +16,6 @@ const PERIOD: f64 = 1600.0;
 const WIDTH: f64 = 800.0;
 /// Wavelengths of the tests, nm.
 const LAMBDAS: [f64; 2] = [450.0, 633.0];
-/// `sample_weight_bound` for the CD-like grating: measured 6.57 (N = 1, whose uniform period
-/// proxy has B_1 = 1) to 21.7 (N = 10⁶, normal incidence, 450 nm); asserted below 25.
-const WEIGHT_BOUND_CAP: f64 = 25.0;
-/// The largest f·cos θi/pdf seen in the furnace runs: measured 2.20 (N = 5, normal incidence,
-/// 450 nm; 1.71 at N = 1, 1.23 at N = 10⁶); asserted below 10 (over 4× margin), far inside
-/// the bound.
-const WEIGHT_MEASURED_CAP: f64 = 10.0;
 
 fn bsdf(n: u32) -> GratingBsdf {
     GratingBsdf::new(Grating::new(PERIOD, WIDTH, n).unwrap())
@@ -368,14 +361,6 @@ mod formulas {
     use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
     use diffraction::SampledWavelengths;
 
-    /// `eval` against the separate factors of the formula (kernel functions tested against
-    /// mpmath) and `eval4` against four `eval` calls: the fused, branch-free path rounds
-    /// differently from the product of the factors by a few ulp of each factor (measured: at
-    /// most 8.3·ε relative; `eval4` equals `eval` exactly); 32·ε leaves 4×.
-    const FUSED_REL: f64 = 32.0 * f64::EPSILON;
-    /// `pdf` against the module docs' formula P(m)·q(r)·(d/λ)·q_v(v)·cos θi with each factor
-    /// computed separately: a few roundings each (measured: at most 5.4·ε); 48·ε leaves 9×.
-    const PDF_REL: f64 = 48.0 * f64::EPSILON;
     /// Below this, factors such as a far Gaussian tail are subnormal and keep only a few bits.
     const SUBNORMAL_FACTORS: f64 = 1e-290;
 

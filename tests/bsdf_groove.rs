@@ -12,11 +12,6 @@ use diffraction::{
     SampledWavelengths,
 };
 
-/// Closed-form mass against 8-point Gauss-Legendre on ≥ 4000 pieces of the value: measured
-/// ≤ 8·10⁻¹⁵ absolute, asserted at 10⁻¹³; for the narrowest lobe (L = 1.6 m) over wide
-/// intervals the reference itself (2·10⁶ pieces) is off by 2·10⁻¹¹, so there 10⁻⁹ relative.
-const MASS_AGREEMENT: f64 = 1e-13;
-
 fn spreads() -> [GrooveSpread; 3] {
     [
         GrooveSpread::coherence_length(20_000.0).unwrap(),
@@ -38,7 +33,8 @@ fn mass_is_the_integral_of_the_value() {
             let pieces = ((b - a) / scale * 4.0).clamp(4000.0, 2_000_000.0) as usize;
             let num = integrate(a, b, pieces, &|v| g.value(v, l));
             assert!(
-                (g.mass(a, b, l) - num).abs() <= MASS_AGREEMENT.max(1e-9 * num),
+                (g.mass(a, b, l) - num).abs()
+                    <= MASS_AGREEMENT.max(MASS_AGREEMENT_NARROW_REL * num),
                 "{g:?} [{a}, {b}]: {} vs {num}",
                 g.mass(a, b, l)
             );

@@ -16,9 +16,6 @@ const PERIOD: f64 = 1600.0;
 const XI_BINS: usize = 32;
 /// Pieces of 8-point Gauss-Legendre per period in the ξ coordinate.
 const XI_PIECES: usize = 64;
-/// Variance ratio (uniform / grating sampler) for N = 1000 at u = 0.9, D65, Y: measured
-/// 3.81·10³ (see `variance_ratios`); asserted above a tenth of it.
-const MIN_RATIO_N1000: f64 = 381.0;
 
 fn grating(n: u32) -> GratingBsdf {
     GratingBsdf::new(Grating::new(PERIOD, 800.0, n).unwrap())

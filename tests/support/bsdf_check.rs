@@ -377,3 +377,40 @@ pub fn hemisphere_integral<B: Bsdf + ?Sized>(
             })
     })
 }
+
+// ---- the amplitude grating BSDF (tests/bsdf_grating.rs) ----
+
+/// `sample_weight_bound` for the CD-like grating: measured 6.57 (N = 1, whose uniform period
+/// proxy has B_1 = 1) to 21.7 (N = 10⁶, normal incidence, 450 nm); asserted below 25.
+pub const WEIGHT_BOUND_CAP: f64 = 25.0;
+/// The largest f·cos θi/pdf seen in the furnace runs: measured 2.20 (N = 5, normal incidence,
+/// 450 nm; 1.71 at N = 1, 1.23 at N = 10⁶); asserted below 10 (over 4× margin), far inside
+/// the bound.
+pub const WEIGHT_MEASURED_CAP: f64 = 10.0;
+
+// ---- its formulas (tests/bsdf_grating.rs, `formulas`) ----
+
+/// `eval` against the separate factors of the formula (kernel functions tested against
+/// mpmath) and `eval4` against four `eval` calls: the fused, branch-free path rounds
+/// differently from the product of the factors by a few ulp of each factor (measured: at
+/// most 8.3·ε relative; `eval4` equals `eval` exactly); 32·ε leaves 4×.
+pub const FUSED_REL: f64 = 32.0 * f64::EPSILON;
+/// `pdf` against the module docs' formula P(m)·q(r)·(d/λ)·q_v(v)·cos θi with each factor
+/// computed separately: a few roundings each (measured: at most 5.4·ε); 48·ε leaves 9×.
+pub const PDF_REL: f64 = 48.0 * f64::EPSILON;
+
+// ---- the groove spread (tests/bsdf_groove.rs) ----
+
+/// Closed-form mass against 8-point Gauss-Legendre on ≥ 4000 pieces of the value: measured
+/// ≤ 8·10⁻¹⁵ absolute, asserted at 10⁻¹³; for the narrowest lobe (L = 1.6 m) over wide
+/// intervals the reference itself (2·10⁶ pieces) is off by 2·10⁻¹¹, so there 10⁻⁹ relative.
+pub const MASS_AGREEMENT: f64 = 1e-13;
+/// The same for the narrowest lobe over wide intervals, relative: the reference's own 2·10⁻¹¹
+/// (2·10⁶ pieces), margin 50 for the reference's error, which is not the crate's.
+pub const MASS_AGREEMENT_NARROW_REL: f64 = 1e-9;
+
+// ---- the wavelength sampler (tests/bsdf_wavelength.rs) ----
+
+/// Variance ratio (uniform / grating sampler) for N = 1000 at u = 0.9, D65, Y: measured
+/// 3.81·10³ (see `variance_ratios`); asserted above a tenth of it.
+pub const MIN_RATIO_N1000: f64 = 381.0;

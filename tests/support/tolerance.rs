@@ -172,3 +172,65 @@ pub const BESSEL_LARGE_X: f64 = 1e-18;
 pub const EFFICIENCY_REL: f64 = 5e-13;
 /// |c_m|², absolute floor for values at the zeros.
 pub const EFFICIENCY_ABS: f64 = 1e-15;
+
+// ---- `Asymptotic` over its sweep (tests/asymptotic.rs) ----
+
+/// The bound on the diffracted orders, relative to Y_b. Measured worst: 1.30e-4 over the full
+/// sweep (N = 300; N = 5…10⁶, d = 400 nm…100 µm, w = d/2 and d/10, E and D65), 9.3e-5 on the
+/// reference data; a margin of 2.3× (the promise `Spectral::choose` uses,
+/// `bounds::ASYMPTOTIC_ORDERS`, is 5e-4).
+pub const ASYMPTOTIC_ORDERS: f64 = 3e-4;
+/// The bound relative to max(colour, Y_b) where order 0's half period reaches into the band.
+/// Measured worst: 1.9e-5 over the sweep (N = 300 and 10⁶), 3.4e-6 on the reference data
+/// (N = 10⁶); margin 2.6× (the promise, `bounds::ASYMPTOTIC_ORDER0`, is 2e-4).
+pub const ASYMPTOTIC_ORDER0: f64 = 5e-5;
+
+// ---- Stam's Bessel function at large order and argument (tests/bessel_large.rs) ----
+
+/// Decaying side (|n| ≥ |x| + 15|x|^{1/3}), relative to |J|: measured 1.05·10⁻¹³ (n = 10⁵,
+/// x = 98143.364, the expansion's truncation at its edge); 5× margin.
+pub const BESSEL_LARGE_DECAYING: f64 = 5e-13;
+/// Turning region (|n − x| < 15·x^{1/3} + 2), relative to max(|J|, min(√(2/(π√(x² − n²))),
+/// x^{−1/3})), the local amplitude: measured 8.1·10⁻¹² (n = 2³¹ − 1, x = n + 129: Debye's
+/// truncation at the window's top carried down); 5× margin.
+pub const BESSEL_TURNING: f64 = 4e-11;
+/// Oscillating side (|n| ≤ |x| − 15|x|^{1/3}), relative to the local amplitude, in units of
+/// 10⁻¹² + ε·n²/|x| (ε = 2⁻⁵²): the phase ξ = x − (2n + 1)π/4 + δ carries a rounding error of a
+/// few ulps of δ ≈ n²/(2x) (n ≪ x) to n·(π/2 − 1) (n ≈ x), the rest is the truncation.
+/// Measured: 0.75 units (n = 2³¹ − 1, x = 2n: 1.8·10⁻⁷, the phase of a 10⁹-radian oscillation
+/// to 1.8·10⁻⁷ rad); at n ≤ 10⁶, 1.6·10⁻¹⁰ (x = 1.01·10⁶); 5× margin.
+pub const BESSEL_OSCILLATING_UNITS: f64 = 3.7;
+
+// ---- the radiometric BSDF's colour (tests/radiometric_colour.rs) ----
+
+/// Gauss-Legendre with 8192 intervals of 0.057 nm resolves every lobe of these small-N
+/// gratings (lobes ≥ 5 nm wide); measured agreement with the envelope path 1.1e-9 relative to
+/// the largest component (printed by `--nocapture`), asserted with a margin of 4.5×.
+pub const ENVELOPE_PATH: f64 = 5e-9;
+
+// ---- the tables, the whites and the analytic peak weights (tests/spectral.rs) ----
+// Measured by the tests of `tests/spectral.rs` named below (printed once with `--nocapture`).
+
+/// `cmf(λ)` against numpy.interp of colour-science's table (`cmf_interp.csv`), absolute.
+/// Measured 0 (`cmf_interpolation_matches_colour_science`: the same interpolation); allowed: two
+/// ulp of values below 2.
+pub const CMF_INTERPOLATION: f64 = 1e-15;
+/// The white of illuminant E against (1, 1, 1): the CIE 1931 functions' areas differ, a property
+/// of the tables, not an error. Measured 3.3e-4 (`white_points`); margin 3×.
+pub const WHITE_E: f64 = 1e-3;
+/// D65's white against its published chromaticity (0.3127, 0.3290), which comes from the 5 nm
+/// tables: the 1 nm tables' own difference. Measured 2.8e-5 (`white_points`); margin 3.5×.
+pub const D65_CHROMATICITY: f64 = 1e-4;
+/// D65's white against colour-science's exact integrals of the same tables
+/// (`lab_de2000.csv`'s header), absolute. Measured 1.1e-16 (`white_points`); margin 9×.
+pub const WHITE_FIXTURE: f64 = 1e-15;
+/// `paper_peaks` of one visible order against S(β₁)·cmf(λ₁) under E, absolute. Measured 0
+/// (`paper_peaks_are_weighted_spectral_colours`, N = 10, 10³, 10⁶); allowed: a few roundings of
+/// values below 2.
+pub const PAPER_PEAKS_CMF: f64 = 1e-15;
+/// The peak search against its analytic weight S·E·cmf·λ_m/(|m|N)/∫Eȳ, relative. Measured
+/// 1.8e-13 (`peak_search_is_the_analytic_weight`, three orders; 0 for two); margin 5.6×.
+pub const PEAK_SEARCH_ANALYTIC: f64 = 1e-12;
+/// What a peak on the band's edge (order 4 at 360 nm, where ȳ is 4·10⁻⁶) adds to the analytic
+/// weights of the others, relative. Measured 1.8e-13 (the same test); margin 5.6×.
+pub const PEAK_SEARCH_EDGE_EXCESS: f64 = 1e-12;
