@@ -234,3 +234,48 @@ pub const PEAK_SEARCH_ANALYTIC: f64 = 1e-12;
 /// What a peak on the band's edge (order 4 at 360 nm, where ȳ is 4·10⁻⁶) adds to the analytic
 /// weights of the others, relative. Measured 1.8e-13 (the same test); margin 5.6×.
 pub const PEAK_SEARCH_EDGE_EXCESS: f64 = 1e-12;
+
+// ---- the baselines' values, peaks and orders (tests/baselines.rs) ----
+// Measured by the named tests of `tests/baselines.rs` (their fixed-seed proptest cases, 200-300
+// draws, and deterministic loops), printed once with `--nocapture`.
+
+/// |d·u − m·λ_m| / |d·u| of every generic model's reported peaks. Measured 1.9e-16 (1160 peaks,
+/// `the_models_share_the_grating_equation`); margin 5×.
+pub const GENERIC_PEAK_EQUATION: f64 = 1e-15;
+/// Thorman's `eval` at a reported peak against the peak's intensity, relative. Measured 0 (444
+/// peaks: the same expression); allowed: four ulp.
+pub const THORMAN_PEAK_VALUE: f64 = 1e-15;
+/// Thorman's equivalent width against √(2π)·σ·d/|m|, relative. Measured 0 (444 peaks); allowed:
+/// four ulp.
+pub const THORMAN_PEAK_WIDTH: f64 = 1e-15;
+/// A peak's area (Simpson, 2000 pieces over ±6 widths) against intensity × equivalent width, for
+/// the Gaussian-lobed models, relative. Measured 2.7e-15 (6 peaks); margin 3.8×.
+pub const PEAK_AREA: f64 = 1e-14;
+/// Stam's peak area against intensity × equivalent width: the Gaussian factor's area is the
+/// lobe's only where the rest of the integrand is flat across it, an approximation. Measured
+/// 8.5e-5 (`stam_equivalent_width_is_nearly_the_lobe_area`); margin 5.9×.
+pub const STAM_PEAK_AREA: f64 = 5e-4;
+/// `gauss_legendre(64)` against `WINDOWS` for a broad generic model, relative in Y. Measured
+/// 3.4e-6; margin 2.9×.
+pub const BROAD_GAUSS: f64 = 1e-5;
+/// J_{n−1} + J_{n+1} − (2n/x)·J_n, in units of 1 + 2|n|/x. Measured 5.0e-17 (200 draws of
+/// `bessel_recurrence`); margin 10×.
+pub const BESSEL_RECURRENCE: f64 = 5e-16;
+/// Σ_m |c_m|² − 1 of a sinusoid (and, beyond the closed-form tail, of a binary profile).
+/// Measured 3.3e-15 (200 draws of `parseval_sine`; the binary profile's sum stays inside its
+/// tail); margin 3×.
+pub const STAM_PARSEVAL: f64 = 1e-14;
+/// `response` at a reported peak against the peak's intensity (Stam's models), relative.
+/// Measured 7.5e-15 (554 peaks); margin 4×.
+pub const PEAK_RESPONSE: f64 = 3e-14;
+/// Stam's power over all orders (quadrature of the lobes at 550 nm) against 1. Measured 1.3e-5
+/// (3 incidences); margin 7.6×.
+pub const STAM_ORDER_POWER_SUM: f64 = 1e-4;
+/// One order's power against |c_m|²/cos θo, relative. Measured 5.0e-6 (6 orders); margin 10×.
+pub const STAM_ORDER_POWER: f64 = 5e-5;
+/// Off the cone of diffracted directions Stam's value vanishes (a Gaussian far in its tail):
+/// the ratio to the on-cone value. Measured 0 (it underflows); a property threshold.
+pub const STAM_OFF_PLANE: f64 = 1e-100;
+/// The other models do not depend on v: the off-cone to on-cone ratio against 1. Measured 0;
+/// allowed: four ulp.
+pub const OFF_PLANE_INVARIANT: f64 = 1e-15;
