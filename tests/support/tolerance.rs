@@ -279,3 +279,29 @@ pub const STAM_OFF_PLANE: f64 = 1e-100;
 /// The other models do not depend on v: the off-cone to on-cone ratio against 1. Measured 0;
 /// allowed: four ulp.
 pub const OFF_PLANE_INVARIANT: f64 = 1e-15;
+
+// ---- frames, fields and shading (tests/frame_brdf.rs); grating values (tests/grating.rs) ----
+// Measured by the named tests, printed once with `--nocapture`.
+
+/// eq. 12 around a model with no visible order against its closed form (values about 2.7),
+/// absolute. Measured 0 (`order_zero_is_white_specular_in_the_illumination_model`, 4 wavelengths);
+/// allowed: four ulp.
+pub const SHADING_CLOSED_FORM: f64 = 2e-15;
+/// A grating field's unit directions (length, expected direction, orthogonality, the world
+/// direction and its local frame), absolute. Measured 6.1e-17 (7 checks); margin 6.5×.
+pub const FIELD_DIRECTION: f64 = 4e-16;
+/// A radial field's direction against p − centre (|p − centre| ≤ 6), |cross product|. Measured
+/// 0 (3 points); allowed: a few roundings of products up to 6.
+pub const FIELD_RADIAL: f64 = 1e-14;
+/// One slit's I(u, λ) against S(w·u/λ): the two sides round y = w·u/λ differently (relative
+/// 4ε) and |dS/dy| ≤ 2/y, a derived bound of 8ε. Measured 2ε (1000 draws).
+pub const ONE_SLIT_INTENSITY: f64 = 8.0 * f64::EPSILON;
+/// The paper's half-vector projection misses the 550 nm peak: I there over the peak's value.
+/// Measured 3.4e-7 (`paper_half_vector_misplaces_peaks`); margin 3×.
+pub const PAPER_PROJECTION_DARK: f64 = 1e-6;
+/// I at the central lobe's first zero u = λ/(N·d): only the rounding of u is left. Measured
+/// 4.3e-34 (`mirror_direction_is_the_white_order_zero`); margin 9×.
+pub const AT_A_ZERO: f64 = 4e-33;
+/// S(β_m) = sinc²(πm) at w = d for m ≠ 0: the rounding of sin(πm), (ε·m)² ≈ 10⁻³⁰ for the
+/// visible orders. Measured 0 (`open_fraction_one_puts_all_light_in_order_zero`).
+pub const SINC_ZEROS: f64 = 1e-30;
