@@ -11,7 +11,10 @@ mod bsdf_efficiency_tolerance;
 
 use std::sync::Arc;
 
-use bsdf_check::{chi2_grating, dir, furnace, sidak, Rng, CHI2_SIGNIFICANCE, FURNACE_SIGMAS};
+use bsdf_check::{
+    chi2_grating, dir, furnace, sidak, Rng, CHI2_SIGNIFICANCE, FURNACE_ROUNDING, FURNACE_SIGMAS,
+    PDF_INTEGRAL_QUADRATURE,
+};
 use bsdf_efficiency_tolerance::*;
 use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::{EfficiencyTable, Metal, Preset, Relief, ScalarRelief};
@@ -84,7 +87,7 @@ fn furnace_matches_the_albedo_and_stays_below_one() {
                         worst_z = worst_z.max(z.abs());
                     }
                     assert!(
-                        (mean - albedo).abs() <= TAB_FURNACE_SIGMAS * se + 1e-12,
+                        (mean - albedo).abs() <= TAB_FURNACE_SIGMAS * se + FURNACE_ROUNDING,
                         "{name} {slits:?} wo={wo} λ={lambda}: furnace {mean} ± {se}, albedo {albedo}"
                     );
                     assert!(albedo <= 1.0 && mean - FURNACE_SIGMAS * se <= 1.0);
@@ -133,7 +136,7 @@ fn chi2_of_the_sampler() {
         );
         let se = (accepted * (1.0 - accepted) / samples as f64).sqrt();
         assert!(
-            (integral - accepted).abs() <= FURNACE_SIGMAS * se + 1e-4,
+            (integral - accepted).abs() <= FURNACE_SIGMAS * se + PDF_INTEGRAL_QUADRATURE,
             "{name}: ∫pdf = {integral}, share of directions {accepted} ± {se}"
         );
     }
@@ -304,7 +307,10 @@ fn infinite_n_carries_exactly_the_efficiency_of_each_order() {
             })
             .sum();
         let got = b.albedo(wo, 550.0).unwrap();
-        assert!((got - want).abs() <= 1e-12, "{name}: {got} vs {want}");
+        assert!(
+            (got - want).abs() <= TAB_ALBEDO_SUM,
+            "{name}: {got} vs {want}"
+        );
     }
 }
 
@@ -393,7 +399,7 @@ fn peaks_report_the_response_at_their_wavelength() {
         b.peaks(wo, wi, Band::VISIBLE, &mut |p| {
             let want = b.response(wo, wi, p.wavelength_nm);
             assert!(
-                (p.intensity - want).abs() <= 1e-9 * want.max(1e-300),
+                (p.intensity - want).abs() <= TAB_PEAK_RESPONSE * want.max(1e-300),
                 "order {}: peak {} vs response {want}",
                 p.order,
                 p.intensity

@@ -183,7 +183,7 @@ fn infinite_albedo_is_the_closed_form() {
             }
             let got = b.albedo(wo, lambda).unwrap();
             assert!(
-                (got - want).abs() < 1e-15,
+                (got - want).abs() < ALBEDO_CLOSED_FORM,
                 "wo={wo} λ={lambda}: {got} vs {want}"
             );
             // The sampler's estimate is exact per sample for N = ∞ (constant weight ρ²·Σ S_m)
@@ -191,7 +191,7 @@ fn infinite_albedo_is_the_closed_form() {
             let mut rng = Rng::new(7);
             let (mean, se, _) = furnace(&b, wo, lambda, 20_000, &mut rng);
             assert!(
-                (mean - want).abs() <= FURNACE_SIGMAS * se + 1e-12,
+                (mean - want).abs() <= FURNACE_SIGMAS * se + FURNACE_ROUNDING,
                 "{mean} ± {se} vs {want}"
             );
         }
@@ -267,7 +267,7 @@ fn samples_agree_with_f_and_pdf() {
                 continue;
             };
             sampled += 1;
-            assert!(s.wi.z > 0.0 && (s.wi.length() - 1.0).abs() < 1e-12);
+            assert!(s.wi.z > 0.0 && (s.wi.length() - 1.0).abs() < SAMPLED_UNIT_LENGTH);
             let (f, p) = (b.eval(wo, s.wi, lambda), b.pdf(wo, s.wi, lambda));
             assert!(
                 (s.f - f).abs() <= SAMPLE_CONSISTENCY * f.max(s.f),
@@ -313,10 +313,10 @@ fn chi2_in_lobe_adapted_bins() {
         // The pdf integrates to the probability that `sample` returns a direction.
         let se = (accepted * (1.0 - accepted) / samples as f64).sqrt();
         assert!(
-            (integral - accepted).abs() <= FURNACE_SIGMAS * se + 1e-4,
+            (integral - accepted).abs() <= FURNACE_SIGMAS * se + PDF_INTEGRAL_QUADRATURE,
             "N={n}: ∫pdf = {integral}, share of directions {accepted} ± {se}"
         );
-        assert!(integral <= 1.0 + 1e-9);
+        assert!(integral <= 1.0 + PDF_INTEGRAL_ABOVE_ONE);
     }
 }
 
@@ -330,7 +330,7 @@ fn infinite_and_ideal_lobes_are_specular() {
     assert!(s.flags.is_specular());
     // The order's delta: wi.x = m·λ/d − wo.x exactly, wi.y = −wo.y.
     let m = s.order.unwrap() as f64;
-    assert!((s.wi.x - (m * 550.0 / PERIOD - wo.x)).abs() < 1e-15 && s.wi.y == -wo.y);
+    assert!((s.wi.x - (m * 550.0 / PERIOD - wo.x)).abs() < DELTA_DIRECTION && s.wi.y == -wo.y);
     assert_eq!(ideal.eval(wo, s.wi, 550.0), 0.0);
     assert_eq!(ideal.pdf(wo, s.wi, 550.0), 0.0);
     assert!(matches!(ideal.grating().slits(), Slits::Infinite));

@@ -168,7 +168,7 @@ fn chi2_and_integral_of_the_wavelength_sampler() {
         let share = accepted as f64 / samples as f64;
         let se = (share * (1.0 - share) / samples as f64).sqrt();
         assert!(
-            (integral - share).abs() <= FURNACE_SIGMAS * se + 1e-4,
+            (integral - share).abs() <= FURNACE_SIGMAS * se + PDF_INTEGRAL_QUADRATURE,
             "N={n} u={u}: ∫pdf = {integral}, share {share} ± {se}"
         );
     }

@@ -414,3 +414,35 @@ pub const MASS_AGREEMENT_NARROW_REL: f64 = 1e-9;
 /// Variance ratio (uniform / grating sampler) for N = 1000 at u = 0.9, D65, Y: measured
 /// 3.81·10³ (see `variance_ratios`); asserted above a tenth of it.
 pub const MIN_RATIO_N1000: f64 = 381.0;
+
+// ---- closed forms and roundings of the BSDF tests (bsdf_grating, bsdf_efficiency,
+// bsdf_wavelength, bsdf_groove), measured by the named tests and printed once with `--nocapture` ----
+
+/// N = ∞ albedo against the closed form ρ²·Σ S(β_m) over the propagating orders, absolute.
+/// Measured 0 (`infinite_albedo_is_the_closed_form`, 4 cases: the same sum); allowed: a few ulp.
+pub const ALBEDO_CLOSED_FORM: f64 = 1e-15;
+/// A furnace whose every sample has the same weight (N = ∞, ideal groove) has a standard error
+/// of 0: what is left is the rounding of the mean of 20 000 equal weights. Measured 2.0e-13
+/// (`infinite_albedo_is_the_closed_form`); margin 5×.
+pub const FURNACE_ROUNDING: f64 = 1e-12;
+/// | |wi| − 1 | of sampled directions. Measured 1.1e-16 (`samples_agree_with_f_and_pdf`, 14 181
+/// samples); margin 9×.
+pub const SAMPLED_UNIT_LENGTH: f64 = 1e-15;
+/// ∫pdf over the χ² bins against the share of draws that sample, beyond 3 standard errors: the
+/// allowance for the test's own quadrature of the pdf over the bins, not separated from the
+/// sampling noise (largest |∫pdf − share| measured 2.1·10⁻³ at a standard error of 1.5·10⁻³,
+/// `chi2_in_lobe_adapted_bins`, `chi2_of_the_sampler`, `chi2_and_integral_of_the_wavelength_sampler`);
+/// a fifteenth of one standard error.
+pub const PDF_INTEGRAL_QUADRATURE: f64 = 1e-4;
+/// ∫pdf ≤ 1: measured at most 1 − 5.0·10⁻³ (`chi2_in_lobe_adapted_bins`, 24 cases); the
+/// allowance is the rounding of the quadrature only.
+pub const PDF_INTEGRAL_ABOVE_ONE: f64 = 1e-9;
+/// A delta lobe's direction against the grating equation wi.x = m·λ/d − wo.x, absolute.
+/// Measured 0 (`infinite_and_ideal_lobes_are_specular`); allowed: a few ulp of values ≤ 1.
+pub const DELTA_DIRECTION: f64 = 1e-15;
+/// A groove spread's mean × width against its mass, absolute. Measured 1.1e-16
+/// (`mass_is_the_integral_of_the_value`, 12 intervals); margin 9×.
+pub const MEAN_TIMES_WIDTH: f64 = 1e-15;
+/// The groove proxy's inverse CDF and CDF round trip, absolute. Measured 1.1e-16
+/// (`proxy_bound_holds_and_the_proxy_is_a_density`, 297 values); margin 9×.
+pub const PROXY_ROUND_TRIP: f64 = 1e-15;
