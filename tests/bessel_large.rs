@@ -155,7 +155,7 @@ fn recurrence_identity_across_the_switch() {
         let rhs = 2.0 * f64::from(n) / x * bessel_j(n, x);
         // Each value within 10⁻¹¹ of the amplitude (about 6·10⁻⁴ here).
         assert!(
-            (lhs - rhs).abs() <= 3e-11 * amplitude(f64::from(n), x),
+            (lhs - rhs).abs() <= tol::BESSEL_SWITCH_RECURRENCE * amplitude(f64::from(n), x),
             "n = {n}"
         );
     }

@@ -4,6 +4,9 @@
 //! other known case, is a matter of time, which tests do not assert: its reproducers are in the
 //! docs of `TABLE_MAX_SLITS` in `tests/extremes.rs`.)
 
+#[path = "support/tolerance.rs"]
+mod tolerance;
+
 use diffraction::spectrum::Strategy;
 use diffraction::{Grating, GratingBsdf, GrooveSpread, SpectralResponse};
 use glam::DVec3;
@@ -47,7 +50,7 @@ fn sample_weight_bound_beyond_i32_orders() {
         .sample(wo, 0.5, 2.2250738585072014e-308, DVec2::new(1e-9, 1e-12))
         .expect("the sweep's case samples a direction");
     assert!(
-        x.weight() <= bound * (1.0 + 1e-9),
+        x.weight() <= bound * (1.0 + tolerance::WEIGHT_BOUND_ROUNDING),
         "{} > {bound:e}",
         x.weight()
     );
@@ -62,7 +65,7 @@ fn sample_weight_bound_beyond_i32_orders() {
         if let Some(x) = b.sample(wo, 500.0, uc, DVec2::new(0.5, 0.5)) {
             sampled += 1;
             assert!(
-                x.weight() <= bound * (1.0 + 1e-9),
+                x.weight() <= bound * (1.0 + tolerance::WEIGHT_BOUND_ROUNDING),
                 "uc {uc}: {} > {bound:e}",
                 x.weight()
             );

@@ -208,7 +208,7 @@ fn exposure_relation() {
         let c = rough.xyz(o, i);
         let k = i.z * b.groove().value(i.y + o.y, 550.0);
         let want = rough.lookup(i.x + o.x).scale(k);
-        assert!((c.y - want.y).abs() <= 1e-15 * want.y.max(1e-300));
+        assert!((c.y - want.y).abs() <= tolerance::SCALED_LOOKUP * want.y.max(1e-300));
     }
     // N = ∞ against N = 10⁶ (direct), away from order 0: O(1/N).
     let inf = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap());

@@ -25,3 +25,9 @@ pub const MOST_SLITS_MEAN_REL: f64 = 1e-5;
 /// to resolve (N = 10⁶): their estimate stays below this (measured 7.9e-4 on the CI subset,
 /// 1.8e-3 over the sweep subset; margin 5 on the CI subset).
 pub const ESTIMATE_CAPPED: f64 = 4e-3;
+
+// ---- identities ----
+
+/// A mean over a range beyond u = 2 on one side against the mean to 2 and the colour at 2,
+/// relative: the same arithmetic. Measured 0 (`extreme_inputs_never_panic_nor_give_nan`); allowed: four ulp.
+pub const MEAN_BEYOND_RANGE: f64 = 1e-15;

@@ -305,3 +305,21 @@ pub const AT_A_ZERO: f64 = 4e-33;
 /// S(β_m) = sinc²(πm) at w = d for m ≠ 0: the rounding of sin(πm), (ε·m)² ≈ 10⁻³⁰ for the
 /// visible orders. Measured 0 (`open_fraction_one_puts_all_light_in_order_zero`).
 pub const SINC_ZEROS: f64 = 1e-30;
+// ---- regressions and limits (tests/extremes_handover.rs, tests/grazing.rs,
+// tests/bessel_large.rs), measured by the named tests and printed once with `--nocapture` ----
+
+/// A sample's weight against `sample_weight_bound` where the sweep found them equal: the two
+/// compute the same product in a different order. Measured 1 ulp below the bound
+/// (`sample_weight_bound_beyond_i32_orders`); allowed: nine ulp above it.
+pub const WEIGHT_BOUND_ROUNDING: f64 = 2e-15;
+/// A model's value at cos θo = 10⁻⁹ against cos θo = 10⁻²⁰, relative: only Stam's phase moves
+/// (by at most 6·10⁻⁴ rad). Measured 5.5e-9 (`values_reach_a_finite_limit_at_the_horizon`, 275
+/// cases); margin 9×.
+pub const HORIZON_SETTLE: f64 = 5e-8;
+/// Stam's value over its lobe against the closed form of its clamped geometry factor, relative.
+/// Measured 2.2e-16 (`stam_follows_its_geometry_factor_above_the_clamp`, 9 cosines); margin 9×.
+pub const STAM_GRAZING_CLAMP: f64 = 2e-15;
+/// J_{n−1} + J_{n+1} − (2n/x)·J_n across the switch between Debye's expansions and the
+/// recurrence (x = 2·10⁶), relative to the local amplitude. Measured 4.7e-13
+/// (`recurrence_identity_across_the_switch`); margin 4.2×.
+pub const BESSEL_SWITCH_RECURRENCE: f64 = 2e-12;
