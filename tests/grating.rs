@@ -125,8 +125,12 @@ fn six_hundred_lines_per_mm_sends_532_nm_to_18_6_degrees() {
         .find(|o| o.order == 1)
         .unwrap();
     let angle = first.direction.x.asin().to_degrees();
-    assert!((angle - 18.61).abs() < 0.005, "{angle}"); // 18.61° to the two decimals quoted
-                                                       // and the closed form sin θ = λ/d at normal incidence (d = 10⁶/600 nm).
+    // 18.61° to the two decimals quoted.
+    assert!(
+        (angle - 18.61).abs() < tolerance::QUOTED_ANGLE_DEG,
+        "{angle}"
+    );
+    // and the closed form sin θ = λ/d at normal incidence (d = 10⁶/600 nm).
     let sin_theta = first.direction.x;
     assert!((sin_theta - 532.0 * 600.0 / 1e6).abs() <= tolerance::FORWARD_GRATING_EQUATION);
     // and the intensity there is the maximum S(β₁) = (sin(π/2)/(π/2))² = 4/π².

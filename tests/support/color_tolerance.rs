@@ -148,3 +148,8 @@ pub const GAMUT_TOUCH: f64 = 1e-15;
 /// ΔE2000 of two greys against its closed form 10/S_L. Measured 0
 /// (`delta_e2000_reproduces_sharma_table`); allowed: a few ulp of 10.
 pub const DE2000_CLOSED_FORM: f64 = 1e-14;
+
+/// Closed forms at the ends of the f64 range (srgb_encode(MAX), L\* of the smallest subnormal,
+/// the matrix rows near MAX), relative. Measured 1.1e-16 (`documented_edges` of
+/// `tests/color_extremes.rs`); margin 9.
+pub const EXTREME_CLOSED_FORM: f64 = 1e-15;

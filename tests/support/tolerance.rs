@@ -323,3 +323,11 @@ pub const STAM_GRAZING_CLAMP: f64 = 2e-15;
 /// recurrence (x = 2·10⁶), relative to the local amplitude. Measured 4.7e-13
 /// (`recurrence_identity_across_the_switch`); margin 4.2×.
 pub const BESSEL_SWITCH_RECURRENCE: f64 = 2e-12;
+
+/// A first-order angle against the 18.61° quoted to two decimals: half a unit of the last
+/// quoted digit. Measured 0.0046° (`six_hundred_lines_per_mm_sends_532_nm_to_18_6_degrees`).
+pub const QUOTED_ANGLE_DEG: f64 = 0.005;
+/// Stam's largest value over the bound of its clamped geometry factor on the grazing sweep: the
+/// bound is reached within a factor 30 (measured 0.033 of it, where both directions graze,
+/// `every_model_is_finite_and_bounded_down_to_cos_1e_minus_300`); margin 4.5×.
+pub const STAM_CLAMP_REACH: f64 = 0.15;
