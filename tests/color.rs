@@ -125,7 +125,7 @@ fn lab_of_white_and_of_colour_science_example() {
     assert_abs_diff_eq!(
         white.scale(y).to_lab(lab_white).l,
         24389.0 / 27.0 * y,
-        epsilon = 1e-12
+        epsilon = tol::LAB_LINEAR
     );
 }
 

@@ -121,6 +121,9 @@ pub const LAB_WHITE: f64 = 1e-13;
 /// colour.XYZ_to_Lab's docstring example, printed to 8 decimals (half a unit, 5e-9). Measured
 /// 4.4e-9; allowed: twice the printing's rounding.
 pub const LAB_DOCSTRING: f64 = 1e-8;
+/// L\* = κ·Y on CIELAB's linear segment (Y = 10⁻³, L\* ≈ 0.9). Measured 5.6e-16
+/// (`lab_of_white_and_of_colour_science_example`); margin 9.
+pub const LAB_LINEAR: f64 = 5e-15;
 /// L\* either side of CIELAB's breakpoint ε = 216/24389 against 8 (continuity of f). Measured
 /// 1.07e-14 (`lab_is_continuous_at_epsilon`); margin 4.7.
 pub const LAB_BREAKPOINT: f64 = 5e-14;
