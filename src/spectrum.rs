@@ -14,136 +14,32 @@
 //!
 //! # Strategies
 //!
-//! | [`Strategy`] | cost | error |
+//! A [`Strategy`] names one algorithm with one bound, relative to the accuracy unit
+//! ([`bounds::accuracy_unit`]: the Y of the brightest diffracted order, floored at that of an
+//! ideal first-order peak at 555 nm); each bound is one constant of [`bounds`], which `Auto`,
+//! the colour table and these docs read:
+//!
+//! | [`Strategy`] | cost | bound |
 //! |---|---|---|
-//! | `Uniform { samples: K }` | K evaluations | fails once peaks (width ≈ λ/(mN)) are narrower than the step |
-//! | `GaussLegendre { intervals: K }` | 8K evaluations | the same, with higher order between |
-//! | `PeakSearch { refine: false }` | O(visible orders), independent of N (a few µs where order 0's light reaches the band) | 3.5/N of the brightest order; 2e-3 of order 0's light |
-//! | `PeakSearch { refine: true }` | plus 8 lobes × 8 points per order | the same far tails dominate: barely better, except at N ≈ 30 |
-//! | `PaperPeaks` | O(visible orders) | not the integral: the paper's steps 6-8 |
-//! | `Asymptotic` | O(visible orders): 4 lobes × 6 points per bright order, one point per faint order, the envelope in 3-point pieces of 16-64 nm (order 0's: a product rule, 4 points per 30 nm); where N·d·\|u\| ≤ about 47,000 nm, and over the band's long end where lobes are wider than 5-8 nm, a product rule of 4-32 points per 30 nm against the tables (`smooth_band`) | 5e-4 of the brightest order (worst measured 1.3e-4, N ≥ 5); 2e-4 of order 0's light (measured 1.9e-5) |
-//! | `Exact` | O(1 nm rows + orders·(16 lobes + log N)): lobes near every integer x, Filon-Legendre pieces between the rows elsewhere; where N·d·\|u\| ≤ about 29,000 nm (at most about 45 lobes over the band), a product rule of 64-512 points against the tables (`smooth_band`) | 10⁻⁶ of the colour (measured 8.9·10⁻⁹) |
-//! | `Auto { accuracy }` | the cheapest of the above that meets `accuracy` | as requested |
+//! | [`uniform(K)`](Strategy::uniform) | K evaluations | none once peaks (width ≈ λ/(\|m\|·N)) are narrower than the step 470/K nm |
+//! | [`gauss_legendre(K)`](Strategy::gauss_legendre) | 8K evaluations | the same, with higher order between |
+//! | [`PEAK_SEARCH`](Strategy::PEAK_SEARCH) | O(visible orders), independent of N | [`PEAK_SEARCH_PER_SLIT`](bounds::PEAK_SEARCH_PER_SLIT)/N = 8/N (measured 3.5/N), plus [`PEAK_SEARCH_ORDER0`](bounds::PEAK_SEARCH_ORDER0) = 2·10⁻³ of order 0's own light where its lobe reaches the band |
+//! | [`PEAK_SEARCH_REFINED`](Strategy::PEAK_SEARCH_REFINED) | plus 8 lobes × 8 points per order | the same (barely better, except at N ≈ 30) |
+//! | [`ASYMPTOTIC`](Strategy::ASYMPTOTIC) | O(visible orders), a few hundred evaluations | [`ASYMPTOTIC_ORDERS`](bounds::ASYMPTOTIC_ORDERS) = 5·10⁻⁴ (measured 1.3·10⁻⁴) for N ≥ [`ASYMPTOTIC_MIN_SLITS`](bounds::ASYMPTOTIC_MIN_SLITS) = 5, plus [`ASYMPTOTIC_ORDER0`](bounds::ASYMPTOTIC_ORDER0) = 2·10⁻⁴ (measured 1.9·10⁻⁵) of order 0's own light where its half period reaches the band; below 5 slits it is `EXACT` |
+//! | [`EXACT`](Strategy::EXACT) | O(1 nm rows + orders·(16 lobes + log N)) | [`EXACT`](bounds::EXACT) = 10⁻⁷ of the colour itself (measured 8.9·10⁻⁹), of [`DARK_FLOOR`](bounds::DARK_FLOOR) = 10⁻³ of the unit for darker colours |
+//! | [`auto(a)`](Strategy::auto) | the cheapest of the above whose bound meets `a` | a |
 //!
-//! Δx = d·|u|·(1/360 − 1/830) is the range of the phase in cycles over the band.
+//! The paper's own peak colours (its steps 6-8) are not an integral and not a strategy:
+//! [`Spectral::paper_peaks`]. [`Spectral::xyz_stratified`] and [`Spectral::xyz_hero`] are
+//! Monte-Carlo estimates from the caller's random numbers, for spectral renderers. Every
+//! strategy's work is bounded for every period and slit count. With the paper's 1/N²
+//! normalisation an infinite grating's colour is 0 except at u = 0 (white): only
+//! `paper_peaks` shows it colour.
 //!
-//! **Peak search.** For large N the intensity sits in narrow peaks at the grating-equation
-//! wavelengths λ_m = d·|u|/|m|. Since F_N has mass 1/N per period in x = d·u/λ and
-//! |dλ/dx| = λ_m/|m| at the peak, order m contributes about
-//! S(β_m)·E(λ_m)·cmf(λ_m)·λ_m/(|m|·N): the peak value times its
-//! [`equivalent width`](crate::Peak::equivalent_width_nm). With `refine`, the main lobe and the
-//! first three side lobes on each side of every peak are integrated by Gauss-Legendre quadrature
-//! lobe by lobe, and only the remaining mass is assigned at λ_m. This helps little: the error of
-//! the analytic weight comes mostly from the far tails of each order (its mass spread over the
-//! whole period), not from the main lobe. Peaks within four lobes of a band end are always
-//! treated this way. Order 0 is broad in wavelength near the mirror direction: where its half
-//! period reaches into the band it is integrated by coarse quadrature (its lobes while they are
-//! wider than 4 nm, then the mean ½ of sin²(Nα)), to 2e-3 of its own colour.
-//!
-//! **Asymptotic.** The peak search with its leading correction. Write h(x) for the integrand in
-//! the phase x = d·|u|/λ without F_N, h = E·S·cmf·|dλ/dx|·norm, so that
-//! XYZ = ∫ F_N(πx)·h(x) dx over [d·|u|/830, d·|u|/360], h jumping to 0 at both ends. The Fejér
-//! kernel is a trigonometric polynomial, N·F_N(πx) = Σ_{|k|<N} (1 − |k|/N)·e^{2πikx}, so
-//!
-//! ```text
-//! ∫ F_N·h = (1/N)·Σ_{|k|<N} (1 − |k|/N)·ĥ(k),      ĥ(k) = ∫ h(x)·e^{2πikx} dx,
-//!         = (1/N)·Σ_k ĥ(k) − (1/N²)·Σ_k |k|·ĥ(k) + (1/N)·Σ_{|k|≥N} (|k|/N − 1)·ĥ(k).
-//! ```
-//!
-//! By Poisson summation Σ_k ĥ(k) = Σ_m h(m), the peak search; and Σ_k |k|·e^{2πikx} =
-//! −1/(2 sin²πx) as distributions (Hadamard's finite part at the integers), so the second term
-//! is (1/N²)·f.p.∫ h/(2 sin²πx) dx. The last term only holds the Fourier content of h above N
-//! cycles per unit x: for a smooth h it vanishes faster than any power of 1/N, which is why the
-//! corrected sum is so much better than the peak search (its error 3.5/N is the second term).
-//! The same expansion in x-space: sin²(πNx) = ½·(1 − cos 2πNx), so away from the integers
-//! F_N·h = G − cos(2πNx)·G with G = h/(2N² sin²πx), and two integrations by parts of the
-//! oscillating part between zeros a, b of sin(πNx) (where cos 2πNx = 1) give
-//!
-//! ```text
-//! ∫_a^b F_N·h = ∫_a^b G − [G']_a^b/(4π²N²) + Σ_j ΔG'_j·cos(2πN·x_j)/(4π²N²) + [G''']_a^b/(16π⁴N⁴) − …,
-//! ```
-//!
-//! ΔG'_j the jump of G' at a kink x_j of h inside (a, b). Near an integer m, G ≈ h(m)/(2π²N²(x − m)²)
-//! and the terms grow like (2k+1)!/(2πNε)^{2k} at a distance ε: the expansion holds from about
-//! two lobes on. h is not smooth everywhere, and the strategy treats the exceptions exactly:
-//!
-//! - **Within two lobes of every integer** (the main lobe and first side lobe of each order,
-//!   order 0 included) and **at each band end** (the partial lobe where h jumps to 0), lobe by
-//!   lobe with 6-point Gauss-Legendre on whole lobes (the error of 6 points on a lobe of sin² is
-//!   7e-7; 4 points on pieces up to half a lobe, 2 below 0.15 lobe; a window of an order m ≥ 1
-//!   that spans at most 4 nm and no node of the illuminant takes h's interpolant at 5
-//!   Gauss-Legendre points against F_N, integrated once per call), split where λ crosses a node of the
-//!   illuminant (D65 is a 5 nm table interpolated linearly: relative slope jumps up to 8 %/nm;
-//!   A is Planck's law at every row) and into pieces of at most 16 nm. The 1 nm rows of the observer are not split at:
-//!   its linear interpolation differs from a smooth curve by a second difference/8 (below
-//!   5e-4 of each function's maximum), which a peak narrower than a row samples and a wider one
-//!   averages. (The finite-part formula itself would not survive the kinks: a kink of slope jump
-//!   Δ within a lobe of m moves the finite part by Δ·ln(…)/(2π²), an error of order
-//!   (Δ/h)·λ/(m·N) relative to the order, 10⁻² and more for D65 at N ≤ 1000.)
-//! - **Lobes wider than 8 nm** (or than the illuminant's node spacing) in wavelength, q/(N·x²),
-//!   which occur for small N and in order 0's half period near the mirror direction: the
-//!   expansion needs h smooth on the scale of a lobe. Where N·q is at most about 47,000 nm (about
-//!   74 lobes over the band) the whole band, and otherwise the fixed 30 nm pieces from the one
-//!   where a lobe is that wide on to 830 nm, take the product rule of `smooth_band`: the whole
-//!   integrand S·F_N·env, a trigonometric polynomial in x times a power of it, interpolated at
-//!   4-32 points per piece by its local frequency 2π·N·q/λ² and integrated against the tables'
-//!   weight exactly (within 4.3·10⁻⁶ of the lobe walk at its limits); the rest of such lobes
-//!   are integrated lobe by lobe.
-//! - **Between the windows**, ∫G in 3-point pieces (split at the illuminant's nodes in order 0's
-//!   half period only, where G is the whole colour), at most 16 nm in order 0's half period and
-//!   16·(N/5)^(1/6) nm, at most 64, next to the orders m ≠ 0 (there G's share of the colour
-//!   relative to the order's peak h(m)/N falls as 1/N while the rule's error grows as span⁶), with the nearest integer's tangent line p of h subtracted and ∫p/(2 sin²πx) added
-//!   analytically (−cot(πr)/(2π) and −r·cot(πr)/(2π) + ln|sin πr|/(2π²), r = x − m); −[G']/(4π²N²)
-//!   at each window edge (h' by a one-sided difference over a quarter lobe). The first neglected
-//!   end term is 7.8e-4/T⁵ of the tail beyond T = 2 lobes; the kinks' ΔG'_j terms are
-//!   neglected (below 10⁻⁵ of the brightest order on the test grids). In order 0's half period
-//!   the 30 nm pieces of the band it covers whole take a product rule instead: there
-//!   ∫G dx = ∫ W(λ)·K(λ) dλ/N² with W = E·cmf the tables' weight (quadratic between the 1 nm
-//!   rows, kinks included) and K = S(ρ·q/λ)/(2 sin²(π·q/λ)) smooth on the band (its poles
-//!   λ = q/k are at least 415 nm away), so K's cubic interpolant at 4 Gauss-Legendre nodes is
-//!   integrated against W exactly with weights computed from the tables at compile time: 4
-//!   evaluations of K per 30 nm instead of 3 of h per 5 nm between D65's nodes.
-//! - **Faint orders** (peak value below 1e-7·5.19/8·N, i.e. the peak search's error 8/N of them
-//!   below 10⁻⁷ of the brightest order's floor) whose whole period lies between the band ends
-//!   get the plain peak-search weight h(m)/N for their period; this keeps coarse gratings (100
-//!   µm: hundreds of orders) at a few hundred evaluations.
-//!
-//! Below 5 slits the strategy is `Exact`. Measured against `Exact` (`tests/asymptotic.rs`: N = 5
-//! … 10⁶, d = 400 nm … 100 µm, w = d/2 and d/10, 128 directions, E and D65) and the python
-//! reference: at most 1.3e-4 of the brightest order's XYZ where only orders m ≠ 0 reach the band,
-//! and 1.9e-5 of max(colour, brightest order) where order 0's half period does; `Spectral::choose`
-//! relies on 5e-4 and 2e-4.
-//!
-//! **The paper's peak colours** (its rendering steps 6-8) evaluate eq. 13 at the peak wavelengths
-//! only, each with its peak intensity S(β_m) whatever N is, and convert each to colour:
-//! XYZ = Σ_m S(β_m)·(E(λ_m)/Ē)·cmf(λ_m), with Ē = ∫E·ȳ/∫ȳ the mean power of the illuminant, so a
-//! unit peak at 555 nm under E has Y ≈ 1; inside the order-0 lobe the colour is the illuminant's
-//! white (Y = 1). It reproduces the paper's pictures but is not the integral: it is N·|m|/λ_m·(∫Eȳ/Ē)
-//! times brighter per order than the peak-search estimate, so the relative brightness of orders
-//! differs (higher orders are relatively brighter in the paper's mode).
-//!
-//! **Exact.** In the phase x the integrand is sin²(πNx)·R(x) with R smooth between the 1 nm rows
-//! of the tables. Within 8 lobes of every integer x (R's double pole) it is integrated lobe by
-//! lobe, each piece of a lobe by the Gauss-Legendre rule its width allows (8 points down to 3);
-//! elsewhere, between the rows, by Filon-Legendre quadrature: R interpolated at 8 (or 4)
-//! Gauss-Legendre nodes and its product with cos(2πNx) integrated exactly, so a piece costs the
-//! same however many lobes it holds. Measured within 8.9·10⁻⁹ of the python oracle, relative to
-//! the colour (see `exact.rs`).
-//!
-//! **Monte-Carlo.** [`Spectral::xyz_stratified`] and [`Spectral::xyz_hero`] take the caller's
-//! random numbers, for spectral renderers that average over many samples per pixel.
-//!
-//! **Extremes of d·|u|.** Where the whole band lies inside order 0's central lobe
-//! (N·d·|u|/360 nm < 10⁻⁸), `Exact` and the peak searches return the white (I = 1 to
-//! rounding). Where the band holds more than 4096 orders (d·|u| > 2.6 mm), `Exact`,
-//! `PeakSearch` (both modes) and `PaperPeaks` sum the orders in blocks of consecutive orders
-//! in closed form (Dirichlet sums of sin²(π·m·w/d), about 2·10⁴ weights) instead of one at a
-//! time, so their work is bounded for every period; against the order-by-order walk the
-//! difference is below 10⁻⁷ relative (`Exact` keeps its lobe walk for the partial periods at
-//! the band ends).
-//!
-//! **N → ∞.** With the paper's 1/N² normalisation the area of every order vanishes as 1/N, so the
-//! integral of an infinite grating is 0 except at u = 0 (white); only `PaperPeaks` shows colour.
+//! How each algorithm works, its derivation (the peak search's equivalent widths, the Fejér
+//! expansion behind `ASYMPTOTIC`, the Filon-Legendre pieces of `EXACT`) and the extreme cases
+//! (the band inside order 0's lobe, more than 4096 orders, N → ∞) are in
+//! `docs/spectral_strategies.md`; the measured error against run time in `docs/accuracy.md`.
 //!
 //! ```
 //! use diffraction::spectrum::{Illuminant, Spectral, Strategy};

@@ -8,19 +8,12 @@
 //! (d·|u|/830 nm < ½) the colour can be far brighter than Y_b (the white near the mirror
 //! direction); there the error is taken over max(colour, Y_b).
 
+#[path = "support/tolerance.rs"]
+mod tol;
+
 use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{Grating, Slits};
 use std::collections::HashMap;
-
-/// The bound on the diffracted orders, relative to Y_b. Measured worst: 1.30e-4 over the full
-/// sweep (N = 300; N = 5…10⁶, d = 400 nm…100 µm, w = d/2 and d/10, E and D65), 9.3e-5 on the
-/// reference data; a margin of 2.3× (the promise `Spectral::choose` uses,
-/// `bounds::ASYMPTOTIC_ORDERS`, is 5e-4).
-const ORDERS_BOUND: f64 = 3e-4;
-/// The bound relative to max(colour, Y_b) where order 0's half period reaches into the band.
-/// Measured worst: 1.9e-5 over the sweep (N = 300 and 10⁶), 3.4e-6 on the reference data
-/// (N = 10⁶); margin 2.6× (the promise, `bounds::ASYMPTOTIC_ORDER0`, is 2e-4).
-const ORDER0_BOUND: f64 = 5e-5;
 
 struct Case {
     d: f64,
@@ -55,11 +48,11 @@ fn worst_by_n(cases: &[Case]) -> Vec<(u32, f64, f64, String)> {
             let size = c.want.iter().fold(yb, |a, &b| a.max(b));
             let rel = err / size;
             e.1 = e.1.max(rel);
-            rel / ORDER0_BOUND
+            rel / tol::ASYMPTOTIC_ORDER0
         } else {
             let rel = err / yb;
             e.0 = e.0.max(rel);
-            rel / ORDERS_BOUND
+            rel / tol::ASYMPTOTIC_ORDERS
         };
         if rel >= 1.0 || e.2.is_empty() {
             e.2 = format!(
@@ -76,8 +69,14 @@ fn worst_by_n(cases: &[Case]) -> Vec<(u32, f64, f64, String)> {
 fn check(cases: &[Case], what: &str) {
     for (n, orders, order0, case) in worst_by_n(cases) {
         println!("{what} N = {n:>8}: orders {orders:.2e} of Y_b, order-0 region {order0:.2e}");
-        assert!(orders <= ORDERS_BOUND, "{what} N={n}: {orders:e} ({case})");
-        assert!(order0 <= ORDER0_BOUND, "{what} N={n}: {order0:e} ({case})");
+        assert!(
+            orders <= tol::ASYMPTOTIC_ORDERS,
+            "{what} N={n}: {orders:e} ({case})"
+        );
+        assert!(
+            order0 <= tol::ASYMPTOTIC_ORDER0,
+            "{what} N={n}: {order0:e} ({case})"
+        );
     }
 }
 

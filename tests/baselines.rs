@@ -91,7 +91,7 @@ proptest! {
         let reference: Vec<(i32, f64)> = peaks_of(all[0].1.as_ref(), wi, wo)
             .iter().map(|p| (p.order, p.wavelength_nm)).collect();
         for &(m, l) in &reference {
-            prop_assert!((d * u - m as f64 * l).abs() <= 1e-12 * d * u.abs());
+            prop_assert!((d * u - m as f64 * l).abs() <= tolerance::GENERIC_PEAK_EQUATION * d * u.abs());
             prop_assert!(Band::VISIBLE.contains(l));
         }
         for (name, model) in &all[1..] {
@@ -119,9 +119,9 @@ proptest! {
         let (wo, wi) = (unit_upper(t2, p2), unit_upper(t1, p1));
         for p in peaks_of(&m, wi, wo) {
             prop_assert_eq!(p.intensity, b);
-            prop_assert!((m.eval(wo, wi, p.wavelength_nm) - b).abs() <= 1e-12 * b);
+            prop_assert!((m.eval(wo, wi, p.wavelength_nm) - b).abs() <= tolerance::THORMAN_PEAK_VALUE * b);
             let w = (TAU).sqrt() * 0.002 * 1600.0 / (p.order as f64).abs();
-            prop_assert!((p.equivalent_width_nm - w).abs() <= 1e-12 * w);
+            prop_assert!((p.equivalent_width_nm - w).abs() <= tolerance::THORMAN_PEAK_WIDTH * w);
         }
     }
 
@@ -151,7 +151,10 @@ fn thorman_equivalent_width_is_the_lobe_area() {
                 2000,
             );
             let want = p.intensity * p.equivalent_width_nm;
-            assert!((area - want).abs() < 1e-9 * want, "{p:?}: {area} vs {want}");
+            assert!(
+                (area - want).abs() < tolerance::PEAK_AREA * want,
+                "{p:?}: {area} vs {want}"
+            );
         }
     }
 }
@@ -196,7 +199,7 @@ fn every_strategy_gives_a_colour() {
     let exact = spectral.xyz_brdf(&broad, wo, wi, GenericStrategy::WINDOWS);
     let gauss = spectral.xyz_brdf(&broad, wo, wi, GenericStrategy::gauss_legendre(64).unwrap());
     assert!(
-        (gauss.y - exact.y).abs() < 1e-5 * exact.y,
+        (gauss.y - exact.y).abs() < tolerance::BROAD_GAUSS * exact.y,
         "{gauss:?} {exact:?}"
     );
     let narrow = Thorman::new(1600.0, 0.002).unwrap();
@@ -351,7 +354,7 @@ mod stam {
         fn bessel_recurrence(n in -200i32..200, x in 0.01f64..1000.0) {
             let lhs = bessel_j(n - 1, x) + bessel_j(n + 1, x);
             let rhs = 2.0 * n as f64 / x * bessel_j(n, x);
-            prop_assert!((lhs - rhs).abs() <= 1e-13 * (1.0 + 2.0 * n.abs() as f64 / x));
+            prop_assert!((lhs - rhs).abs() <= tolerance::BESSEL_RECURRENCE * (1.0 + 2.0 * n.abs() as f64 / x));
         }
 
         /// Parseval for the sine profile: Σ_m J_m(φ)² = 1.
@@ -359,7 +362,7 @@ mod stam {
         fn parseval_sine(phi in -600.0f64..600.0) {
             let reach = phi.abs() as i32 + 80;
             let total: f64 = (-reach..=reach).map(|m| Profile::Sine.efficiency(m, phi)).sum();
-            prop_assert!((total - 1.0).abs() < 1e-12, "{}", total);
+            prop_assert!((total - 1.0).abs() < tolerance::STAM_PARSEVAL, "{}", total);
         }
 
         /// Parseval for the binary profile: Σ_m |c_m|² = 1. The tail beyond |m| = M is at most
@@ -370,7 +373,7 @@ mod stam {
             const M: i32 = 20_000;
             let total: f64 = (-M..=M).map(|m| p.efficiency(m, phi)).sum();
             let tail = 8.0 * (0.5 * phi).sin().powi(2) / (PI * PI * M as f64);
-            prop_assert!(total <= 1.0 + 1e-12 && total >= 1.0 - tail - 1e-12, "{} (tail {})", total, tail);
+            prop_assert!(total <= 1.0 + tolerance::STAM_PARSEVAL && total >= 1.0 - tail - tolerance::STAM_PARSEVAL, "{} (tail {})", total, tail);
         }
 
         /// Reciprocity: G, w, u, v and the Fresnel factor are symmetric in (wi, wo). Tested near
@@ -404,7 +407,7 @@ mod stam {
             for (_, m) in models(1600.0).into_iter().skip(2) {
                 for p in peaks_of(m.as_ref(), wi, wo) {
                     let v = m.response(wo, wi, p.wavelength_nm);
-                    prop_assert!((v - p.intensity).abs() <= 1e-9 * p.intensity + 1e-300, "{:?} {}", p, v);
+                    prop_assert!((v - p.intensity).abs() <= tolerance::PEAK_RESPONSE * p.intensity + 1e-300, "{:?} {}", p, v);
                 }
             }
         }
@@ -448,7 +451,10 @@ mod stam {
         for theta in [0.0, 0.4, 1.0] {
             let wi = unit_upper(theta, 0.3);
             let power = order_power(&m, wi, 550.0, 0.0);
-            assert!((power - 1.0).abs() < 2e-3, "θi = {theta}: {power}");
+            assert!(
+                (power - 1.0).abs() < tolerance::STAM_ORDER_POWER_SUM,
+                "θi = {theta}: {power}"
+            );
         }
     }
 
@@ -468,7 +474,7 @@ mod stam {
                 let phase = 2.0 * PI * (1.0 + cos_o) * 100.0 / lambda;
                 let want = profile.efficiency(order, phase) / cos_o;
                 assert!(
-                    (power - want).abs() < 1e-2 * want,
+                    (power - want).abs() < tolerance::STAM_ORDER_POWER * want,
                     "{profile:?} order {order}: {power} vs {want}"
                 );
             }
@@ -492,7 +498,10 @@ mod stam {
                         2000,
                     );
                     let want = p.intensity * p.equivalent_width_nm;
-                    assert!((area - want).abs() < 0.02 * want, "{p:?}: {area} vs {want}");
+                    assert!(
+                        (area - want).abs() < tolerance::STAM_PEAK_AREA * want,
+                        "{p:?}: {area} vs {want}"
+                    );
                 }
             }
         }
@@ -510,9 +519,12 @@ mod stam {
         for (name, m) in models(1600.0) {
             let ratio = m.eval(wi, off, l) / m.eval(wi, on, l);
             if name.starts_with("stam") {
-                assert!(ratio < 1e-100, "{name}: {ratio}");
+                assert!(ratio < tolerance::STAM_OFF_PLANE, "{name}: {ratio}");
             } else {
-                assert!((ratio - 1.0).abs() < 1e-12, "{name}: {ratio}");
+                assert!(
+                    (ratio - 1.0).abs() < tolerance::OFF_PLANE_INVARIANT,
+                    "{name}: {ratio}"
+                );
             }
         }
     }

@@ -3,6 +3,9 @@
 //! oracle of `tests/data/bessel_large.csv` (`python_ref/stam.py`), and bounded, finite output at
 //! the extremes of the input range.
 
+#[path = "support/tolerance.rs"]
+mod tol;
+
 use std::f64::consts::PI;
 
 use diffraction::stam::bessel_j;
@@ -10,22 +13,6 @@ use diffraction::stam::bessel_j;
 /// Debye's expansions are used where |n − x| ≥ 15·x^{1/3} + 2 (the crate's `DEBYE_WIDTH`);
 /// inside, a short backward recurrence. The test sorts the rows by the same rule.
 const DEBYE_WIDTH: f64 = 15.0;
-
-/// Decaying side (|n| ≥ |x| + 15|x|^{1/3}), relative to |J|: measured 1.05·10⁻¹³ (n = 10⁵,
-/// x = 98143.364, the expansion's truncation at its edge); 5× margin.
-const DECAYING_REL: f64 = 5e-13;
-
-/// Turning region (|n − x| < 15·x^{1/3} + 2), relative to max(|J|, min(√(2/(π√(x² − n²))),
-/// x^{−1/3})), the local amplitude: measured 8.1·10⁻¹² (n = 2³¹ − 1, x = n + 129: Debye's
-/// truncation at the window's top carried down); 5× margin.
-const TURNING_REL: f64 = 4e-11;
-
-/// Oscillating side (|n| ≤ |x| − 15|x|^{1/3}), relative to the local amplitude, in units of
-/// 10⁻¹² + ε·n²/|x| (ε = 2⁻⁵²): the phase ξ = x − (2n + 1)π/4 + δ carries a rounding error of a
-/// few ulps of δ ≈ n²/(2x) (n ≪ x) to n·(π/2 − 1) (n ≈ x), the rest is the truncation.
-/// Measured: 0.75 units (n = 2³¹ − 1, x = 2n: 1.8·10⁻⁷, the phase of a 10⁹-radian oscillation
-/// to 1.8·10⁻⁷ rad); at n ≤ 10⁶, 1.6·10⁻¹⁰ (x = 1.01·10⁶); 5× margin.
-const OSCILLATING_UNITS: f64 = 3.7;
 
 /// One row of `tests/data/bessel_large.csv`.
 struct Row {
@@ -71,14 +58,20 @@ fn large_orders_match_the_reference() {
         let err = (got - r.j).abs();
         let (bound, region) = if n >= x + width {
             decaying += 1;
-            (DECAYING_REL * r.j.abs(), "decaying")
+            (tol::BESSEL_LARGE_DECAYING * r.j.abs(), "decaying")
         } else if n <= x - width {
             oscillating += 1;
             let units = 1e-12 + f64::EPSILON * n * n / x;
-            (OSCILLATING_UNITS * units * amplitude(n, x), "oscillating")
+            (
+                tol::BESSEL_OSCILLATING_UNITS * units * amplitude(n, x),
+                "oscillating",
+            )
         } else {
             turning += 1;
-            (TURNING_REL * r.j.abs().max(amplitude(n, x)), "turning")
+            (
+                tol::BESSEL_TURNING * r.j.abs().max(amplitude(n, x)),
+                "turning",
+            )
         };
         assert!(
             err <= bound,
@@ -147,7 +140,7 @@ fn extreme_inputs_are_finite_and_bounded() {
         .expect("row (2^31 - 1, 1e10)")
         .j;
     let units = 1e-12 + f64::EPSILON * n * n / 1e10;
-    assert!((j - reference).abs() <= OSCILLATING_UNITS * units * amplitude(n, 1e10));
+    assert!((j - reference).abs() <= tol::BESSEL_OSCILLATING_UNITS * units * amplitude(n, 1e10));
 }
 
 /// Where the recurrences stay within their cost limit the old paths are unchanged: the
@@ -161,7 +154,7 @@ fn recurrence_identity_across_the_switch() {
         let rhs = 2.0 * f64::from(n) / x * bessel_j(n, x);
         // Each value within 10⁻¹¹ of the amplitude (about 6·10⁻⁴ here).
         assert!(
-            (lhs - rhs).abs() <= 3e-11 * amplitude(f64::from(n), x),
+            (lhs - rhs).abs() <= tol::BESSEL_SWITCH_RECURRENCE * amplitude(f64::from(n), x),
             "n = {n}"
         );
     }

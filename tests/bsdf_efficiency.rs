@@ -11,7 +11,10 @@ mod bsdf_efficiency_tolerance;
 
 use std::sync::Arc;
 
-use bsdf_check::{chi2_grating, dir, furnace, sidak, Rng, CHI2_SIGNIFICANCE, FURNACE_SIGMAS};
+use bsdf_check::{
+    chi2_grating, dir, furnace, sidak, Rng, CHI2_SIGNIFICANCE, FURNACE_ROUNDING, FURNACE_SIGMAS,
+    PDF_INTEGRAL_QUADRATURE,
+};
 use bsdf_efficiency_tolerance::*;
 use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::{EfficiencyTable, Metal, Preset, Relief, ScalarRelief};
@@ -84,7 +87,7 @@ fn furnace_matches_the_albedo_and_stays_below_one() {
                         worst_z = worst_z.max(z.abs());
                     }
                     assert!(
-                        (mean - albedo).abs() <= TAB_FURNACE_SIGMAS * se + 1e-12,
+                        (mean - albedo).abs() <= TAB_FURNACE_SIGMAS * se + FURNACE_ROUNDING,
                         "{name} {slits:?} wo={wo} λ={lambda}: furnace {mean} ± {se}, albedo {albedo}"
                     );
                     assert!(albedo <= 1.0 && mean - FURNACE_SIGMAS * se <= 1.0);
@@ -133,7 +136,7 @@ fn chi2_of_the_sampler() {
         );
         let se = (accepted * (1.0 - accepted) / samples as f64).sqrt();
         assert!(
-            (integral - accepted).abs() <= FURNACE_SIGMAS * se + 1e-4,
+            (integral - accepted).abs() <= FURNACE_SIGMAS * se + PDF_INTEGRAL_QUADRATURE,
             "{name}: ∫pdf = {integral}, share of directions {accepted} ± {se}"
         );
     }
@@ -146,6 +149,7 @@ fn exactly_reciprocal_and_sample_consistent() {
     let mut rng = Rng::new(5);
     for slits in [Slits::Finite(1), Slits::Finite(30), Slits::Finite(1000)] {
         for (name, b) in models(slits, &scalar) {
+            let (mut sampled, mut sampled4) = (0, 0);
             for _ in 0..500 {
                 let (wo, wi) = (rng.direction(0.0), rng.direction(0.0));
                 let lambda = 360.0 + 470.0 * rng.next_f64();
@@ -158,6 +162,7 @@ fn exactly_reciprocal_and_sample_consistent() {
                     assert_eq!(b.eval(wo, wi, lambda), b.eval(wi, wo, lambda), "{name}");
                 }
                 if let Some(s) = b.sample(wo, lambda, rng.next_f64(), rng.u2()) {
+                    sampled += 1;
                     assert_eq!(s.f, b.eval(wo, s.wi, lambda), "{name}");
                     assert_eq!(s.pdf, b.pdf(wo, s.wi, lambda), "{name}");
                 }
@@ -173,6 +178,7 @@ fn exactly_reciprocal_and_sample_consistent() {
                     assert_eq!(p4[k], b.pdf(wo, wi, l));
                 }
                 if let Some(s4) = b.sample4(wo, &ls, rng.next_f64(), rng.u2()) {
+                    sampled4 += 1;
                     for k in 0..4 {
                         let l = ls.lambda()[k];
                         assert_eq!(s4.f[k], b.eval(wo, s4.wi, l));
@@ -180,6 +186,13 @@ fn exactly_reciprocal_and_sample_consistent() {
                     }
                 }
             }
+            println!("{name} {slits:?}: {sampled} and {sampled4} of 500 draws sampled");
+            // Measured 259-484 of 500 (the absorbed share and directions below the horizon are
+            // refused); a sampler refusing most draws would check nothing here.
+            assert!(
+                2 * sampled >= 500 && 2 * sampled4 >= 500,
+                "{name} {slits:?}: only {sampled} (sample) and {sampled4} (sample4) of 500"
+            );
         }
     }
 }
@@ -187,6 +200,7 @@ fn exactly_reciprocal_and_sample_consistent() {
 #[test]
 fn finite_and_non_negative_on_a_grazing_sweep() {
     let scalar = scalar_table();
+    let (mut sampled, mut draws) = (0, 0);
     for slits in SLITS {
         for (name, b) in models(slits, &scalar) {
             for k in 0..=40 {
@@ -208,14 +222,22 @@ fn finite_and_non_negative_on_a_grazing_sweep() {
                         let w = b.sample_weight_bound(wo, lambda);
                         assert!(w.is_finite() && w >= 0.0);
                         if let Some(smp) = b.sample(wo, lambda, 0.37, DVec2::new(0.61, 0.29)) {
+                            sampled += 1;
                             assert!(smp.f.is_finite() && smp.f >= 0.0 && smp.pdf > 0.0);
                             assert!(smp.weight() <= w);
                         }
+                        draws += 1;
                     }
                 }
             }
         }
     }
+    println!("{sampled} of {draws} grazing draws sampled a direction");
+    // Measured 4044 of 7380 (cos θ down to 10⁻⁸, the absorbed share refused).
+    assert!(
+        2 * sampled >= draws,
+        "only {sampled} of {draws} draws sampled"
+    );
 }
 
 #[test]
@@ -249,12 +271,14 @@ fn infinite_n_carries_exactly_the_efficiency_of_each_order() {
     let mut rng = Rng::new(21);
     for (name, b) in models(Slits::Infinite, &scalar) {
         assert_eq!(b.groove(), GrooveSpread::IDEAL);
+        let mut sampled = 0;
         for _ in 0..2000 {
             let wo = rng.direction(0.05);
             let lambda = 360.0 + 470.0 * rng.next_f64();
             let Some(s) = b.sample(wo, lambda, rng.next_f64(), rng.u2()) else {
                 continue;
             };
+            sampled += 1;
             assert!(s.flags.is_specular());
             let m = s.order.unwrap();
             let e = b.efficiency_at(m, wo, s.wi, lambda);
@@ -264,6 +288,12 @@ fn infinite_n_carries_exactly_the_efficiency_of_each_order() {
                 s.f * s.wi.z
             );
         }
+        println!("{name}: {sampled} of 2000 draws sampled an order");
+        // Measured 1743-1939 of 2000 (the absorbed share refused).
+        assert!(
+            2 * sampled >= 2000,
+            "{name}: only {sampled} of 2000 draws sampled"
+        );
         // The albedo is Σ η̃ over the propagating orders (an ideal groove: the whole chord).
         let wo = dir(0.2, 0.0);
         let d = b.grating().period_nm();
@@ -277,7 +307,10 @@ fn infinite_n_carries_exactly_the_efficiency_of_each_order() {
             })
             .sum();
         let got = b.albedo(wo, 550.0).unwrap();
-        assert!((got - want).abs() <= 1e-12, "{name}: {got} vs {want}");
+        assert!(
+            (got - want).abs() <= TAB_ALBEDO_SUM,
+            "{name}: {got} vs {want}"
+        );
     }
 }
 
@@ -366,7 +399,7 @@ fn peaks_report_the_response_at_their_wavelength() {
         b.peaks(wo, wi, Band::VISIBLE, &mut |p| {
             let want = b.response(wo, wi, p.wavelength_nm);
             assert!(
-                (p.intensity - want).abs() <= 1e-9 * want.max(1e-300),
+                (p.intensity - want).abs() <= TAB_PEAK_RESPONSE * want.max(1e-300),
                 "order {}: peak {} vs response {want}",
                 p.order,
                 p.intensity

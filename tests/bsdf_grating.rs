@@ -16,13 +16,6 @@ const PERIOD: f64 = 1600.0;
 const WIDTH: f64 = 800.0;
 /// Wavelengths of the tests, nm.
 const LAMBDAS: [f64; 2] = [450.0, 633.0];
-/// `sample_weight_bound` for the CD-like grating: measured 6.57 (N = 1, whose uniform period
-/// proxy has B_1 = 1) to 21.7 (N = 10⁶, normal incidence, 450 nm); asserted below 25.
-const WEIGHT_BOUND_CAP: f64 = 25.0;
-/// The largest f·cos θi/pdf seen in the furnace runs: measured 2.20 (N = 5, normal incidence,
-/// 450 nm; 1.71 at N = 1, 1.23 at N = 10⁶); asserted below 10 (over 4× margin), far inside
-/// the bound.
-const WEIGHT_MEASURED_CAP: f64 = 10.0;
 
 fn bsdf(n: u32) -> GratingBsdf {
     GratingBsdf::new(Grating::new(PERIOD, WIDTH, n).unwrap())
@@ -190,7 +183,7 @@ fn infinite_albedo_is_the_closed_form() {
             }
             let got = b.albedo(wo, lambda).unwrap();
             assert!(
-                (got - want).abs() < 1e-15,
+                (got - want).abs() < ALBEDO_CLOSED_FORM,
                 "wo={wo} λ={lambda}: {got} vs {want}"
             );
             // The sampler's estimate is exact per sample for N = ∞ (constant weight ρ²·Σ S_m)
@@ -198,7 +191,7 @@ fn infinite_albedo_is_the_closed_form() {
             let mut rng = Rng::new(7);
             let (mean, se, _) = furnace(&b, wo, lambda, 20_000, &mut rng);
             assert!(
-                (mean - want).abs() <= FURNACE_SIGMAS * se + 1e-12,
+                (mean - want).abs() <= FURNACE_SIGMAS * se + FURNACE_ROUNDING,
                 "{mean} ± {se} vs {want}"
             );
         }
@@ -266,13 +259,15 @@ fn samples_agree_with_f_and_pdf() {
     let mut rng = Rng::new(11);
     for n in SLITS {
         let b = bsdf(n);
+        let mut sampled = 0;
         for _ in 0..3000 {
             let wo = rng.direction(0.05);
             let lambda = 360.0 + 470.0 * rng.next_f64();
             let Some(s) = b.sample(wo, lambda, rng.next_f64(), rng.u2()) else {
                 continue;
             };
-            assert!(s.wi.z > 0.0 && (s.wi.length() - 1.0).abs() < 1e-12);
+            sampled += 1;
+            assert!(s.wi.z > 0.0 && (s.wi.length() - 1.0).abs() < SAMPLED_UNIT_LENGTH);
             let (f, p) = (b.eval(wo, s.wi, lambda), b.pdf(wo, s.wi, lambda));
             assert!(
                 (s.f - f).abs() <= SAMPLE_CONSISTENCY * f.max(s.f),
@@ -282,6 +277,12 @@ fn samples_agree_with_f_and_pdf() {
             assert!((s.pdf - p).abs() <= SAMPLE_CONSISTENCY * p.max(s.pdf));
             assert!(s.pdf > 0.0 && !s.flags.is_specular());
         }
+        println!("N={n}: {sampled} of 3000 draws sampled a direction");
+        // Measured 1982-2597 of 3000 (N = 1 to 10⁶; directions below the horizon refused).
+        assert!(
+            2 * sampled >= 3000,
+            "N={n}: only {sampled} of 3000 draws sampled"
+        );
     }
 }
 
@@ -312,10 +313,10 @@ fn chi2_in_lobe_adapted_bins() {
         // The pdf integrates to the probability that `sample` returns a direction.
         let se = (accepted * (1.0 - accepted) / samples as f64).sqrt();
         assert!(
-            (integral - accepted).abs() <= FURNACE_SIGMAS * se + 1e-4,
+            (integral - accepted).abs() <= FURNACE_SIGMAS * se + PDF_INTEGRAL_QUADRATURE,
             "N={n}: ∫pdf = {integral}, share of directions {accepted} ± {se}"
         );
-        assert!(integral <= 1.0 + 1e-9);
+        assert!(integral <= 1.0 + PDF_INTEGRAL_ABOVE_ONE);
     }
 }
 
@@ -329,7 +330,7 @@ fn infinite_and_ideal_lobes_are_specular() {
     assert!(s.flags.is_specular());
     // The order's delta: wi.x = m·λ/d − wo.x exactly, wi.y = −wo.y.
     let m = s.order.unwrap() as f64;
-    assert!((s.wi.x - (m * 550.0 / PERIOD - wo.x)).abs() < 1e-15 && s.wi.y == -wo.y);
+    assert!((s.wi.x - (m * 550.0 / PERIOD - wo.x)).abs() < DELTA_DIRECTION && s.wi.y == -wo.y);
     assert_eq!(ideal.eval(wo, s.wi, 550.0), 0.0);
     assert_eq!(ideal.pdf(wo, s.wi, 550.0), 0.0);
     assert!(matches!(ideal.grating().slits(), Slits::Infinite));
@@ -360,14 +361,6 @@ mod formulas {
     use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
     use diffraction::SampledWavelengths;
 
-    /// `eval` against the separate factors of the formula (kernel functions tested against
-    /// mpmath) and `eval4` against four `eval` calls: the fused, branch-free path rounds
-    /// differently from the product of the factors by a few ulp of each factor (measured: at
-    /// most 8.3·ε relative; `eval4` equals `eval` exactly); 32·ε leaves 4×.
-    const FUSED_REL: f64 = 32.0 * f64::EPSILON;
-    /// `pdf` against the module docs' formula P(m)·q(r)·(d/λ)·q_v(v)·cos θi with each factor
-    /// computed separately: a few roundings each (measured: at most 5.4·ε); 48·ε leaves 9×.
-    const PDF_REL: f64 = 48.0 * f64::EPSILON;
     /// Below this, factors such as a far Gaussian tail are subnormal and keep only a few bits.
     const SUBNORMAL_FACTORS: f64 = 1e-290;
 

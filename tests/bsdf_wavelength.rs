@@ -16,9 +16,6 @@ const PERIOD: f64 = 1600.0;
 const XI_BINS: usize = 32;
 /// Pieces of 8-point Gauss-Legendre per period in the ξ coordinate.
 const XI_PIECES: usize = 64;
-/// Variance ratio (uniform / grating sampler) for N = 1000 at u = 0.9, D65, Y: measured
-/// 3.81·10³ (see `variance_ratios`); asserted above a tenth of it.
-const MIN_RATIO_N1000: f64 = 381.0;
 
 fn grating(n: u32) -> GratingBsdf {
     GratingBsdf::new(Grating::new(PERIOD, 800.0, n).unwrap())
@@ -92,13 +89,22 @@ fn sampled_wavelengths_carry_their_pdf() {
     let mut rng = Rng::new(8);
     for n in [1, 30, 1000, 1_000_000] {
         let b = grating(n);
+        let mut sampled = 0;
         for _ in 0..2000 {
             let (wo, wi) = (rng.direction(0.05), rng.direction(0.05));
             if let Some(s) = b.sample_wavelength(wo, wi, Band::VISIBLE, rng.next_f64()) {
+                sampled += 1;
                 assert!(Band::VISIBLE.contains(s.lambda_nm));
                 assert_eq!(s.pdf, b.wavelength_pdf(wo, wi, Band::VISIBLE, s.lambda_nm));
             }
         }
+        println!("N={n}: {sampled} of 2000 pairs sampled a wavelength");
+        // Measured 1844-2000 of 2000 (N = 1 to 10⁶): a sampler refusing most pairs would check
+        // nothing here.
+        assert!(
+            2 * sampled >= 2000,
+            "N={n}: only {sampled} of 2000 pairs sampled"
+        );
     }
 }
 
@@ -162,7 +168,7 @@ fn chi2_and_integral_of_the_wavelength_sampler() {
         let share = accepted as f64 / samples as f64;
         let se = (share * (1.0 - share) / samples as f64).sqrt();
         assert!(
-            (integral - share).abs() <= FURNACE_SIGMAS * se + 1e-4,
+            (integral - share).abs() <= FURNACE_SIGMAS * se + PDF_INTEGRAL_QUADRATURE,
             "N={n} u={u}: ∫pdf = {integral}, share {share} ± {se}"
         );
     }
@@ -216,7 +222,10 @@ fn variances(n: u32, u: f64, mc_samples: usize) -> (f64, f64, f64, f64) {
 #[test]
 fn grating_wavelengths_beat_uniform_ones() {
     let (vu, vg, vmc, _) = variances(1000, 0.9, 200_000);
-    assert!((vmc - vg).abs() < 0.05 * vg, "MC {vmc} vs quadrature {vg}");
+    assert!(
+        (vmc - vg).abs() < MC_VARIANCE * vg,
+        "MC {vmc} vs quadrature {vg}"
+    );
     assert!(vu / vg >= MIN_RATIO_N1000, "ratio {}", vu / vg);
 }
 

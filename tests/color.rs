@@ -67,7 +67,7 @@ fn d65_white_maps_close_to_but_not_exactly_to_one() {
     let white = Xyz::new(0.3127 / 0.3290, 1.0, (1.0 - 0.3127 - 0.3290) / 0.3290);
     let rgb = white.to_linear_srgb();
     for c in [rgb.r, rgb.g, rgb.b] {
-        assert!((c - 1.0).abs() < 2e-4, "{rgb:?}");
+        assert!((c - 1.0).abs() < tol::D65_WHITE_RGB, "{rgb:?}");
     }
     assert!(!rgb.is_in_gamut()); // G and B slightly above 1: no hidden tolerance
 }
@@ -75,8 +75,8 @@ fn d65_white_maps_close_to_but_not_exactly_to_one() {
 #[test]
 fn chromaticity() {
     let (x, y) = Xyz::new(0.2, 0.3, 0.5).chromaticity().unwrap();
-    assert_abs_diff_eq!(x, 0.2, epsilon = 1e-15);
-    assert_abs_diff_eq!(y, 0.3, epsilon = 1e-15);
+    assert_abs_diff_eq!(x, 0.2, epsilon = tol::CHROMATICITY);
+    assert_abs_diff_eq!(y, 0.3, epsilon = tol::CHROMATICITY);
     assert_eq!(Xyz::new(0.0, 0.0, 0.0).chromaticity(), None);
     assert_eq!(Xyz::new(1.0, -1.0, 0.0).chromaticity(), None);
     assert_eq!(Xyz::new(f64::INFINITY, 1.0, 0.0).chromaticity(), None);
@@ -111,21 +111,21 @@ fn lab_of_white_and_of_colour_science_example() {
     let white = Xyz::new(0.3127 / 0.3290, 1.0, (1.0 - 0.3127 - 0.3290) / 0.3290);
     let lab_white = WhitePoint::new(white).unwrap();
     let lab = white.to_lab(lab_white);
-    assert_abs_diff_eq!(lab.l, 100.0, epsilon = 1e-12);
-    assert_abs_diff_eq!(lab.a, 0.0, epsilon = 1e-12);
-    assert_abs_diff_eq!(lab.b, 0.0, epsilon = 1e-12);
+    assert_abs_diff_eq!(lab.l, 100.0, epsilon = tol::LAB_WHITE);
+    assert_abs_diff_eq!(lab.a, 0.0, epsilon = tol::LAB_WHITE);
+    assert_abs_diff_eq!(lab.b, 0.0, epsilon = tol::LAB_WHITE);
     // The docstring example of colour.XYZ_to_Lab (printed there to 7 decimals).
     let lab = Xyz::new(0.20654008, 0.12197225, 0.05136952).to_lab(lab_white);
-    assert_abs_diff_eq!(lab.l, 41.527_875_29, epsilon = 5e-8);
-    assert_abs_diff_eq!(lab.a, 52.638_583_04, epsilon = 5e-8);
-    assert_abs_diff_eq!(lab.b, 26.923_179_22, epsilon = 5e-8);
+    assert_abs_diff_eq!(lab.l, 41.527_875_29, epsilon = tol::LAB_DOCSTRING);
+    assert_abs_diff_eq!(lab.a, 52.638_583_04, epsilon = tol::LAB_DOCSTRING);
+    assert_abs_diff_eq!(lab.b, 26.923_179_22, epsilon = tol::LAB_DOCSTRING);
     // Black, and the linear segment below ε = 216/24389 (L* = κ·Y there, κ = 24389/27).
     assert_eq!(Xyz::default().to_lab(lab_white).l, 0.0);
     let y = 0.001;
     assert_abs_diff_eq!(
         white.scale(y).to_lab(lab_white).l,
         24389.0 / 27.0 * y,
-        epsilon = 1e-12
+        epsilon = tol::LAB_LINEAR
     );
 }
 
@@ -136,8 +136,8 @@ fn lab_is_continuous_at_epsilon() {
     let eps = 216.0 / 24389.0;
     let below = white.scale(eps).to_lab(lab_white).l;
     let above = white.scale(eps * (1.0 + 1e-15)).to_lab(lab_white).l;
-    assert_abs_diff_eq!(below, 8.0, epsilon = 1e-12);
-    assert_abs_diff_eq!(above, below, epsilon = 1e-12);
+    assert_abs_diff_eq!(below, 8.0, epsilon = tol::LAB_BREAKPOINT);
+    assert_abs_diff_eq!(above, below, epsilon = tol::LAB_BREAKPOINT);
 }
 
 // -------------------------------------------------------------------------------------------
@@ -155,9 +155,17 @@ fn transfer_function_values() {
     assert_eq!(srgb_decode(0.0), 0.0);
     assert_eq!(srgb_encode(0.0031308), 12.92 * 0.0031308);
     assert_eq!(srgb_decode(1.0), 1.0);
-    assert_abs_diff_eq!(srgb_encode(1.0), 1.0, epsilon = 2e-16);
-    assert_abs_diff_eq!(srgb_encode(0.18), 0.461_356_129_500_442, epsilon = 1e-15);
-    assert_abs_diff_eq!(srgb_decode(0.5), 0.214_041_140_482_232_55, epsilon = 1e-15);
+    assert_abs_diff_eq!(srgb_encode(1.0), 1.0, epsilon = tol::ENCODE_ONE);
+    assert_abs_diff_eq!(
+        srgb_encode(0.18),
+        0.461_356_129_500_442,
+        epsilon = tol::TRANSFER_POINTS
+    );
+    assert_abs_diff_eq!(
+        srgb_decode(0.5),
+        0.214_041_140_482_232_55,
+        epsilon = tol::TRANSFER_POINTS
+    );
     // Odd-symmetric extension, no clipping above 1.
     for x in [1e-5, 0.002, 0.0031308, 0.01, 0.5, 1.0, 2.0, 100.0] {
         assert_eq!(srgb_encode(-x), -srgb_encode(x));
@@ -183,8 +191,8 @@ fn transfer_function_is_continuous_at_the_breakpoints() {
 
     // Both segments are continuous away from the breakpoints.
     for x in [1e-4, 0.003, 0.004, 0.5, 0.999] {
-        assert!((srgb_encode(next_up(x)) - srgb_encode(x)).abs() < 1e-15);
-        assert!((srgb_decode(next_up(x)) - srgb_decode(x)).abs() < 1e-15);
+        assert!((srgb_encode(next_up(x)) - srgb_encode(x)).abs() < tol::CONTINUITY);
+        assert!((srgb_decode(next_up(x)) - srgb_decode(x)).abs() < tol::CONTINUITY);
     }
 }
 
@@ -296,9 +304,9 @@ fn rgb8_quantisation() {
 fn encode_and_decode_are_inverse_types() {
     let c = LinearSrgb::new(0.25, 0.5, 0.75);
     let back = c.encode().decode();
-    assert_abs_diff_eq!(back.r, c.r, epsilon = 1e-15);
-    assert_abs_diff_eq!(back.g, c.g, epsilon = 1e-15);
-    assert_abs_diff_eq!(back.b, c.b, epsilon = 1e-15);
+    assert_abs_diff_eq!(back.r, c.r, epsilon = tol::ENCODE_DECODE_TYPES);
+    assert_abs_diff_eq!(back.g, c.g, epsilon = tol::ENCODE_DECODE_TYPES);
+    assert_abs_diff_eq!(back.b, c.b, epsilon = tol::ENCODE_DECODE_TYPES);
 }
 
 // -------------------------------------------------------------------------------------------
@@ -512,12 +520,12 @@ proptest! {
                 let dn = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 let en = (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
                 let dot = d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
-                prop_assert!(en <= dn * (1.0 + 1e-12));
+                prop_assert!(en <= dn * (1.0 + tol::CLIP_SHORTER));
                 if en > 1e-9 {
-                    prop_assert!((dot / (dn * en) - 1.0).abs() < 1e-9);
+                    prop_assert!((dot / (dn * en) - 1.0).abs() < tol::CLIP_PARALLEL);
                 }
                 // ... as far as the gamut allows: some channel touches 0 or 1.
-                prop_assert!([out.r, out.g, out.b].iter().any(|&v| v <= 1e-12 || v >= 1.0 - 1e-12),
+                prop_assert!([out.r, out.g, out.b].iter().any(|&v| v <= tol::GAMUT_TOUCH || v >= 1.0 - tol::GAMUT_TOUCH),
                     "{:?} -> {:?}", c, out);
             }
         }
@@ -612,7 +620,7 @@ fn delta_e2000_edge_cases() {
     let d = delta_e2000(grey, Lab::new(60.0, 0.0, 0.0));
     let l50 = 25.0; // (55 − 50)²
     let s_l = 1.0 + 0.015 * l50 / (20.0f64 + l50).sqrt();
-    assert_abs_diff_eq!(d, 10.0 / s_l, epsilon = 1e-12);
+    assert_abs_diff_eq!(d, 10.0 / s_l, epsilon = tol::DE2000_CLOSED_FORM);
     // Both on the a' = b = 0 axis and one with chroma: C'1·C'2 = 0 path.
     let d = delta_e2000(grey, Lab::new(50.0, 10.0, 0.0));
     assert!(d.is_finite() && d > 0.0);

@@ -177,7 +177,7 @@ fn sums_stay_at_most_one_everywhere() {
                     out.iter().all(|e| e.te >= 0.0 && e.tm >= 0.0),
                     "{preset} s={s} l={lam}"
                 );
-                assert!((total - 0.5 * (te + tm)).abs() <= 1e-15);
+                assert!((total - 0.5 * (te + tm)).abs() <= efficiency_tolerance::UNPOLARISED_MEAN);
                 worst = worst.max(te).max(tm);
                 scaled += usize::from(te > 1.0 - 1e-12 || tm > 1.0 - 1e-12);
                 queries += 1;
@@ -383,7 +383,10 @@ fn json_tables_load_and_bad_ones_name_the_field() {
             t.efficiency(1, 0.2, 550.0),
             p.table().efficiency(1, 0.2, 550.0),
         );
-        assert!((e.0.te - e.1.te).abs() < 1e-4, "{p}: {e:?}");
+        assert!(
+            (e.0.te - e.1.te).abs() < efficiency_tolerance::JSON_AGAINST_PRESET,
+            "{p}: {e:?}"
+        );
     }
 }
 

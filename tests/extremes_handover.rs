@@ -4,6 +4,9 @@
 //! other known case, is a matter of time, which tests do not assert: its reproducers are in the
 //! docs of `TABLE_MAX_SLITS` in `tests/extremes.rs`.)
 
+#[path = "support/tolerance.rs"]
+mod tolerance;
+
 use diffraction::spectrum::Strategy;
 use diffraction::{Grating, GratingBsdf, GrooveSpread, SpectralResponse};
 use glam::DVec3;
@@ -15,9 +18,8 @@ fn grating_response_u_is_finite() {
     let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100).unwrap())
         .with_groove(GrooveSpread::gaussian(0.05).unwrap());
     let w = DVec3::new(f64::MAX, 0.0, 1.0);
-    if let Some(r) = b.grating_response(w, w) {
-        assert!(r.u.is_finite() && r.scale.is_finite(), "{r:?}");
-    }
+    let r = b.grating_response(w, w);
+    assert!(r.is_none(), "u = wi.x + wo.x overflows: {r:?}");
 }
 
 /// A strategy name with a count outside its range says "unknown strategy", as for a misspelt
@@ -48,7 +50,7 @@ fn sample_weight_bound_beyond_i32_orders() {
         .sample(wo, 0.5, 2.2250738585072014e-308, DVec2::new(1e-9, 1e-12))
         .expect("the sweep's case samples a direction");
     assert!(
-        x.weight() <= bound * (1.0 + 1e-9),
+        x.weight() <= bound * (1.0 + tolerance::WEIGHT_BOUND_ROUNDING),
         "{} > {bound:e}",
         x.weight()
     );
@@ -56,15 +58,23 @@ fn sample_weight_bound_beyond_i32_orders() {
     let b =
         GratingBsdf::new(Grating::infinite(1e12, 3e11).unwrap()).with_groove(GrooveSpread::IDEAL);
     let wo = DVec3::new(0.6, 0.0, 0.8);
+    let mut sampled = 0;
     for k in 0..64 {
         let uc = (k as f64 + 0.5) / 64.0;
         let bound = b.sample_weight_bound(wo, 500.0);
         if let Some(x) = b.sample(wo, 500.0, uc, DVec2::new(0.5, 0.5)) {
+            sampled += 1;
             assert!(
-                x.weight() <= bound * (1.0 + 1e-9),
+                x.weight() <= bound * (1.0 + tolerance::WEIGHT_BOUND_ROUNDING),
                 "uc {uc}: {} > {bound:e}",
                 x.weight()
             );
         }
     }
+    println!("{sampled} of 64 choices sampled an order");
+    // Measured 64 of 64.
+    assert!(
+        2 * sampled >= 64,
+        "only {sampled} of 64 choices sampled an order"
+    );
 }

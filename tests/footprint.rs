@@ -281,11 +281,11 @@ fn a_point_sample_with_a_point_light_is_its_own_u() {
     let lamp = LightExtent::sphere(light, 0.0).unwrap();
     let (u0, u1) = u_interval(ray, DVec3::ZERO, &frame, PixelFootprint::Rays(&[]), lamp).unwrap();
     let u = (light.normalize() + eye.normalize()).x;
-    assert!((u0 - u).abs() < 1e-15 && (u1 - u).abs() < 1e-15);
+    assert!((u0 - u).abs() < POINT_FOOTPRINT && (u1 - u).abs() < POINT_FOOTPRINT);
     // Zero-length differentials (the same ray): the same.
     let same = PixelFootprint::Differentials { dx: ray, dy: ray };
     let (v0, v1) = u_interval(ray, DVec3::ZERO, &frame, same, lamp).unwrap();
-    assert!((v0 - u).abs() < 1e-15 && (v1 - u).abs() < 1e-15);
+    assert!((v0 - u).abs() < POINT_FOOTPRINT && (v1 - u).abs() < POINT_FOOTPRINT);
 }
 
 #[test]

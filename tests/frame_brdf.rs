@@ -98,7 +98,9 @@ fn order_zero_is_white_specular_in_the_illumination_model() {
     assert!(s.specular && s.orders == 0);
     for l in [360.0, 450.0, 600.0, 830.0] {
         let want = 0.1 * 0.3 + 2.0 * (0.4 * wi.z + 0.8);
-        assert!((shading.eval(&m, wo, wi, l, 0.3, 2.0) - want).abs() < 1e-12);
+        assert!(
+            (shading.eval(&m, wo, wi, l, 0.3, 2.0) - want).abs() < tolerance::SHADING_CLOSED_FORM
+        );
     }
 }
 
@@ -118,7 +120,7 @@ fn bad_coefficients_are_named() {
 fn fields_give_unit_tangent_directions() {
     let twisted = GratingField::constant(0.3).twisted(0.4).unwrap();
     let d = twisted.direction_at(DVec2::new(5.0, -2.0)).unwrap();
-    assert!((d - DVec2::new(0.7f64.cos(), 0.7f64.sin())).length() < 1e-15);
+    assert!((d - DVec2::new(0.7f64.cos(), 0.7f64.sin())).length() < tolerance::FIELD_DIRECTION);
 
     let cd = GratingField::radial(DVec2::new(1.0, 1.0));
     for p in [
@@ -127,9 +129,9 @@ fn fields_give_unit_tangent_directions() {
         DVec2::new(-2.0, 5.0),
     ] {
         let d = cd.direction_at(p).unwrap();
-        assert!((d.length() - 1.0).abs() < 1e-15);
+        assert!((d.length() - 1.0).abs() < tolerance::FIELD_DIRECTION);
         // Radial: parallel to p − centre, so the grooves are circles around the centre.
-        assert!(d.perp_dot(p - DVec2::new(1.0, 1.0)).abs() < 1e-12);
+        assert!(d.perp_dot(p - DVec2::new(1.0, 1.0)).abs() < tolerance::FIELD_RADIAL);
     }
     assert_eq!(cd.direction_at(DVec2::new(1.0, 1.0)), None);
 
@@ -163,7 +165,7 @@ fn fields_give_unit_tangent_directions() {
     .unwrap();
     let a = alt.direction_at(DVec2::new(0.25, 0.25)).unwrap();
     let b = alt.direction_at(DVec2::new(0.75, 0.25)).unwrap();
-    assert!(a.dot(b).abs() < 1e-15);
+    assert!(a.dot(b).abs() < tolerance::FIELD_DIRECTION);
 }
 
 #[test]
@@ -173,12 +175,12 @@ fn world_direction_and_shading_frame_agree() {
     let t = field
         .world_direction(DVec2::ZERO, tangent, bitangent)
         .unwrap();
-    assert!((t - DVec3::NEG_Z).length() < 1e-15);
+    assert!((t - DVec3::NEG_Z).length() < tolerance::FIELD_DIRECTION);
     let frame = ShadingFrame::new(normal, t).unwrap();
     // A light along the grating vector tilted up has local x > 0.
     let wi = (t + normal).normalize();
     let local = frame.to_local(wi);
-    assert!(local.x > 0.0 && local.z > 0.0 && local.y.abs() < 1e-15);
+    assert!(local.x > 0.0 && local.z > 0.0 && local.y.abs() < tolerance::FIELD_DIRECTION);
     assert!(ShadingFrame::new(DVec3::Y, DVec3::Y).is_none());
     assert!(ShadingFrame::new(DVec3::ZERO, DVec3::X).is_none());
 }

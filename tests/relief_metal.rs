@@ -46,7 +46,7 @@ fn index_and_normal_reflectance_match_the_oracle() {
         worst_index = worst_index.max(e);
         let (rs, rp) = r.metal.reflectance(r.lambda_nm, 1.0);
         assert!(
-            (rs - rp).abs() <= 4.0 * f64::EPSILON,
+            (rs - rp).abs() <= relief_tolerance::NORMAL_INCIDENCE_S_P,
             "s and p agree at normal incidence"
         );
         worst_r = worst_r.max((rs - r.reflectance).abs());
@@ -69,7 +69,10 @@ fn every_metal_covers_the_visible_band_with_physical_values() {
                 let c = f64::from(i) / 20.0;
                 let (rs, rp) = m.reflectance(lambda, c);
                 assert!((0.0..=1.0).contains(&rs) && (0.0..=1.0).contains(&rp));
-                assert!(rp <= rs + 1e-15, "{m} {lambda} {c}: R_p {rp} > R_s {rs}");
+                assert!(
+                    rp <= rs + relief_tolerance::RP_ABOVE_RS,
+                    "{m} {lambda} {c}: R_p {rp} > R_s {rs}"
+                );
             }
             lambda += 5.0;
         }

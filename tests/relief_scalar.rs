@@ -224,7 +224,7 @@ proptest! {
         for o in g.orders(s, lambda) {
             let e = o.efficiency;
             prop_assert!(e.te.is_finite() && e.tm.is_finite() && e.te >= 0.0 && e.tm >= 0.0);
-            prop_assert!((o.sin_theta - (s + f64::from(o.order) * lambda / d)).abs() < 1e-15);
+            prop_assert!((o.sin_theta - (s + f64::from(o.order) * lambda / d)).abs() < relief_tolerance::SCALAR_DIRECTION);
             prop_assert!(o.sin_theta.abs() < 1.0);
             te += e.te;
             tm += e.tm;

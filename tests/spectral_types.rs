@@ -292,15 +292,22 @@ fn sample4_rejects_what_sample_rejects() {
     let nan = DVec3::new(f64::NAN, 0.0, 1.0);
     assert!(b.sample4(nan, &l, 0.5, DVec2::splat(0.5)).is_none());
     // Non-finite random numbers follow the crate's rule (taken as 0), never NaN out.
-    let s = b.sample4(DVec3::Z, &l, f64::NAN, DVec2::splat(f64::INFINITY));
-    if let Some(s) = s {
-        assert!(s
-            .f
-            .values()
-            .iter()
-            .chain(&s.pdf.values())
-            .all(|x| x.is_finite()));
-    }
+    let zero = b.sample4(DVec3::Z, &l, 0.0, DVec2::ZERO);
+    assert_eq!(
+        b.sample4(DVec3::Z, &l, f64::NAN, DVec2::splat(f64::INFINITY)),
+        zero
+    );
+    // u2 = (0, 0.5) at the choice 0.5: order 0 at the lobe's edge in u, a direction.
+    let s = b
+        .sample4(DVec3::Z, &l, 0.5, DVec2::new(f64::NAN, 0.5))
+        .expect("u2 = (0, 0.5) at the choice 0.5 samples order 0");
+    assert_eq!(Some(s), b.sample4(DVec3::Z, &l, 0.5, DVec2::new(0.0, 0.5)));
+    assert!(s
+        .f
+        .values()
+        .iter()
+        .chain(&s.pdf.values())
+        .all(|x| x.is_finite()));
 }
 
 #[test]

@@ -377,3 +377,81 @@ pub fn hemisphere_integral<B: Bsdf + ?Sized>(
             })
     })
 }
+
+// ---- the amplitude grating BSDF (tests/bsdf_grating.rs) ----
+
+/// `sample_weight_bound` for the CD-like grating: measured 6.57 (N = 1, whose uniform period
+/// proxy has B_1 = 1) to 21.7 (N = 10⁶, normal incidence, 450 nm); asserted below 25.
+pub const WEIGHT_BOUND_CAP: f64 = 25.0;
+/// The largest f·cos θi/pdf seen in the furnace runs: measured 2.20 (N = 5, normal incidence,
+/// 450 nm; 1.71 at N = 1, 1.23 at N = 10⁶); asserted below 10 (over 4× margin), far inside
+/// the bound.
+pub const WEIGHT_MEASURED_CAP: f64 = 10.0;
+
+// ---- its formulas (tests/bsdf_grating.rs, `formulas`) ----
+
+/// `eval` against the separate factors of the formula (kernel functions tested against
+/// mpmath) and `eval4` against four `eval` calls: the fused, branch-free path rounds
+/// differently from the product of the factors by a few ulp of each factor (measured: at
+/// most 8.3·ε relative; `eval4` equals `eval` exactly); 32·ε leaves 4×.
+pub const FUSED_REL: f64 = 32.0 * f64::EPSILON;
+/// `pdf` against the module docs' formula P(m)·q(r)·(d/λ)·q_v(v)·cos θi with each factor
+/// computed separately: a few roundings each (measured: at most 5.4·ε); 48·ε leaves 9×.
+pub const PDF_REL: f64 = 48.0 * f64::EPSILON;
+
+// ---- the groove spread (tests/bsdf_groove.rs) ----
+
+/// Closed-form mass against 8-point Gauss-Legendre on ≥ 4000 pieces of the value: measured
+/// ≤ 8·10⁻¹⁵ absolute, asserted at 10⁻¹³; for the narrowest lobe (L = 1.6 m) over wide
+/// intervals the reference itself (2·10⁶ pieces) is off by 2·10⁻¹¹, so there 10⁻⁹ relative.
+pub const MASS_AGREEMENT: f64 = 1e-13;
+/// The same for the narrowest lobe over wide intervals, relative: the reference's own 2·10⁻¹¹
+/// (2·10⁶ pieces), margin 50 for the reference's error, which is not the crate's.
+pub const MASS_AGREEMENT_NARROW_REL: f64 = 1e-9;
+
+// ---- the wavelength sampler (tests/bsdf_wavelength.rs) ----
+
+/// Variance ratio (uniform / grating sampler) for N = 1000 at u = 0.9, D65, Y: measured
+/// 3.81·10³ (see `variance_ratios`); asserted above a tenth of it.
+pub const MIN_RATIO_N1000: f64 = 381.0;
+
+// ---- closed forms and roundings of the BSDF tests (bsdf_grating, bsdf_efficiency,
+// bsdf_wavelength, bsdf_groove), measured by the named tests and printed once with `--nocapture` ----
+
+/// N = ∞ albedo against the closed form ρ²·Σ S(β_m) over the propagating orders, absolute.
+/// Measured 0 (`infinite_albedo_is_the_closed_form`, 4 cases: the same sum); allowed: a few ulp.
+pub const ALBEDO_CLOSED_FORM: f64 = 1e-15;
+/// A furnace whose every sample has the same weight (N = ∞, ideal groove) has a standard error
+/// of 0: what is left is the rounding of the mean of 20 000 equal weights. Measured 2.0e-13
+/// (`infinite_albedo_is_the_closed_form`); margin 5×.
+pub const FURNACE_ROUNDING: f64 = 1e-12;
+/// | |wi| − 1 | of sampled directions. Measured 1.1e-16 (`samples_agree_with_f_and_pdf`, 14 181
+/// samples); margin 9×.
+pub const SAMPLED_UNIT_LENGTH: f64 = 1e-15;
+/// ∫pdf over the χ² bins against the share of draws that sample, beyond 3 standard errors: the
+/// allowance for the test's own quadrature of the pdf over the bins, not separated from the
+/// sampling noise (largest |∫pdf − share| measured 2.1·10⁻³ at a standard error of 1.5·10⁻³,
+/// `chi2_in_lobe_adapted_bins`, `chi2_of_the_sampler`, `chi2_and_integral_of_the_wavelength_sampler`);
+/// a fifteenth of one standard error.
+pub const PDF_INTEGRAL_QUADRATURE: f64 = 1e-4;
+/// ∫pdf ≤ 1: measured at most 1 − 5.0·10⁻³ (`chi2_in_lobe_adapted_bins`, 24 cases); the
+/// allowance is the rounding of the quadrature only.
+pub const PDF_INTEGRAL_ABOVE_ONE: f64 = 1e-9;
+/// A delta lobe's direction against the grating equation wi.x = m·λ/d − wo.x, absolute.
+/// Measured 0 (`infinite_and_ideal_lobes_are_specular`); allowed: a few ulp of values ≤ 1.
+pub const DELTA_DIRECTION: f64 = 1e-15;
+/// A groove spread's mean × width against its mass, absolute. Measured 1.1e-16
+/// (`mass_is_the_integral_of_the_value`, 12 intervals); margin 9×.
+pub const MEAN_TIMES_WIDTH: f64 = 1e-15;
+/// The groove proxy's inverse CDF and CDF round trip, absolute. Measured 1.1e-16
+/// (`proxy_bound_holds_and_the_proxy_is_a_density`, 297 values); margin 9×.
+pub const PROXY_ROUND_TRIP: f64 = 1e-15;
+
+/// The Monte-Carlo variance of the wavelength sampler's estimate (200 000 draws, fixed seed)
+/// against the variance by quadrature, relative. Measured 8.1e-4
+/// (`grating_wavelengths_beat_uniform_ones`); margin 6×.
+pub const MC_VARIANCE: f64 = 5e-3;
+/// How far below its stated supremum the groove proxy's largest value/pdf ratio on a grid of
+/// 200 000 points may fall, relative: the bound is tight. Measured 3.5e-5
+/// (`proxy_bound_holds_and_the_proxy_is_a_density`); margin 5.7×.
+pub const PROXY_BOUND_TIGHT: f64 = 2e-4;

@@ -27,3 +27,11 @@ pub const TAB_NODE_AGREEMENT: f64 = 1e-12;
 /// peaks contract, because η̃(λ) has the table's kinks (bilinear nodes every 20 nm, Rayleigh
 /// onsets) that are not reported as peaks. Asserted with a margin of 10.
 pub const TAB_WINDOWS_COLOUR: f64 = 1e-4;
+
+/// At N = ∞ with an ideal groove the albedo is Σ η̃ over the propagating orders, absolute.
+/// Measured 0 (`infinite_n_carries_exactly_the_efficiency_of_each_order`, 5 models: the same
+/// sum); allowed: ten ulp of 1.
+pub const TAB_ALBEDO_SUM: f64 = 2e-15;
+/// A reported peak's intensity against `response` at its wavelength, relative. Measured 3.9e-16
+/// (`peaks_report_the_response_at_their_wavelength`, 347 peaks); margin 5×.
+pub const TAB_PEAK_RESPONSE: f64 = 2e-15;

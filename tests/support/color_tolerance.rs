@@ -104,3 +104,55 @@ pub const SHARMA: f64 = 5e-5;
 /// ΔE2000 symmetry, relative to max(ΔE, 1): the formula is symmetric term by term and measured
 /// exactly symmetric (0 over 2·10⁶ pairs); four ulp allow for a reordered sum.
 pub const SYMMETRY: f64 = 1e-15;
+// ---------------------------------------------------------------------------------------------
+// Closed forms and identities of single values (tests/color.rs), measured by the named tests and
+// printed once with `--nocapture`. Absolute unless said otherwise.
+// ---------------------------------------------------------------------------------------------
+
+/// D65's published white (0.3127, 0.3290) in linear sRGB against (1, 1, 1): the IEC matrices are
+/// rounded to four decimals, a property of the published matrices. Measured 1.57e-4
+/// (`d65_white_maps_close_to_but_not_exactly_to_one`); margin 1.3.
+pub const D65_WHITE_RGB: f64 = 2e-4;
+/// A chromaticity of exact decimal inputs. Measured 0 (`chromaticity`); allowed: a few ulp.
+pub const CHROMATICITY: f64 = 1e-15;
+/// The white's own Lab against (100, 0, 0). Measured 0 (`lab_of_white_and_of_colour_science_example`);
+/// allowed: seven ulp of 100.
+pub const LAB_WHITE: f64 = 1e-13;
+/// colour.XYZ_to_Lab's docstring example, printed to 8 decimals (half a unit, 5e-9). Measured
+/// 4.4e-9; allowed: twice the printing's rounding.
+pub const LAB_DOCSTRING: f64 = 1e-8;
+/// L\* = κ·Y on CIELAB's linear segment (Y = 10⁻³, L\* ≈ 0.9). Measured 5.6e-16
+/// (`lab_of_white_and_of_colour_science_example`); margin 9.
+pub const LAB_LINEAR: f64 = 5e-15;
+/// L\* either side of CIELAB's breakpoint ε = 216/24389 against 8 (continuity of f). Measured
+/// 1.07e-14 (`lab_is_continuous_at_epsilon`); margin 4.7.
+pub const LAB_BREAKPOINT: f64 = 5e-14;
+/// `srgb_encode(1)` against 1: one ulp.
+pub const ENCODE_ONE: f64 = 2e-16;
+/// The transfer functions at two points against their values printed to 15-17 digits. Measured
+/// 3.9e-16 (`transfer_function_values`); margin 2.6.
+pub const TRANSFER_POINTS: f64 = 1e-15;
+/// Each transfer function's step between x and the next float away from the breakpoints.
+/// Measured 1.1e-16 (`transfer_function_is_continuous_at_the_breakpoints`); margin 9.
+pub const CONTINUITY: f64 = 1e-15;
+/// encode then decode through the types, per channel. Measured 1.1e-16
+/// (`encode_and_decode_are_inverse_types`); margin 9.
+pub const ENCODE_DECODE_TYPES: f64 = 1e-15;
+/// `ConstantIntensity` moves toward the grey, never away: |out − Y| over |c − Y| − 1. Measured
+/// ≤ 0 (354 out-of-gamut draws of `constant_intensity_keeps_luminance`); allowed: the rounding of
+/// the norms.
+pub const CLIP_SHORTER: f64 = 1e-15;
+/// ... along the line: 1 − cos of the angle between out − Y and c − Y. Measured 4.4e-16 (the
+/// same draws); margin 9.
+pub const CLIP_PARALLEL: f64 = 4e-15;
+/// ... as far as the gamut allows: the closest channel's distance to 0 or 1. Measured 1.1e-16
+/// (the same draws); margin 9.
+pub const GAMUT_TOUCH: f64 = 1e-15;
+/// ΔE2000 of two greys against its closed form 10/S_L. Measured 0
+/// (`delta_e2000_reproduces_sharma_table`); allowed: a few ulp of 10.
+pub const DE2000_CLOSED_FORM: f64 = 1e-14;
+
+/// Closed forms at the ends of the f64 range (srgb_encode(MAX), L\* of the smallest subnormal,
+/// the matrix rows near MAX), relative. Measured 1.1e-16 (`documented_edges` of
+/// `tests/color_extremes.rs`); margin 9.
+pub const EXTREME_CLOSED_FORM: f64 = 1e-15;

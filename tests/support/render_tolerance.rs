@@ -49,3 +49,7 @@ pub const CONE_ABSOLUTE: f64 = 2.5e-10;
 /// kinks of the tables inside 20 nm pieces), below 1/70 of the furnaces' standard errors;
 /// margin 3.6×.
 pub const QUADRATURE_AGREEMENT: f64 = 2e-4;
+
+/// A point light seen by a pixel without extent: the interval collapses to u itself, absolute.
+/// Measured 0 (`a_point_sample_with_a_point_light_is_its_own_u`); allowed: four ulp of |u| ≤ 2.
+pub const POINT_FOOTPRINT: f64 = 2e-15;

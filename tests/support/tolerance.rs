@@ -172,3 +172,162 @@ pub const BESSEL_LARGE_X: f64 = 1e-18;
 pub const EFFICIENCY_REL: f64 = 5e-13;
 /// |c_m|², absolute floor for values at the zeros.
 pub const EFFICIENCY_ABS: f64 = 1e-15;
+
+// ---- `Asymptotic` over its sweep (tests/asymptotic.rs) ----
+
+/// The bound on the diffracted orders, relative to Y_b. Measured worst: 1.30e-4 over the full
+/// sweep (N = 300; N = 5…10⁶, d = 400 nm…100 µm, w = d/2 and d/10, E and D65), 9.3e-5 on the
+/// reference data; a margin of 2.3× (the promise `Spectral::choose` uses,
+/// `bounds::ASYMPTOTIC_ORDERS`, is 5e-4).
+pub const ASYMPTOTIC_ORDERS: f64 = 3e-4;
+/// The bound relative to max(colour, Y_b) where order 0's half period reaches into the band.
+/// Measured worst: 1.9e-5 over the sweep (N = 300 and 10⁶), 3.4e-6 on the reference data
+/// (N = 10⁶); margin 2.6× (the promise, `bounds::ASYMPTOTIC_ORDER0`, is 2e-4).
+pub const ASYMPTOTIC_ORDER0: f64 = 5e-5;
+
+// ---- Stam's Bessel function at large order and argument (tests/bessel_large.rs) ----
+
+/// Decaying side (|n| ≥ |x| + 15|x|^{1/3}), relative to |J|: measured 1.05·10⁻¹³ (n = 10⁵,
+/// x = 98143.364, the expansion's truncation at its edge); 5× margin.
+pub const BESSEL_LARGE_DECAYING: f64 = 5e-13;
+/// Turning region (|n − x| < 15·x^{1/3} + 2), relative to max(|J|, min(√(2/(π√(x² − n²))),
+/// x^{−1/3})), the local amplitude: measured 8.1·10⁻¹² (n = 2³¹ − 1, x = n + 129: Debye's
+/// truncation at the window's top carried down); 5× margin.
+pub const BESSEL_TURNING: f64 = 4e-11;
+/// Oscillating side (|n| ≤ |x| − 15|x|^{1/3}), relative to the local amplitude, in units of
+/// 10⁻¹² + ε·n²/|x| (ε = 2⁻⁵²): the phase ξ = x − (2n + 1)π/4 + δ carries a rounding error of a
+/// few ulps of δ ≈ n²/(2x) (n ≪ x) to n·(π/2 − 1) (n ≈ x), the rest is the truncation.
+/// Measured: 0.75 units (n = 2³¹ − 1, x = 2n: 1.8·10⁻⁷, the phase of a 10⁹-radian oscillation
+/// to 1.8·10⁻⁷ rad); at n ≤ 10⁶, 1.6·10⁻¹⁰ (x = 1.01·10⁶); 5× margin.
+pub const BESSEL_OSCILLATING_UNITS: f64 = 3.7;
+
+// ---- the radiometric BSDF's colour (tests/radiometric_colour.rs) ----
+
+/// Gauss-Legendre with 8192 intervals of 0.057 nm resolves every lobe of these small-N
+/// gratings (lobes ≥ 5 nm wide); measured agreement with the envelope path 1.1e-9 relative to
+/// the largest component (printed by `--nocapture`), asserted with a margin of 4.5×.
+pub const ENVELOPE_PATH: f64 = 5e-9;
+
+// ---- the tables, the whites and the analytic peak weights (tests/spectral.rs) ----
+// Measured by the tests of `tests/spectral.rs` named below (printed once with `--nocapture`).
+
+/// `cmf(λ)` against numpy.interp of colour-science's table (`cmf_interp.csv`), absolute.
+/// Measured 0 (`cmf_interpolation_matches_colour_science`: the same interpolation); allowed: two
+/// ulp of values below 2.
+pub const CMF_INTERPOLATION: f64 = 1e-15;
+/// The white of illuminant E against (1, 1, 1): the CIE 1931 functions' areas differ, a property
+/// of the tables, not an error. Measured 3.3e-4 (`white_points`); margin 3×.
+pub const WHITE_E: f64 = 1e-3;
+/// D65's white against its published chromaticity (0.3127, 0.3290), which comes from the 5 nm
+/// tables: the 1 nm tables' own difference. Measured 2.8e-5 (`white_points`); margin 3.5×.
+pub const D65_CHROMATICITY: f64 = 1e-4;
+/// D65's white against colour-science's exact integrals of the same tables
+/// (`lab_de2000.csv`'s header), absolute. Measured 1.1e-16 (`white_points`); margin 9×.
+pub const WHITE_FIXTURE: f64 = 1e-15;
+/// `paper_peaks` of one visible order against S(β₁)·cmf(λ₁) under E, absolute. Measured 0
+/// (`paper_peaks_are_weighted_spectral_colours`, N = 10, 10³, 10⁶); allowed: a few roundings of
+/// values below 2.
+pub const PAPER_PEAKS_CMF: f64 = 1e-15;
+/// The peak search against its analytic weight S·E·cmf·λ_m/(|m|N)/∫Eȳ, relative. Measured
+/// 1.8e-13 (`peak_search_is_the_analytic_weight`, three orders; 0 for two); margin 5.6×.
+pub const PEAK_SEARCH_ANALYTIC: f64 = 1e-12;
+/// What a peak on the band's edge (order 4 at 360 nm, where ȳ is 4·10⁻⁶) adds to the analytic
+/// weights of the others, relative. Measured 1.8e-13 (the same test); margin 5.6×.
+pub const PEAK_SEARCH_EDGE_EXCESS: f64 = 1e-12;
+
+// ---- the baselines' values, peaks and orders (tests/baselines.rs) ----
+// Measured by the named tests of `tests/baselines.rs` (their fixed-seed proptest cases, 200-300
+// draws, and deterministic loops), printed once with `--nocapture`.
+
+/// |d·u − m·λ_m| / |d·u| of every generic model's reported peaks. Measured 1.9e-16 (1160 peaks,
+/// `the_models_share_the_grating_equation`); margin 5×.
+pub const GENERIC_PEAK_EQUATION: f64 = 1e-15;
+/// Thorman's `eval` at a reported peak against the peak's intensity, relative. Measured 0 (444
+/// peaks: the same expression); allowed: four ulp.
+pub const THORMAN_PEAK_VALUE: f64 = 1e-15;
+/// Thorman's equivalent width against √(2π)·σ·d/|m|, relative. Measured 0 (444 peaks); allowed:
+/// four ulp.
+pub const THORMAN_PEAK_WIDTH: f64 = 1e-15;
+/// A peak's area (Simpson, 2000 pieces over ±6 widths) against intensity × equivalent width, for
+/// the Gaussian-lobed models, relative. Measured 2.7e-15 (6 peaks); margin 3.8×.
+pub const PEAK_AREA: f64 = 1e-14;
+/// Stam's peak area against intensity × equivalent width: the Gaussian factor's area is the
+/// lobe's only where the rest of the integrand is flat across it, an approximation. Measured
+/// 8.5e-5 (`stam_equivalent_width_is_nearly_the_lobe_area`); margin 5.9×.
+pub const STAM_PEAK_AREA: f64 = 5e-4;
+/// `gauss_legendre(64)` against `WINDOWS` for a broad generic model, relative in Y. Measured
+/// 3.4e-6; margin 2.9×.
+pub const BROAD_GAUSS: f64 = 1e-5;
+/// J_{n−1} + J_{n+1} − (2n/x)·J_n, in units of 1 + 2|n|/x. Measured 5.0e-17 (200 draws of
+/// `bessel_recurrence`); margin 10×.
+pub const BESSEL_RECURRENCE: f64 = 5e-16;
+/// Σ_m |c_m|² − 1 of a sinusoid (and, beyond the closed-form tail, of a binary profile).
+/// Measured 3.3e-15 (200 draws of `parseval_sine`; the binary profile's sum stays inside its
+/// tail); margin 3×.
+pub const STAM_PARSEVAL: f64 = 1e-14;
+/// `response` at a reported peak against the peak's intensity (Stam's models), relative.
+/// Measured 7.5e-15 (554 peaks); margin 4×.
+pub const PEAK_RESPONSE: f64 = 3e-14;
+/// Stam's power over all orders (quadrature of the lobes at 550 nm) against 1. Measured 1.3e-5
+/// (3 incidences); margin 7.6×.
+pub const STAM_ORDER_POWER_SUM: f64 = 1e-4;
+/// One order's power against |c_m|²/cos θo, relative. Measured 5.0e-6 (6 orders); margin 10×.
+pub const STAM_ORDER_POWER: f64 = 5e-5;
+/// Off the cone of diffracted directions Stam's value vanishes (a Gaussian far in its tail):
+/// the ratio to the on-cone value. Measured 0 (it underflows); a property threshold.
+pub const STAM_OFF_PLANE: f64 = 1e-100;
+/// The other models do not depend on v: the off-cone to on-cone ratio against 1. Measured 0;
+/// allowed: four ulp.
+pub const OFF_PLANE_INVARIANT: f64 = 1e-15;
+
+// ---- frames, fields and shading (tests/frame_brdf.rs); grating values (tests/grating.rs) ----
+// Measured by the named tests, printed once with `--nocapture`.
+
+/// eq. 12 around a model with no visible order against its closed form (values about 2.7),
+/// absolute. Measured 0 (`order_zero_is_white_specular_in_the_illumination_model`, 4 wavelengths);
+/// allowed: four ulp.
+pub const SHADING_CLOSED_FORM: f64 = 2e-15;
+/// A grating field's unit directions (length, expected direction, orthogonality, the world
+/// direction and its local frame), absolute. Measured 6.1e-17 (7 checks); margin 6.5×.
+pub const FIELD_DIRECTION: f64 = 4e-16;
+/// A radial field's direction against p − centre (|p − centre| ≤ 6), |cross product|. Measured
+/// 0 (3 points); allowed: a few roundings of products up to 6.
+pub const FIELD_RADIAL: f64 = 1e-14;
+/// One slit's I(u, λ) against S(w·u/λ): the two sides round y = w·u/λ differently (relative
+/// 4ε) and |dS/dy| ≤ 2/y, a derived bound of 8ε. Measured 2ε (1000 draws).
+pub const ONE_SLIT_INTENSITY: f64 = 8.0 * f64::EPSILON;
+/// The paper's half-vector projection misses the 550 nm peak: I there over the peak's value.
+/// Measured 3.4e-7 (`paper_half_vector_misplaces_peaks`); margin 3×.
+pub const PAPER_PROJECTION_DARK: f64 = 1e-6;
+/// I at the central lobe's first zero u = λ/(N·d): only the rounding of u is left. Measured
+/// 4.3e-34 (`mirror_direction_is_the_white_order_zero`); margin 9×.
+pub const AT_A_ZERO: f64 = 4e-33;
+/// S(β_m) = sinc²(πm) at w = d for m ≠ 0: the rounding of sin(πm), (ε·m)² ≈ 10⁻³⁰ for the
+/// visible orders. Measured 0 (`open_fraction_one_puts_all_light_in_order_zero`).
+pub const SINC_ZEROS: f64 = 1e-30;
+// ---- regressions and limits (tests/extremes_handover.rs, tests/grazing.rs,
+// tests/bessel_large.rs), measured by the named tests and printed once with `--nocapture` ----
+
+/// A sample's weight against `sample_weight_bound` where the sweep found them equal: the two
+/// compute the same product in a different order. Measured 1 ulp below the bound
+/// (`sample_weight_bound_beyond_i32_orders`); allowed: nine ulp above it.
+pub const WEIGHT_BOUND_ROUNDING: f64 = 2e-15;
+/// A model's value at cos θo = 10⁻⁹ against cos θo = 10⁻²⁰, relative: only Stam's phase moves
+/// (by at most 6·10⁻⁴ rad). Measured 5.5e-9 (`values_reach_a_finite_limit_at_the_horizon`, 275
+/// cases); margin 9×.
+pub const HORIZON_SETTLE: f64 = 5e-8;
+/// Stam's value over its lobe against the closed form of its clamped geometry factor, relative.
+/// Measured 2.2e-16 (`stam_follows_its_geometry_factor_above_the_clamp`, 9 cosines); margin 9×.
+pub const STAM_GRAZING_CLAMP: f64 = 2e-15;
+/// J_{n−1} + J_{n+1} − (2n/x)·J_n across the switch between Debye's expansions and the
+/// recurrence (x = 2·10⁶), relative to the local amplitude. Measured 4.7e-13
+/// (`recurrence_identity_across_the_switch`); margin 4.2×.
+pub const BESSEL_SWITCH_RECURRENCE: f64 = 2e-12;
+
+/// A first-order angle against the 18.61° quoted to two decimals: half a unit of the last
+/// quoted digit. Measured 0.0046° (`six_hundred_lines_per_mm_sends_532_nm_to_18_6_degrees`).
+pub const QUOTED_ANGLE_DEG: f64 = 0.005;
+/// Stam's largest value over the bound of its clamped geometry factor on the grazing sweep: the
+/// bound is reached within a factor 30 (measured 0.033 of it, where both directions graze,
+/// `every_model_is_finite_and_bounded_down_to_cos_1e_minus_300`); margin 4.5×.
+pub const STAM_CLAMP_REACH: f64 = 0.15;
