@@ -242,3 +242,65 @@ fn hostile_json_tables_are_refused_by_field() {
     let skipped = json_with(|t| t.replace(r#""sha256": "0""#, &format!(r#""sha256": {deep}"#)));
     assert!(serde_json::from_str::<EfficiencyTable>(&skipped).is_ok());
 }
+
+/// `SampledWavelengths::new` refuses a subnormal density (1/pdf infinite), and the film's
+/// estimate and the sample weights saturate instead of overflowing for every density it
+/// accepts.
+#[test]
+fn tiny_divisors_give_finite_results() {
+    use diffraction::cie::Illuminant;
+    use diffraction::{
+        BsdfFlags, BsdfSample, BsdfSample4, SampledSpectrum, SampledWavelengths, SpectralFilm,
+    };
+    use glam::DVec3;
+    assert_eq!(
+        SampledWavelengths::new([500.0; 4], [0.01, 5e-324, 0.01, 0.01]).unwrap_err().to_string(),
+        "invalid pdf = 5e-324: must satisfy pdf >= SampledWavelengths::MIN_PDF (2.2250738585072014e-308)"
+    );
+    let l = SampledWavelengths::new([500.0, 550.0, 600.0, 650.0], [f64::MIN_POSITIVE; 4]).unwrap();
+    let film = SpectralFilm::new(Illuminant::E);
+    for v in [1.0, f64::MAX, -f64::MAX, 1e-300] {
+        let xyz = SampledSpectrum::new([v, -v, v, v]).to_xyz(&l, &film);
+        assert!(
+            xyz.x.is_finite() && xyz.y.is_finite() && xyz.z.is_finite(),
+            "{v:e}: {xyz:?}"
+        );
+    }
+    // The widest band's uniform density is clamped to MIN_PDF, which `new` accepts.
+    let wide = diffraction::Band::new(1.0, f64::MAX).unwrap();
+    let u = SampledWavelengths::sample_uniform(0.3, wide);
+    assert_eq!(u.pdf(), [SampledWavelengths::MIN_PDF; 4]);
+    assert_eq!(SampledWavelengths::new(u.lambda(), u.pdf()), Ok(u));
+    let wi = DVec3::new(0.0, 0.6, 0.8);
+    assert_eq!(
+        BsdfSample::new(wi, 1.0, 5e-324, BsdfFlags::GLOSSY).weight(),
+        f64::MAX
+    );
+    let s4 = BsdfSample4::new(
+        wi,
+        SampledSpectrum::splat(1.0),
+        SampledSpectrum::splat(5e-324),
+        BsdfFlags::GLOSSY,
+    );
+    assert_eq!(s4.weight(), SampledSpectrum::splat(f64::MAX));
+}
+
+/// `with_efficiency` returns the error of the grating it cannot rebuild at the table's period
+/// (it kept the old period before: a DVD table on a 1600 nm grating).
+#[test]
+fn with_efficiency_reports_the_grating_it_cannot_build() {
+    use diffraction::grating_bsdf::OrderEfficiency;
+    use diffraction::relief::Preset;
+    use diffraction::{Grating, GratingBsdf};
+    let thin = GratingBsdf::new(Grating::new(1600.0, 5e-324, 30).unwrap());
+    assert_eq!(
+        thin.with_efficiency(OrderEfficiency::preset(Preset::Dvd))
+            .unwrap_err()
+            .to_string(),
+        "invalid slit_width_nm = 0: must be finite and > 0"
+    );
+    let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 30).unwrap())
+        .with_efficiency(OrderEfficiency::preset(Preset::Dvd))
+        .unwrap();
+    assert_eq!(b.grating().period_nm(), 740.0);
+}
