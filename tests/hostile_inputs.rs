@@ -304,3 +304,64 @@ fn with_efficiency_reports_the_grating_it_cannot_build() {
         .unwrap();
     assert_eq!(b.grating().period_nm(), 740.0);
 }
+
+/// Stored colour tables with fields no build produces are refused with the field, its value
+/// and the range a build can produce.
+#[cfg(feature = "serde")]
+#[test]
+fn corrupted_stored_colour_tables_name_the_field_and_the_range() {
+    use diffraction::spectrum::{Illuminant, Spectral};
+    use diffraction::{ColorTable, Grating};
+    let s = Spectral::new(Illuminant::E);
+    let t = ColorTable::new(&s, &Grating::new(1600.0, 800.0, 100).unwrap(), 1e-3).unwrap();
+    let base = serde_json::to_value(&t).unwrap();
+    let back: ColorTable = serde_json::from_value(base.clone()).unwrap();
+    assert_eq!(back, t);
+    let nodes = t.node_count();
+    let white = s.white();
+    // Closed forms: the paper's floor 555/(N·∫ȳ) for N = 100, twice the white.
+    let floor = diffraction::spectrum::bounds::accuracy_floor(100.0);
+    let err = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = base.clone();
+        f(&mut v);
+        serde_json::from_value::<ColorTable>(v)
+            .unwrap_err()
+            .to_string()
+    };
+    let num = |x: f64| {
+        if x.abs() >= 1e16 || x.abs() < 1e-4 {
+            format!("{x:e}")
+        } else {
+            format!("{x}")
+        }
+    };
+    assert_eq!(
+        err(&|v| v["grid"]["values"][7][1] = 1e308.into()),
+        format!(
+            "invalid values = 1e308: must lie in [0, {}]",
+            num(2.0 * white.y)
+        )
+    );
+    assert_eq!(
+        err(&|v| v["grid"]["scale"] = 1e308.into()),
+        format!(
+            "invalid scale = 1e308: must lie in [{}, {}]",
+            num(floor),
+            num(2.0 * white.y)
+        )
+    );
+    assert_eq!(
+        err(&|v| v["grid"]["error"] = 1e308.into()),
+        format!(
+            "invalid error = 1e308: must lie in [0, {}]",
+            num(2e4 / t.scale())
+        )
+    );
+    assert_eq!(
+        err(&|v| v["grid"]["evaluations"] = u64::MAX.into()),
+        format!(
+            "invalid evaluations = 1.8446744073709552e19: must lie in [0, {}]",
+            2 * nodes
+        )
+    );
+}

@@ -171,11 +171,4 @@ fn an_unknown_efficiency_names_its_field_and_the_accepted_values() {
         e.ends_with("field objects[0].material.period_nm: missing: a grating needs period_nm (or lines_per_mm)"),
         "{e}"
     );
-    assert!(scene::parse::<Radiometric>(
-        &scene("efficiency = \"cd\"\n"),
-        "t.toml",
-        "t",
-        Path::new(".")
-    )
-    .is_ok());
 }
