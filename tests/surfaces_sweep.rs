@@ -27,7 +27,6 @@ use diffraction::{
     SpectralFilm,
 };
 
-
 #[path = "support/rng.rs"]
 mod rng;
 use rng::Rng;
@@ -42,8 +41,20 @@ const MAX_MESSAGE: usize = 400;
 
 /// Values that break arithmetic: subnormals, the ends of the range, exact grid values.
 const EXTREMES: [f64; 14] = [
-    0.0, -0.0, 5e-324, 1e-310, f64::MIN_POSITIVE, 1e-300, 1e-17, 0.5, 1.0, -1.0, 1e300,
-    f64::MAX, 0.9999, 999.9995,
+    0.0,
+    -0.0,
+    5e-324,
+    1e-310,
+    f64::MIN_POSITIVE,
+    1e-300,
+    1e-17,
+    0.5,
+    1.0,
+    -1.0,
+    1e300,
+    f64::MAX,
+    0.9999,
+    999.9995,
 ];
 
 #[derive(Debug, Default)]
@@ -57,6 +68,7 @@ struct Tally {
     relief_calls: u64,
     relief_orders: u64,
     bsdf_calls: u64,
+    bsdf_refused: u64,
     stored_accepted: u64,
     stored_refused: u64,
     wavelength_calls: u64,
@@ -94,21 +106,44 @@ fn check_query(t: &EfficiencyTable, s: f64, lambda: f64, tally: &mut Tally) {
     tally.queries += 1;
     tally.orders_written += out.len() as u64;
     let repro = || format!("{t:?} at s = {s:e}, λ = {lambda:e}");
-    assert!(total.is_finite() && (0.0..=1.0 + SUM_ROUNDING).contains(&total), "{total}: {}", repro());
-    let (te, tm): (f64, f64) = (out.iter().map(|e| e.te).sum(), out.iter().map(|e| e.tm).sum());
-    assert!(te <= 1.0 + SUM_ROUNDING && tm <= 1.0 + SUM_ROUNDING, "{te} {tm}: {}", repro());
+    assert!(
+        total.is_finite() && (0.0..=1.0 + SUM_ROUNDING).contains(&total),
+        "{total}: {}",
+        repro()
+    );
+    let (te, tm): (f64, f64) = (
+        out.iter().map(|e| e.te).sum(),
+        out.iter().map(|e| e.tm).sum(),
+    );
+    assert!(
+        te <= 1.0 + SUM_ROUNDING && tm <= 1.0 + SUM_ROUNDING,
+        "{te} {tm}: {}",
+        repro()
+    );
     for e in &out {
-        assert!(e.te.is_finite() && e.te >= 0.0 && e.tm.is_finite() && e.tm >= 0.0, "{}", repro());
+        assert!(
+            e.te.is_finite() && e.te >= 0.0 && e.tm.is_finite() && e.tm >= 0.0,
+            "{}",
+            repro()
+        );
     }
     let m = t.orders().start() + (s.to_bits() % t.order_count() as u64) as i32;
     let one = t.efficiency(m, s, lambda);
-    assert!(one.te.is_finite() && one.te >= 0.0 && one.tm.is_finite() && one.tm >= 0.0, "{}", repro());
+    assert!(
+        one.te.is_finite() && one.te >= 0.0 && one.tm.is_finite() && one.tm >= 0.0,
+        "{}",
+        repro()
+    );
 }
 
 /// A random table: mostly accepted (values scaled below 1 per node and zero where evanescent),
 /// sometimes corrupted.
 fn random_table(r: &mut Rng, tally: &mut Tally) -> Option<EfficiencyTable> {
-    let period = if r.next_u64() % 4 == 0 { value(r, 100.0, 1e5) } else { 200.0 + 4000.0 * r.next_f64() };
+    let period = if r.next_u64() % 4 == 0 {
+        value(r, 100.0, 1e5)
+    } else {
+        200.0 + 4000.0 * r.next_f64()
+    };
     let s = axis(r, -1.0, 1.0);
     let l = axis(r, 300.0, 1200.0);
     let orders = 1 + (r.next_u64() % 9) as usize;
@@ -145,8 +180,22 @@ fn random_table(r: &mut Rng, tally: &mut Tally) -> Option<EfficiencyTable> {
 fn hostile_json(r: &mut Rng) -> String {
     let good = r#"{"format": "diffraction-efficiency-table", "version": 1, "grating": {"period_nm": 1000.0}, "sin_theta_i": [0.0, 0.5], "lambda_nm": [999.9995, 1200.0], "order_min": -1, "order_max": 0, "te": [[[0.01, 0.3], [0.0, 0.2]], [[0.9, 0.6], [0.9, 0.7]]], "tm": [[[0.01, 0.3], [0.0, 0.2]], [[0.9, 0.6], [0.9, 0.7]]]}"#;
     const TOKENS: [&str; 16] = [
-        "null", "1e400", "-0", "[]", "{}", "\"x\"", "NaN", "1.5", "9223372036854775807",
-        "-9223372036854775809", "18446744073709551616", "[[[]]]", "true", "5e-324", "2", "[0.5, 0.5]",
+        "null",
+        "1e400",
+        "-0",
+        "[]",
+        "{}",
+        "\"x\"",
+        "NaN",
+        "1.5",
+        "9223372036854775807",
+        "-9223372036854775809",
+        "18446744073709551616",
+        "[[[]]]",
+        "true",
+        "5e-324",
+        "2",
+        "[0.5, 0.5]",
     ];
     let numbers: Vec<(usize, usize)> = {
         let b = good.as_bytes();
@@ -176,8 +225,20 @@ fn hostile_json(r: &mut Rng) -> String {
 
 /// The field names a refusal may start with (or serde's own words for a whole-file problem).
 const FIELDS: [&str; 14] = [
-    "format", "version", "grating", "sin_theta_i", "lambda_nm", "order_min", "order_max", "te",
-    "tm", "invalid ", "missing field", "duplicate field", "EOF", "expected",
+    "format",
+    "version",
+    "grating",
+    "sin_theta_i",
+    "lambda_nm",
+    "order_min",
+    "order_max",
+    "te",
+    "tm",
+    "invalid ",
+    "missing field",
+    "duplicate field",
+    "EOF",
+    "expected",
 ];
 
 fn sweep_with(cases: usize, seed: u64) {
@@ -190,19 +251,31 @@ fn sweep_with(cases: usize, seed: u64) {
         ColorTable::new(&spectral, &Grating::new(1600.0, 800.0, 30).unwrap(), 1e-2).unwrap(),
     )
     .unwrap();
-    let presets: Vec<Arc<EfficiencyTable>> =
-        Preset::ALL.iter().map(|p| Arc::new(p.table().clone())).collect();
+    let presets: Vec<Arc<EfficiencyTable>> = Preset::ALL
+        .iter()
+        .map(|p| Arc::new(p.table().clone()))
+        .collect();
     for case in 0..cases {
         // Tables built in memory, and their queries.
         let table = random_table(&mut r, &mut tally);
-        let table = table.map(Arc::new).unwrap_or_else(|| presets[case % presets.len()].clone());
+        let table = table
+            .map(Arc::new)
+            .unwrap_or_else(|| presets[case % presets.len()].clone());
         for _ in 0..4 {
             let s = value(&mut r, -1.0, 1.0);
             let lambda = value(&mut r, 300.0, 1200.0);
             check_query(&table, s, lambda, &mut tally);
             // A query a subnormal step from a node.
-            let node = table.sin_theta_i().nth((r.next_u64() % 2) as usize).unwrap();
-            check_query(&table, node + 5e-324, table.lambda_nm().next().unwrap(), &mut tally);
+            let node = table
+                .sin_theta_i()
+                .nth((r.next_u64() % 2) as usize)
+                .unwrap();
+            check_query(
+                &table,
+                node + 5e-324,
+                table.lambda_nm().next().unwrap(),
+                &mut tally,
+            );
         }
         // The JSON reader.
         let text = hostile_json(&mut r);
@@ -240,35 +313,54 @@ fn sweep_with(cases: usize, seed: u64) {
             tally.relief_calls += 1;
             tally.relief_orders += n;
             assert!(n <= 2 * 2048 + 1, "{g:?} at {s:e}, {lambda:e}: {n} orders");
-            assert!(te <= 1.0 + SUM_ROUNDING && tm <= 1.0 + SUM_ROUNDING, "{g:?} at {s:e}, {lambda:e}");
+            assert!(
+                te <= 1.0 + SUM_ROUNDING && tm <= 1.0 + SUM_ROUNDING,
+                "{g:?} at {s:e}, {lambda:e}"
+            );
         }
         // The grating BSDF with tabulated efficiencies.
         if table.order_count() <= MAX_TABULATED_ORDERS {
             let slits = [1u32, 34, 1000, u32::MAX][case % 4];
-            let g = Grating::new(table.period_nm(), table.period_nm() / 2.0, slits).unwrap();
-            let b = GratingBsdf::new(g)
-                .with_efficiency(OrderEfficiency::from_table(table.clone()).unwrap())
-                .unwrap();
-            let (wo, wi) = (r.direction(1e-3), r.direction(1e-3));
-            let lambda = value(&mut r, 360.0, 830.0);
-            let f = b.eval(wo, wi, lambda);
-            let p = b.pdf(wo, wi, lambda);
-            assert!(f.is_finite() && f >= 0.0 && p.is_finite() && p >= 0.0, "{b:?} {wo} {wi} {lambda}");
-            let bound = b.sample_weight_bound(wo, lambda);
-            if let Some(x) = b.sample(wo, lambda, r.next_f64(), r.u2()) {
-                let w = x.weight();
-                assert!(w.is_finite() && w >= 0.0 && w <= bound * (1.0 + 1e-9), "{w} > {bound}: {b:?} {wo} {lambda}");
+            // Any grating: `with_efficiency` takes the table's period, or reports the grating
+            // it cannot build there (a period so small that half of it rounds to 0).
+            let g = Grating::new(1600.0, 800.0, slits).unwrap();
+            let e = OrderEfficiency::from_table(table.clone()).unwrap();
+            let built = GratingBsdf::new(g).with_efficiency(e);
+            if let Err(e) = &built {
+                assert_eq!(e.parameter(), "slit_width_nm", "{table:?}");
+                tally.bsdf_refused += 1;
             }
-            if let Some(a) = b.albedo(wo, lambda) {
-                assert!(a.is_finite() && (0.0..=1.0 + SUM_ROUNDING).contains(&a), "albedo {a}");
-            }
-            let ls = SampledWavelengths::sample_visible(r.next_f64());
-            if let Some(x) = b.sample4(wo, &ls, r.next_f64(), r.u2()) {
-                for w in x.weight().values() {
-                    assert!(w.is_finite() && w >= 0.0, "sample4 weight {w}");
+            if let Ok(b) = built {
+                let (wo, wi) = (r.direction(1e-3), r.direction(1e-3));
+                let lambda = value(&mut r, 360.0, 830.0);
+                let f = b.eval(wo, wi, lambda);
+                let p = b.pdf(wo, wi, lambda);
+                assert!(
+                    f.is_finite() && f >= 0.0 && p.is_finite() && p >= 0.0,
+                    "{b:?} {wo} {wi} {lambda}"
+                );
+                let bound = b.sample_weight_bound(wo, lambda);
+                if let Some(x) = b.sample(wo, lambda, r.next_f64(), r.u2()) {
+                    let w = x.weight();
+                    assert!(
+                        w.is_finite() && w >= 0.0 && w <= bound * (1.0 + 1e-9),
+                        "{w} > {bound}: {b:?} {wo} {lambda}"
+                    );
                 }
+                if let Some(a) = b.albedo(wo, lambda) {
+                    assert!(
+                        a.is_finite() && (0.0..=1.0 + SUM_ROUNDING).contains(&a),
+                        "albedo {a}"
+                    );
+                }
+                let ls = SampledWavelengths::sample_visible(r.next_f64());
+                if let Some(x) = b.sample4(wo, &ls, r.next_f64(), r.u2()) {
+                    for w in x.weight().values() {
+                        assert!(w.is_finite() && w >= 0.0, "sample4 weight {w}");
+                    }
+                }
+                tally.bsdf_calls += 5;
             }
-            tally.bsdf_calls += 5;
         }
         // The colour table's stored form, one field corrupted.
         let mut v = stored.clone();
@@ -284,7 +376,11 @@ fn sweep_with(cases: usize, seed: u64) {
             serde_json::json!(r.next_u64())
         } else {
             let x = value(&mut r, 0.0, 2.0);
-            if x.is_finite() { serde_json::json!(x) } else { serde_json::json!(null) }
+            if x.is_finite() {
+                serde_json::json!(x)
+            } else {
+                serde_json::json!(null)
+            }
         };
         match serde_json::from_value::<ColorTable>(v) {
             Ok(t) => {
@@ -309,15 +405,27 @@ fn sweep_with(cases: usize, seed: u64) {
         if let Ok(l) = SampledWavelengths::new(lambda, pdf) {
             let v = SampledSpectrum::new([0; 4].map(|_| value(&mut r, -1e300, 1e300)));
             let xyz = v.to_xyz(&l, &film);
-            assert!(xyz.x.is_finite() && xyz.y.is_finite() && xyz.z.is_finite(), "{v:?} {l:?}");
+            assert!(
+                xyz.x.is_finite() && xyz.y.is_finite() && xyz.z.is_finite(),
+                "{v:?} {l:?}"
+            );
         }
         tally.wavelength_calls += 1;
     }
     println!("{cases} cases (seed {seed:#x}): {tally:?}");
     // Every surface was reached, accepted and refused.
-    assert!(tally.tables_built > 0 && tally.tables_refused > 0, "{tally:?}");
-    assert!(tally.json_accepted > 0 && tally.json_refused > 0, "{tally:?}");
-    assert!(tally.stored_accepted > 0 && tally.stored_refused > 0, "{tally:?}");
+    assert!(
+        tally.tables_built > 0 && tally.tables_refused > 0,
+        "{tally:?}"
+    );
+    assert!(
+        tally.json_accepted > 0 && tally.json_refused > 0,
+        "{tally:?}"
+    );
+    assert!(
+        tally.stored_accepted > 0 && tally.stored_refused > 0,
+        "{tally:?}"
+    );
     assert!(tally.bsdf_calls > 0 && tally.relief_calls > 0, "{tally:?}");
 }
 
