@@ -374,11 +374,10 @@ impl Tabulated {
             return Err(Error::invalid("values", *bad, Requirement::NonNegative));
         }
         for v in values {
-            for c in 0..3 {
-                let max = limits.value[c];
-                if v[c] > max {
+            for (&x, &max) in v.iter().zip(&limits.value) {
+                if x > max {
                     let requirement = Requirement::Within { min: 0.0, max };
-                    return Err(Error::invalid("values", v[c], requirement));
+                    return Err(Error::invalid("values", x, requirement));
                 }
             }
         }
