@@ -43,8 +43,49 @@ const AMPLITUDE_SLITS: u32 = 1000;
 const SAWTOOTH_AGREEMENT: f64 = 1e-6;
 /// Below this magnitude numbers are printed in exponent form (`4.4e-30`, not thirty zeros).
 const EXPONENT_BELOW: f64 = 1e-4;
-/// The largest `--table` file read (the shipped presets' are 31-124 kB).
+/// The largest `--table` file read (the shipped presets' are 31-124 kB). With feature `serde`
+/// the library's reader keeps its memory within the table's bounds whatever the file; without
+/// it the example's own reader builds a `serde_json::Value` tree (about ten times the text for
+/// arrays of empty arrays), hence the smaller cap.
+#[cfg(feature = "serde")]
 const MAX_TABLE_BYTES: u64 = 256 << 20;
+#[cfg(not(feature = "serde"))]
+const MAX_TABLE_BYTES: u64 = 16 << 20;
+
+/// The text of `file`, refused quickly and with bounded memory unless it is a regular file of
+/// at most `max` bytes of UTF-8: its type and size are checked before it is opened (a FIFO
+/// would block the open, `/dev/zero` never ends), and it is read through a `take` of
+/// `max + 1` bytes (a file that grows meanwhile).
+fn read_bounded(file: &str, max: u64) -> Result<String, String> {
+    use std::io::Read;
+    let cannot = |e: std::io::Error| format!("--table: cannot read {file:?}: {e}");
+    let meta = std::fs::metadata(file).map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(format!(
+            "--table: {file:?} is not a regular file (a directory, a device or a FIFO)"
+        ));
+    }
+    let too_big =
+        |size: u64| format!("--table: {file:?} has {size} bytes, more than the {max} this reads");
+    if meta.len() > max {
+        return Err(too_big(meta.len()));
+    }
+    let f = std::fs::File::open(file).map_err(cannot)?;
+    if !f.metadata().map_err(cannot)?.is_file() {
+        return Err(format!("--table: {file:?} is not a regular file"));
+    }
+    let mut bytes = Vec::new();
+    f.take(max + 1).read_to_end(&mut bytes).map_err(cannot)?;
+    if bytes.len() as u64 > max {
+        return Err(too_big(bytes.len() as u64));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        format!(
+            "--table: {file:?} is not UTF-8 (at byte {})",
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
 
 /// A finite number as JSON: the shortest round-trip form, in exponent form when tiny.
 fn json(x: f64) -> String {
@@ -252,16 +293,7 @@ fn load_table(t: &Tabulated) -> Result<std::borrow::Cow<'static, EfficiencyTable
         Tabulated::Preset(p) => return Ok(std::borrow::Cow::Borrowed(p.table())),
         Tabulated::File(f) => f,
     };
-    let size = std::fs::metadata(file)
-        .map_err(|e| format!("--table: cannot read {file:?}: {e}"))?
-        .len();
-    if size > MAX_TABLE_BYTES {
-        return Err(format!(
-            "--table: {file:?} has {size} bytes, more than the {MAX_TABLE_BYTES} this reads"
-        ));
-    }
-    let text =
-        std::fs::read_to_string(file).map_err(|e| format!("--table: cannot read {file:?}: {e}"))?;
+    let text = read_bounded(file, MAX_TABLE_BYTES)?;
     parse_table(file, &text).map(std::borrow::Cow::Owned)
 }
 
@@ -684,6 +716,81 @@ mod tests {
             assert!(e.starts_with(flag), "{line}: {e}");
         }
         assert!(error(&format!("--table /nonexistent/t.json {q}")).contains("/nonexistent/t.json"));
+    }
+
+    /// Hostile `--table` files are refused quickly with bounded memory: devices and FIFOs
+    /// before they are opened, a file over the cap by its size, an array of empty arrays by
+    /// the reader's bounds (with feature `serde`).
+    #[test]
+    fn hostile_table_files_are_refused_quickly() {
+        let q = "--lambda 550 --theta 0";
+        let dir = std::env::temp_dir().join(format!("efficiencies-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let not_regular = |f: &str| {
+            format!("--table: {f:?} is not a regular file (a directory, a device or a FIFO)")
+        };
+        assert_eq!(
+            error(&format!("--table /dev/zero {q}")),
+            not_regular("/dev/zero")
+        );
+        let fifo = dir.join("fifo.json");
+        let _ = std::fs::remove_file(&fifo);
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let f = fifo.to_str().unwrap();
+            assert_eq!(error(&format!("--table {f} {q}")), not_regular(f));
+        }
+        // A sparse file one byte over the cap: refused by its size, never read.
+        let big = dir.join("big.json");
+        std::fs::File::create(&big)
+            .unwrap()
+            .set_len(MAX_TABLE_BYTES + 1)
+            .unwrap();
+        let f = big.to_str().unwrap();
+        assert_eq!(
+            error(&format!("--table {f} {q}")),
+            format!(
+                "--table: {f:?} has {} bytes, more than the {MAX_TABLE_BYTES} this reads",
+                MAX_TABLE_BYTES + 1
+            )
+        );
+        // Orders of nested empty arrays (1 MB), and bytes that are not UTF-8.
+        let nested = dir.join("nested.json");
+        let empties = vec!["[[]]"; 200_000].join(",");
+        std::fs::write(&nested, format!("{{\"te\": [{empties}]}}")).unwrap();
+        let e = error(&format!("--table {} {q}", nested.to_str().unwrap()));
+        assert!(e.starts_with("--table: "), "{e}");
+        #[cfg(feature = "serde")]
+        assert!(e.contains("te: has more than 4097 orders"), "{e}");
+        let binary = dir.join("binary.json");
+        std::fs::write(&binary, [b'{', 0xff, b'}']).unwrap();
+        let f = binary.to_str().unwrap();
+        assert_eq!(
+            error(&format!("--table {f} {q}")),
+            format!("--table: {f:?} is not UTF-8 (at byte 1)")
+        );
+        // The table whose one weighted propagating corner has a subnormal weight at
+        // s = sin(3e-322°) = 5e-324 (its normalisation gave NaN): finite lines, Σ η ≤ 1.
+        let grazing = dir.join("grazing.json");
+        std::fs::write(
+            &grazing,
+            r#"{"format": "diffraction-efficiency-table", "version": 1,
+                "grating": {"period_nm": 1000.0}, "sin_theta_i": [0.0, 0.5],
+                "lambda_nm": [999.9995, 1200.0], "order_min": -1, "order_max": 0,
+                "te": [[[0.01, 0.3], [0.0, 0.2]], [[0.9, 0.6], [0.9, 0.7]]],
+                "tm": [[[0.01, 0.3], [0.0, 0.2]], [[0.9, 0.6], [0.9, 0.7]]]}"#,
+        )
+        .unwrap();
+        let out = lines(&format!(
+            "--table {} --lambda 999.9995 --theta 3e-322",
+            grazing.to_str().unwrap()
+        ));
+        let total: f64 = out.iter().map(|v| v["efficiency"].as_f64().unwrap()).sum();
+        assert!(
+            out.len() == 2 && total.is_finite() && total <= 1.0,
+            "{out:?}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

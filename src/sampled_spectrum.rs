@@ -179,7 +179,8 @@ impl SampledSpectrum {
     /// (terminated secondaries) contributes 0. Its expectation over the wavelength sampler is
     /// ∫ value(λ)·E(λ)·cmf(λ) dλ/∫E·ȳ, the crate's reference colour (a white reflector, value
     /// 1, under the film's illuminant averages to Y = 1), whatever the sampler, as long as its
-    /// density is positive wherever w is.
+    /// density is positive wherever w is. Finite for finite values: a sum that would overflow
+    /// saturates at ±`f64::MAX` per channel (before the mean over the four).
     ///
     /// ```
     /// use diffraction::cie::Illuminant;
@@ -202,10 +203,13 @@ impl SampledSpectrum {
         let mut acc = [0.0; 3];
         for j in 0..4 {
             if p[j] > 0.0 && self.0[j] != 0.0 {
-                let k = self.0[j] / p[j];
+                // Each step saturates at ±f64::MAX: a finite value over a density down to
+                // `SampledWavelengths::MIN_PDF` may overflow, the estimate does not.
+                let k = (self.0[j] / p[j]).clamp(-f64::MAX, f64::MAX);
                 let w = film.weight(l[j]);
                 for c in 0..3 {
-                    acc[c] += k * w[c];
+                    acc[c] =
+                        (acc[c] + (k * w[c]).clamp(-f64::MAX, f64::MAX)).clamp(-f64::MAX, f64::MAX);
                 }
             }
         }

@@ -48,11 +48,21 @@ pub struct SampledWavelengths {
 }
 
 impl SampledWavelengths {
+    /// The smallest nonzero density [`new`](Self::new) accepts, 1/nm: the smallest normal
+    /// `f64` (2.2·10⁻³⁰⁸), so that 1/pdf is finite (a subnormal density such as 5·10⁻³²⁴ made
+    /// [`SampledSpectrum::to_xyz`](crate::SampledSpectrum::to_xyz) infinite).
+    ///
+    /// ```
+    /// assert_eq!(diffraction::SampledWavelengths::MIN_PDF, f64::MIN_POSITIVE);
+    /// ```
+    pub const MIN_PDF: f64 = f64::MIN_POSITIVE;
+
     /// Stratified uniform wavelengths: the hero at `band.min + u·B`, the others B/4 apart
     /// (wrapping around the band), each with density 1/B. `u` by the crate's rule for random
     /// numbers ([`unit_random`](crate::unit_random)). Every wavelength is in the band and every
-    /// density finite and at most 10⁶ per nm ([`Band::MIN_WIDTH_NM`]), so the result is one that
-    /// [`new`](Self::new) accepts.
+    /// density finite and at most 10⁶ per nm ([`Band::MIN_WIDTH_NM`]), and at least
+    /// [`MIN_PDF`](Self::MIN_PDF) (a band wider than 1/`MIN_PDF` = 4.5·10³⁰⁷ nm gets that
+    /// density), so the result is one that [`new`](Self::new) accepts.
     ///
     /// ```
     /// use diffraction::{Band, SampledWavelengths};
@@ -75,7 +85,7 @@ impl SampledWavelengths {
         }
         SampledWavelengths {
             lambda,
-            pdf: [1.0 / b; 4],
+            pdf: [(1.0 / b).max(Self::MIN_PDF); 4],
         }
     }
 
@@ -109,14 +119,20 @@ impl SampledWavelengths {
         SampledWavelengths { lambda, pdf }
     }
 
-    /// Four wavelengths (finite, > 0) with their densities (finite, ≥ 0), for example from a
-    /// grating's own wavelength sampler. Errors name `lambda_nm` or `pdf`.
+    /// Four wavelengths (finite, > 0) with their densities: finite, and 0 (a terminated
+    /// secondary) or at least [`MIN_PDF`](Self::MIN_PDF) per nm, so that 1/pdf is finite. For
+    /// example from a grating's own wavelength sampler. Errors name `lambda_nm` or `pdf`.
     ///
     /// ```
     /// use diffraction::SampledWavelengths;
     /// let l = SampledWavelengths::new([500.0, 510.0, 520.0, 530.0], [0.01; 4])?;
     /// assert_eq!(l.lambda()[3], 530.0);
     /// assert_eq!(SampledWavelengths::new([0.0; 4], [0.01; 4]).unwrap_err().parameter(), "lambda_nm");
+    /// // A subnormal density: 1/pdf would be infinite.
+    /// assert_eq!(
+    ///     SampledWavelengths::new([500.0; 4], [5e-324, 0.01, 0.01, 0.01]).unwrap_err().to_string(),
+    ///     "invalid pdf = 5e-324: must satisfy pdf >= SampledWavelengths::MIN_PDF (2.2250738585072014e-308)"
+    /// );
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     pub fn new(lambda: [f64; 4], pdf: [f64; 4]) -> Result<SampledWavelengths, Error> {
@@ -126,6 +142,13 @@ impl SampledWavelengths {
         for &p in &pdf {
             if !(p.is_finite() && p >= 0.0) {
                 return Err(Error::invalid("pdf", p, Requirement::NonNegative));
+            }
+            if p > 0.0 && p < Self::MIN_PDF {
+                let requirement = Requirement::AtLeast {
+                    bound_name: "SampledWavelengths::MIN_PDF",
+                    bound: Self::MIN_PDF,
+                };
+                return Err(Error::invalid("pdf", p, requirement));
             }
         }
         Ok(SampledWavelengths { lambda, pdf })

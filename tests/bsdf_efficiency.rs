@@ -58,7 +58,7 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
     let e = OrderEfficiency::from_table(scalar.clone()).unwrap();
     out.push((
         "scalar sinusoid".into(),
-        GratingBsdf::new(g).with_efficiency(e),
+        GratingBsdf::new(g).with_efficiency(e).unwrap(),
     ));
     out
 }
@@ -333,7 +333,8 @@ fn a_blazed_grating_lights_the_order_its_relief_says() {
     ss[16] = s;
     let table = EfficiencyTable::from_scalar(&relief, &ss, &[450.0, lambda, 550.0]).unwrap();
     let b = GratingBsdf::new(Grating::infinite(d, d / 2.0).unwrap())
-        .with_efficiency(OrderEfficiency::from_table(Arc::new(table)).unwrap());
+        .with_efficiency(OrderEfficiency::from_table(Arc::new(table)).unwrap())
+        .unwrap();
     let w = dir(-s, 0.0); // wi = wo: Littrow
     let model = relief.order(1, s, lambda).unwrap().unpolarised();
     let got = b.efficiency_at(1, w, w, lambda);
@@ -373,7 +374,9 @@ fn constructors_and_errors() {
     let a = GratingBsdf::new(Grating::new(1600.0, 800.0, 30).unwrap());
     let back = a
         .with_efficiency(OrderEfficiency::preset(Preset::Cd))
-        .with_efficiency(OrderEfficiency::Amplitude);
+        .unwrap()
+        .with_efficiency(OrderEfficiency::Amplitude)
+        .unwrap();
     assert_eq!(back, a);
 }
 

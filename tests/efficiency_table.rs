@@ -351,15 +351,15 @@ fn json_tables_load_and_bad_ones_name_the_field() {
         ),
         (
             |v| v["order_max"] = 2.into(),
-            "te: 3 orders, expected [4][2][2] ([order][lambda][sin])",
+            "te: has shape [3][2][2], expected [4][2][2] ([order][lambda][sin])",
         ),
         (
             |v| v["tm"][1] = serde_json::json!([[0.5, 0.5]]),
-            "tm: order index 1 has 1 wavelength rows, expected [3][2][2] ([order][lambda][sin])",
+            "tm[1]: has 1 wavelength rows, expected 2 (as the first)",
         ),
         (
             |v| v["te"][2][1] = serde_json::json!([0.1]),
-            "te: order index 2, wavelength row 1 has 1 values, expected [3][2][2] ([order][lambda][sin])",
+            "te[2][1]: has 1 values, expected 2 (as the first)",
         ),
         (
             |v| v["lambda_nm"] = serde_json::json!([600.0, 500.0]),

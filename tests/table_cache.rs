@@ -153,6 +153,15 @@ fn corruptions(base: &Value) -> Vec<(Value, &'static str)> {
     edit("scale", &|v| v["grid"]["scale"] = json!(0.0));
     edit("scale", &|v| v["grid"]["scale"] = json!(-1.0));
     edit("error", &|v| v["grid"]["error"] = json!(-1.0));
+    // Values, scale and error at 1e308, evaluations at u64::MAX: finite, but no build makes
+    // them.
+    edit("values", &|v| v["grid"]["values"][7][1] = json!(1e308));
+    edit("scale", &|v| v["grid"]["scale"] = json!(1e308));
+    edit("scale", &|v| v["grid"]["scale"] = json!(1e-300));
+    edit("error", &|v| v["grid"]["error"] = json!(1e308));
+    edit("evaluations", &|v| {
+        v["grid"]["evaluations"] = json!(u64::MAX)
+    });
     edit("unknown field", &|v| v["extra"] = json!(1));
     edit("unknown field", &|v| v["grid"]["derivatives"] = json!([]));
     edit("missing field", &|v| {

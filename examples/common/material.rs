@@ -269,6 +269,15 @@ impl<'a> Loader<'a> {
             (None, None) => match g.efficiency.as_deref().map(str::parse::<Preset>) {
                 // A preset's table fixes the period.
                 Some(Ok(preset)) => preset.period_nm(),
+                // A name that is neither a preset nor the amplitude reading: that field is wrong,
+                // not the missing period (the names are case-sensitive, as `Preset`'s).
+                Some(Err(e)) if g.efficiency.as_deref() != Some("amplitude") => {
+                    let name = g.efficiency.as_deref().unwrap_or_default();
+                    return Err(FieldError::new(
+                        f("efficiency"),
+                        format!("{e} or amplitude, got {name:?}"),
+                    ));
+                }
                 _ => {
                     return Err(FieldError::new(
                         f("period_nm"),

@@ -143,6 +143,13 @@ pub fn load<P: Physics>(path: &Path) -> Result<Scene<P>, SceneError> {
             ),
         )
     };
+    // A FIFO would block the open and a device never ends: only regular files are read.
+    if !std::fs::metadata(path).map_err(cannot)?.is_file() {
+        return Err(file_error(
+            &file,
+            "the scene file is not a regular file (a directory, a device or a FIFO)".into(),
+        ));
+    }
     let f = std::fs::File::open(path).map_err(cannot)?;
     if f.metadata()
         .is_ok_and(|m| m.len() > limits::MAX_SCENE_BYTES)

@@ -344,9 +344,44 @@ fn scene_files_and_textures_are_bounded_before_they_are_read() {
         scene::load::<Flat>(Path::new("/dev/zero"))
             .unwrap_err()
             .to_string(),
-        "/dev/zero: the scene file is larger than the limit of 4194304 bytes"
+        "/dev/zero: the scene file is not a regular file (a directory, a device or a FIFO)"
     );
     let dir = scratch("bounded");
+    // A FIFO without a writer would block the open: refused by its type first.
+    #[cfg(unix)]
+    {
+        let fifo = dir.join("fifo.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            assert_eq!(
+                scene::load::<Flat>(&fifo).unwrap_err().to_string(),
+                format!(
+                    "{}: the scene file is not a regular file (a directory, a device or a FIFO)",
+                    fifo.display()
+                )
+            );
+        }
+    }
+    // Truncated, deeply nested, a very long string, NaN and ∞: each refused with a line or a
+    // field, none takes more than the file's length to find.
+    let truncated = &MINIMAL[..MINIMAL.len() / 2];
+    assert!(
+        error_of(truncated).starts_with("test.toml: "),
+        "{}",
+        error_of(truncated)
+    );
+    let deep = format!(
+        "{MINIMAL}x = {}{}\n",
+        "[".repeat(100_000),
+        "]".repeat(100_000)
+    );
+    assert!(
+        error_of(&deep).starts_with("test.toml: line "),
+        "{}",
+        error_of(&deep)
+    );
+    let long = format!("{MINIMAL}name = \"{}\"\n", "x".repeat(1 << 20));
+    assert!(error_of(&long).len() < 400, "{}", &error_of(&long)[..400]);
     let big = dir.join("big.toml");
     let mut src = String::from(MINIMAL);
     while src.len() <= 4 << 20 {

@@ -133,3 +133,42 @@ fn cd_preset_renders_with_both_integrators() {
         assert!(img.pixels.iter().all(|c| c.is_finite()), "{integrator:?}");
     }
 }
+
+/// An `efficiency` that is neither a preset nor `amplitude` is refused at that field with the
+/// accepted names (case-sensitive, as `Preset`'s `FromStr`), with or without `period_nm`; a
+/// missing period is reported as such only for the amplitude reading.
+#[test]
+fn an_unknown_efficiency_names_its_field_and_the_accepted_values() {
+    let scene = |grating: &str| {
+        format!(
+            "[radiometry]\nexposure = 1.0\n[camera]\nposition = [0.0, 1.0, 0.0]\n\
+             look_at = [0.0, 0.0, 0.3]\n[[objects]]\nshape = \"quad\"\n[objects.material]\n\
+             type = \"grating\"\nmodel = \"radiometric\"\n{grating}"
+        )
+    };
+    let err = |g: &str| {
+        scene::parse::<Radiometric>(&scene(g), "t.toml", "t", Path::new("."))
+            .unwrap_err()
+            .to_string()
+    };
+    let expected =
+        "unknown efficiency preset: expected one of cd, dvd, blazed600, foil or amplitude";
+    for (grating, got) in [
+        ("efficiency = \"CD\"\n", "\"CD\""),
+        ("efficiency = \"\"\n", "\"\""),
+        ("efficiency = \"CD\"\nperiod_nm = 1600.0\n", "\"CD\""),
+    ] {
+        let e = err(grating);
+        assert!(
+            e.ends_with(&format!(
+                "field objects[0].material.efficiency: {expected}, got {got}"
+            )),
+            "{grating}: {e}"
+        );
+    }
+    let e = err("efficiency = \"amplitude\"\n");
+    assert!(
+        e.ends_with("field objects[0].material.period_nm: missing: a grating needs period_nm (or lines_per_mm)"),
+        "{e}"
+    );
+}

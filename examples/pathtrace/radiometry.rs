@@ -295,7 +295,8 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
                     ),
                 ));
             }
-            Ok(bsdf.with_efficiency(OrderEfficiency::preset(preset)))
+            bsdf.with_efficiency(OrderEfficiency::preset(preset))
+                .map_err(|e| model_error(g, path, e))
         }
     }
 }

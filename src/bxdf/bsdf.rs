@@ -238,7 +238,8 @@ impl BsdfSample {
         }
     }
 
-    /// The Monte-Carlo weight f·cos θi/pdf (0 when pdf is 0).
+    /// The Monte-Carlo weight f·cos θi/pdf (0 when pdf is 0), saturating at ±`f64::MAX` (a
+    /// caller's subnormal pdf such as 5·10⁻³²⁴ would make it infinite).
     ///
     /// ```
     /// use diffraction::{BsdfFlags, BsdfSample};
@@ -249,7 +250,7 @@ impl BsdfSample {
     #[must_use]
     pub fn weight(&self) -> f64 {
         if self.pdf > 0.0 {
-            self.f * self.wi.z / self.pdf
+            (self.f * self.wi.z / self.pdf).clamp(-f64::MAX, f64::MAX)
         } else {
             0.0
         }
@@ -337,7 +338,8 @@ impl BsdfSample4 {
     }
 
     /// The throughput factor of each wavelength, f_j·cos θi/pdf\[0\] (the direction was drawn
-    /// with the hero's density); 0 everywhere when that density is not positive. A path tracer
+    /// with the hero's density); 0 everywhere when that density is not positive; each value
+    /// saturates at ±`f64::MAX` (a subnormal density would make it infinite). A path tracer
     /// multiplies its throughput by it and applies the MIS weight of
     /// [`HeroMis`](crate::HeroMis) where the path meets light.
     ///
@@ -351,7 +353,11 @@ impl BsdfSample4 {
     pub fn weight(&self) -> SampledSpectrum {
         let p = self.pdf[0];
         if p > 0.0 {
-            self.f * (self.wi.z / p)
+            let k = (self.wi.z / p).clamp(-f64::MAX, f64::MAX);
+            let v = self.f.values();
+            SampledSpectrum::new(core::array::from_fn(|j| {
+                (v[j] * k).clamp(-f64::MAX, f64::MAX)
+            }))
         } else {
             SampledSpectrum::ZERO
         }

@@ -416,6 +416,28 @@ struct DeltaNodes<'a> {
     work_done: core::cell::Cell<usize>,
 }
 
+/// An upper bound of `spectral.weight(λ)` per channel over the band: E and the observer are
+/// linear between their 1 nm rows, so each is largest at a row, and the product of their
+/// largest values bounds the weight.
+pub(super) fn peak_weight(spectral: &Spectral) -> [f64; 3] {
+    let (mut e_max, mut c_max) = (0.0f64, [0.0f64; 3]);
+    let mut l = LAMBDA_MIN_NM;
+    while l <= LAMBDA_MAX_NM {
+        let w = spectral.weight(l);
+        let e = spectral.illuminant().power(l);
+        e_max = e_max.max(e);
+        if e > 0.0 {
+            c_max = [
+                c_max[0].max(w.x / e),
+                c_max[1].max(w.y / e),
+                c_max[2].max(w.z / e),
+            ];
+        }
+        l += 1.0;
+    }
+    [e_max * c_max[0], e_max * c_max[1], e_max * c_max[2]]
+}
+
 impl<'a> DeltaNodes<'a> {
     fn new(
         spectral: &'a Spectral,
@@ -424,27 +446,11 @@ impl<'a> DeltaNodes<'a> {
         white: [f64; 3],
         floor: f64,
     ) -> DeltaNodes<'a> {
-        // E and the observer are linear between their 1 nm rows, so each is largest at a row:
-        // the product of their largest values bounds the weight.
-        let (mut e_max, mut c_max) = (0.0f64, [0.0f64; 3]);
-        let mut l = LAMBDA_MIN_NM;
-        while l <= LAMBDA_MAX_NM {
-            let w = spectral.weight(l);
-            let e = spectral.illuminant().power(l);
-            e_max = e_max.max(e);
-            if e > 0.0 {
-                c_max = [
-                    c_max[0].max(w.x / e),
-                    c_max[1].max(w.y / e),
-                    c_max[2].max(w.z / e),
-                ];
-            }
-            l += 1.0;
-        }
+        let peak_weight = peak_weight(spectral);
         DeltaNodes {
             spectral,
             bsdf,
-            peak_weight: [e_max * c_max[0], e_max * c_max[1], e_max * c_max[2]],
+            peak_weight,
             white,
             dark: accuracy * DARK_SHARE * floor,
             evaluations: core::cell::Cell::new(0),

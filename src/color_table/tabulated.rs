@@ -278,13 +278,15 @@ impl Tabulated {
     /// The table from its stored form, validated: `u_lo` a power of two in [`min_u_lo`, 1]
     /// (`expected_u_lo` where the table's model fixes it), one interval count per block of
     /// that layout, each a power of two in [2, 1024], 1 + Σ intervals values, at most
-    /// `max_nodes`, every channel finite and ≥ 0; `scale` positive, `error` ≥ 0. The errors
-    /// name the field.
+    /// `max_nodes`, every channel finite and in [0, `limits.value`]; `scale` in
+    /// `limits.scale`, `error` in [0, `limits.error_times_scale`/scale]. The errors name the
+    /// field.
     #[cfg_attr(not(feature = "serde"), allow(dead_code))]
     pub(super) fn from_parts(
         expected_u_lo: f64,
         stored: Stored<'_>,
         max_nodes: usize,
+        limits: &Limits,
     ) -> Result<Tabulated, Error> {
         let Stored {
             u_lo,
@@ -306,8 +308,21 @@ impl Tabulated {
         if !(scale > 0.0 && scale.is_finite()) {
             return Err(Error::invalid("scale", scale, Requirement::Positive));
         }
+        let (min, max) = limits.scale;
+        if !(scale >= min && scale <= max) {
+            return Err(Error::invalid(
+                "scale",
+                scale,
+                Requirement::Within { min, max },
+            ));
+        }
         if !(error >= 0.0 && error.is_finite()) {
             return Err(Error::invalid("error", error, Requirement::NonNegative));
+        }
+        let max = limits.error_times_scale / scale;
+        if error > max {
+            let requirement = Requirement::Within { min: 0.0, max };
+            return Err(Error::invalid("error", error, requirement));
         }
         let bounds = bounds(u_lo);
         let blocks = bounds.len() - 1;
@@ -357,6 +372,14 @@ impl Tabulated {
             .find(|v| !(**v >= 0.0 && v.is_finite()))
         {
             return Err(Error::invalid("values", *bad, Requirement::NonNegative));
+        }
+        for v in values {
+            for (&x, &max) in v.iter().zip(&limits.value) {
+                if x > max {
+                    let requirement = Requirement::Within { min: 0.0, max };
+                    return Err(Error::invalid("values", x, requirement));
+                }
+            }
         }
         let mut next = 0usize;
         let work: Vec<Work> = bounds
@@ -473,6 +496,17 @@ impl Tabulated {
             + self.nodes.capacity() * core::mem::size_of::<Node>()
             + self.cumulative.capacity() * core::mem::size_of::<[f64; 3]>()
     }
+}
+
+/// What a build of the stored table's model can produce (see [`Tabulated::from_parts`]): the
+/// largest node value per channel, the range of the error scale, and a bound of
+/// error·scale (the worst midpoint error is a difference of bounded colours over a tolerance of
+/// at least (6/29)²·white·scale).
+#[cfg_attr(not(feature = "serde"), allow(dead_code))]
+pub(super) struct Limits {
+    pub value: [f64; 3],
+    pub scale: (f64, f64),
+    pub error_times_scale: f64,
 }
 
 /// A table's stored fields (see [`Tabulated::from_parts`]).

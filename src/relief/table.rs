@@ -189,10 +189,12 @@ impl Cell {
         if sm.abs() >= 1.0 {
             return Polarised::default();
         }
-        let (mut num_te, mut num_tm, mut den) = (0.0, 0.0, 0.0);
+        // The corners where the order propagates, with their bilinear weights and
+        // q-factors cos θi,c/cos θm,c.
+        let (mut g, mut den) = ([0.0f64; 4], 0.0);
+        let mut w = [0.0f64; 4];
         for c in 0..4 {
-            let w = self.w[c];
-            if w <= 0.0 {
+            if self.w[c] <= 0.0 {
                 continue;
             }
             // The same formula as the query's sin θm: at a node the two cancel exactly, which
@@ -200,16 +202,26 @@ impl Cell {
             let smc = self.s_c[c] + mf * self.l_c[c] / period_nm;
             let cm2 = 1.0 - smc * smc;
             if cm2 > GRAZING_CORNER {
-                let f = w * self.cos_c[c] / math::sqrt(cm2);
-                num_te += f * te.at(base + self.index[c]);
-                num_tm += f * tm.at(base + self.index[c]);
-                den += w;
+                w[c] = self.w[c];
+                g[c] = self.cos_c[c] / math::sqrt(cm2);
+                den += self.w[c];
             }
         }
         if den <= 0.0 {
             return Polarised::default();
         }
-        let k = math::sqrt(1.0 - sm * sm) / self.cos_i / den;
+        // The weights renormalised before they multiply anything: a cell whose only
+        // propagating corner has a tiny (even subnormal) weight gives that corner's q, never
+        // 0·∞ (each normalised weight is in [0, 1], each g at most 10³).
+        let (mut num_te, mut num_tm) = (0.0, 0.0);
+        for c in 0..4 {
+            if w[c] > 0.0 {
+                let f = (w[c] / den) * g[c];
+                num_te += f * te.at(base + self.index[c]);
+                num_tm += f * tm.at(base + self.index[c]);
+            }
+        }
+        let k = math::sqrt(1.0 - sm * sm) / self.cos_i;
         Polarised {
             te: num_te * k,
             tm: num_tm * k,

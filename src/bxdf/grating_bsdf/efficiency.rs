@@ -48,7 +48,6 @@ use alloc::sync::Arc;
 use glam::DVec3;
 
 use super::GratingBsdf;
-#[cfg(all(feature = "relief", not(feature = "presets")))]
 use crate::error::Error;
 #[cfg(feature = "relief")]
 use crate::error::Requirement;
@@ -60,7 +59,7 @@ use crate::relief::Preset;
 #[cfg(feature = "relief")]
 use crate::Grating;
 #[cfg(feature = "presets")]
-use crate::{error::Error, Slits};
+use crate::Slits;
 
 /// The most orders a tabulated model's table may store: the sampler reads every order's
 /// efficiency for `wo` into a buffer of this many entries on the stack (no allocation). The
@@ -248,30 +247,38 @@ impl GratingBsdf {
     /// ρ = w/d, which a tabulated model does not use: its lobes are (N·d/λ)·F_N·g without the
     /// single-slit factor, and the orders' powers are the table's). The groove spread is kept.
     ///
+    /// # Errors
+    ///
+    /// The grating of the table's period cannot be built (ρ·d rounds to 0: an open fraction
+    /// below about 10⁻³⁰⁸/d): the [`Grating`] error, naming `slit_width_nm`. Before, the old
+    /// period was silently kept.
+    ///
     /// ```
     /// use diffraction::grating_bsdf::OrderEfficiency;
     /// use diffraction::relief::Preset;
     /// use diffraction::{Grating, GratingBsdf};
     /// let b = GratingBsdf::new(Grating::new(1500.0, 750.0, 30)?)
-    ///     .with_efficiency(OrderEfficiency::preset(Preset::Cd));
+    ///     .with_efficiency(OrderEfficiency::preset(Preset::Cd))?;
     /// assert_eq!(b.grating().period_nm(), 1600.0);
     /// assert!(b.order_efficiency().is_tabulated());
+    /// // A slit of 5e-324 nm on a 1600 nm grating is an open fraction of 0 at the DVD's period.
+    /// let thin = GratingBsdf::new(Grating::new(1600.0, 5e-324, 30)?);
+    /// let e = thin.with_efficiency(OrderEfficiency::preset(Preset::Dvd)).unwrap_err();
+    /// assert_eq!(e.to_string(), "invalid slit_width_nm = 0: must be finite and > 0");
     /// # Ok::<(), diffraction::Error>(())
     /// ```
-    #[must_use]
-    pub fn with_efficiency(&self, efficiency: OrderEfficiency) -> GratingBsdf {
+    pub fn with_efficiency(&self, efficiency: OrderEfficiency) -> Result<GratingBsdf, Error> {
         #[cfg(feature = "relief")]
         let grating = match efficiency.table() {
             Some(t) if t.period_nm() != self.grating.period_nm() => {
                 let d = t.period_nm();
-                Grating::with_slits(d, self.grating.open_fraction() * d, self.grating.slits())
-                    .unwrap_or(self.grating)
+                Grating::with_slits(d, self.grating.open_fraction() * d, self.grating.slits())?
             }
             _ => self.grating,
         };
         #[cfg(not(feature = "relief"))]
         let grating = self.grating;
-        GratingBsdf::build(grating, self.groove, efficiency)
+        Ok(GratingBsdf::build(grating, self.groove, efficiency))
     }
 
     /// A shipped preset's grating (its rigorous order efficiencies, [`Preset::table`]) with
@@ -300,7 +307,7 @@ impl GratingBsdf {
     pub fn preset(preset: Preset, slits: impl Into<Slits>) -> Result<GratingBsdf, Error> {
         let d = preset.period_nm();
         let grating = Grating::with_slits(d, 0.5 * d, slits.into())?;
-        Ok(GratingBsdf::new(grating).with_efficiency(OrderEfficiency::preset(preset)))
+        GratingBsdf::new(grating).with_efficiency(OrderEfficiency::preset(preset))
     }
 
     /// Where the order efficiencies come from.

@@ -39,7 +39,7 @@ const DEFAULT_LAMBDA_NM: [f64; 25] = [
 ];
 
 /// Checks a period: finite, > 0 and at most [`MAX_PERIOD_NM`].
-fn check_period(name: &'static str, period_nm: f64) -> Result<(), Error> {
+pub(super) fn check_period(name: &'static str, period_nm: f64) -> Result<(), Error> {
     positive(name, period_nm)?;
     if period_nm > MAX_PERIOD_NM {
         let requirement = Requirement::AtMost {
@@ -53,7 +53,11 @@ fn check_period(name: &'static str, period_nm: f64) -> Result<(), Error> {
 
 /// Checks one axis: 2 to [`MAX_TABLE_NODES`] finite values, strictly increasing, inside
 /// [lo, hi] (`lo = None`: positive).
-fn check_axis(name: &'static str, v: &[f64], range: Option<(f64, f64)>) -> Result<(), Error> {
+pub(super) fn check_axis(
+    name: &'static str,
+    v: &[f64],
+    range: Option<(f64, f64)>,
+) -> Result<(), Error> {
     if v.len() < 2 || v.len() > MAX_TABLE_NODES {
         let requirement = Requirement::Count {
             min: 2,
@@ -288,159 +292,4 @@ impl EfficiencyTable {
 }
 
 #[cfg(feature = "serde")]
-mod json {
-    use alloc::format;
-    use alloc::string::String;
-    use alloc::vec::Vec;
-
-    use super::{check_axis, check_period, EfficiencyTable, MAX_TABLE_ORDERS};
-    use crate::error::{Error, Requirement};
-
-    /// The `format` field's one accepted value.
-    const FORMAT: &str = "diffraction-efficiency-table";
-    /// The `version` field's one accepted value.
-    const VERSION: i64 = 1;
-
-    /// The fields the crate reads; the others (`name`, `description`, `symmetric`, `solver`,
-    /// `validation`, `command`, `sha256`, the grating's other fields) are ignored.
-    #[derive(serde::Deserialize)]
-    struct File {
-        format: String,
-        version: i64,
-        grating: Grating,
-        sin_theta_i: Vec<f64>,
-        lambda_nm: Vec<f64>,
-        order_min: i64,
-        order_max: i64,
-        te: Vec<Vec<Vec<f64>>>,
-        tm: Vec<Vec<Vec<f64>>>,
-    }
-
-    #[derive(serde::Deserialize)]
-    struct Grating {
-        period_nm: f64,
-    }
-
-    /// Flattens one polarisation's `[order][λ][sin θi]` array, checking its shape.
-    fn flatten(
-        name: &str,
-        a: Vec<Vec<Vec<f64>>>,
-        shape: (usize, usize, usize),
-    ) -> Result<Vec<f64>, String> {
-        let (n_o, n_l, n_s) = shape;
-        let expected = format!("[{n_o}][{n_l}][{n_s}] ([order][lambda][sin])");
-        if a.len() != n_o {
-            return Err(format!("{name}: {} orders, expected {expected}", a.len()));
-        }
-        let mut out = Vec::with_capacity(n_o * n_l * n_s);
-        for (k, rows) in a.into_iter().enumerate() {
-            if rows.len() != n_l {
-                return Err(format!(
-                    "{name}: order index {k} has {} wavelength rows, expected {expected}",
-                    rows.len()
-                ));
-            }
-            for (j, row) in rows.into_iter().enumerate() {
-                if row.len() != n_s {
-                    return Err(format!(
-                        "{name}: order index {k}, wavelength row {j} has {} values, expected {expected}",
-                        row.len()
-                    ));
-                }
-                out.extend(row);
-            }
-        }
-        Ok(out)
-    }
-
-    impl File {
-        fn into_table(self) -> Result<EfficiencyTable, String> {
-            let typed = |e: Error| format!("{e}");
-            if self.format != FORMAT {
-                return Err(format!(
-                    "format: expected \"{FORMAT}\", got {:?}",
-                    self.format
-                ));
-            }
-            if self.version != VERSION {
-                return Err(format!("version: expected {VERSION}, got {}", self.version));
-            }
-            check_period("grating.period_nm", self.grating.period_nm).map_err(typed)?;
-            check_axis("sin_theta_i", &self.sin_theta_i, Some((-1.0, 1.0))).map_err(typed)?;
-            check_axis("lambda_nm", &self.lambda_nm, None).map_err(typed)?;
-            let i32_range = Requirement::Within {
-                min: f64::from(i32::MIN),
-                max: f64::from(i32::MAX),
-            };
-            let order_min = i32::try_from(self.order_min).map_err(|_| {
-                typed(Error::invalid(
-                    "order_min",
-                    self.order_min as f64,
-                    i32_range,
-                ))
-            })?;
-            if self.order_max < self.order_min {
-                let requirement = Requirement::AtLeast {
-                    bound_name: "order_min",
-                    bound: self.order_min as f64,
-                };
-                return Err(typed(Error::invalid(
-                    "order_max",
-                    self.order_max as f64,
-                    requirement,
-                )));
-            }
-            let n_o = self.order_max - self.order_min + 1;
-            if n_o > MAX_TABLE_ORDERS as i64 {
-                let requirement = Requirement::Within {
-                    min: self.order_min as f64,
-                    max: (self.order_min + MAX_TABLE_ORDERS as i64 - 1) as f64,
-                };
-                return Err(typed(Error::invalid(
-                    "order_max",
-                    self.order_max as f64,
-                    requirement,
-                )));
-            }
-            let shape = (n_o as usize, self.lambda_nm.len(), self.sin_theta_i.len());
-            let te = flatten("te", self.te, shape)?;
-            let tm = flatten("tm", self.tm, shape)?;
-            EfficiencyTable::new(
-                self.grating.period_nm,
-                order_min,
-                self.sin_theta_i,
-                self.lambda_nm,
-                te,
-                tm,
-            )
-            .map_err(typed)
-        }
-    }
-
-    /// The JSON table of `docs/efficiency_tables.md` (features `serde` and `alloc`), checked as
-    /// [`EfficiencyTable::new`] checks (and `format` = `"diffraction-efficiency-table"`,
-    /// `version` = 1, `order_max` ≥ `order_min`, `te` and `tm` of shape
-    /// `[order_max − order_min + 1][n_λ][n_s]`); each error names the field. Fields the crate does
-    /// not use (`name`, `description`, `symmetric`, `solver`, `validation`, `command`, `sha256`,
-    /// the grating's other fields) are accepted and ignored. The whole file is read before the
-    /// checks: bound its size where it comes from an untrusted source.
-    ///
-    /// ```
-    /// use diffraction::relief::EfficiencyTable;
-    /// let json = r#"{"format": "diffraction-efficiency-table", "version": 1,
-    ///     "grating": {"period_nm": 1000.0, "profile": "sinusoid"}, "solver": {},
-    ///     "sin_theta_i": [0.0, 0.5], "lambda_nm": [500.0, 600.0], "order_min": 0, "order_max": 0,
-    ///     "te": [[[0.9, 0.9], [0.9, 0.9]]], "tm": [[[0.8, 0.8], [0.8, 0.8]]]}"#;
-    /// let t: EfficiencyTable = serde_json::from_str(json).unwrap();
-    /// assert!((t.efficiency(0, 0.2, 550.0).tm - 0.8).abs() < 1e-15);
-    /// let bad = json.replace("\"version\": 1", "\"version\": 2");
-    /// let e = serde_json::from_str::<EfficiencyTable>(&bad).unwrap_err();
-    /// assert!(e.to_string().starts_with("version: expected 1, got 2"));
-    /// ```
-    impl<'de> serde::Deserialize<'de> for EfficiencyTable {
-        fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-            let file = File::deserialize(d)?;
-            file.into_table().map_err(serde::de::Error::custom)
-        }
-    }
-}
+mod json;
