@@ -149,7 +149,7 @@ impl Incidence {
         if s2.sqrt() > MAX_THETA.sin() {
             return Err(Error::invalid(
                 "alpha",
-                s2.sqrt(),
+                alpha,
                 "with beta, sqrt(alpha² + beta²) <= sin(89.9°)",
             ));
         }

@@ -17,6 +17,9 @@ pub const MIN_HARMONICS: usize = 21;
 /// The harmonic count grows by this factor between two steps of the convergence loop.
 pub const GROWTH: f64 = 1.5;
 
+const PERIOD_REQUIREMENT: &str =
+    "small enough that the propagating orders (2·n·d/λ + 1, ×2 and ×3 for the convergence steps) fit under max_harmonics";
+
 /// How light that the grating sends back into a cover is counted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CoverPasses {
@@ -52,6 +55,9 @@ pub struct Options {
     pub extrapolation: Extrapolation,
     /// The cover's passes (default multiple).
     pub cover_passes: CoverPasses,
+    /// Use the vector (conical) formulation even at β = 0 (twice the size, for checks; default
+    /// false: the classical mount splits into TE and TM).
+    pub always_conical: bool,
 }
 
 impl Default for Options {
@@ -62,6 +68,7 @@ impl Default for Options {
             slabs: None,
             extrapolation: Extrapolation::Richardson,
             cover_passes: CoverPasses::Multiple,
+            always_conical: false,
         }
     }
 }
@@ -186,11 +193,7 @@ impl Solver {
         // Orders propagating in the cover: they must fit in the truncation with margin.
         let prop = 2.0 * n_c * g.period_nm / inc.wavelength_nm + 1.0;
         if prop + 2.0 > harmonics as f64 {
-            return Err(Error::invalid(
-                "period_nm",
-                g.period_nm,
-                "small enough that the propagating orders (2·n·d/λ + 1) fit in the harmonic cap",
-            ));
+            return Err(Error::invalid("period_nm", g.period_nm, PERIOD_REQUIREMENT));
         }
         Ok(())
     }
@@ -204,7 +207,7 @@ impl Solver {
         let nh = odd(harmonics as f64);
         self.check(g, &inc, nh)?;
         let slabs = self.slabs_for(g, &inc);
-        let raw = solve_raw(g, &inc, nh, slabs, self.options.cover_passes)?;
+        let raw = solve_raw(g, &inc, nh, slabs, &self.options)?;
         Ok(Solution {
             orders: raw.orders,
             harmonics: nh,
@@ -225,15 +228,16 @@ impl Solver {
         let slabs = self.slabs_for(g, &inc);
         let tol = self.options.tolerance;
         let mut nh = odd((MIN_HARMONICS as f64).max(4.0 * n_c * g.period_nm / inc.wavelength_nm + 11.0));
-        if nh > cap {
-            nh = odd(cap as f64 - 1.0).min(cap);
+        if odd(odd(nh as f64 * GROWTH) as f64 * GROWTH) > cap {
+            return Err(Error::invalid("period_nm", g.period_nm, PERIOD_REQUIREMENT));
         }
-        let conical = inc.beta != 0.0;
+        let conical = inc.beta != 0.0 || self.options.always_conical;
         let extrap = self.options.extrapolation == Extrapolation::Richardson && slabs > 0;
-        let mut prev = solve_raw(g, &inc, nh, slabs, self.options.cover_passes)?;
+        let mut prev = solve_raw(g, &inc, nh, slabs, &self.options)?;
         let mut prev_n = nh;
         let mut prev_ext: Option<Vec<Order>> = None;
         let mut change = f64::NAN;
+        let mut prev_change = f64::INFINITY;
         loop {
             let next = odd(prev_n as f64 * GROWTH);
             if next > cap {
@@ -243,7 +247,7 @@ impl Solver {
                     tolerance: tol,
                 });
             }
-            let cur = solve_raw(g, &inc, next, slabs, self.options.cover_passes)?;
+            let cur = solve_raw(g, &inc, next, slabs, &self.options)?;
             let plain = max_change(&prev.orders, &cur.orders);
             if !extrap {
                 change = plain;
@@ -258,11 +262,18 @@ impl Solver {
                     });
                 }
             } else {
+                if prev_ext.is_none() {
+                    change = plain;
+                }
                 let ext = richardson(&prev.orders, prev_n, &cur.orders, next, conical);
                 if let Some(pe) = &prev_ext {
                     let ch = max_change(pe, &ext).max(max_change_te(&prev.orders, &cur.orders, conical));
+                    // Two extrapolations agreeing once can be chance (the sequence oscillates):
+                    // the step before must have been settling too.
+                    let settled = prev_change < 2.0 * tol;
+                    prev_change = ch;
                     change = ch;
-                    if ch < tol {
+                    if ch < tol && settled {
                         return Ok(Solution {
                             orders: ext,
                             harmonics: next,
@@ -347,7 +358,8 @@ fn off_rayleigh(alpha: f64, beta: f64, step: f64, media: &[f64]) -> f64 {
     a
 }
 
-fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, passes: CoverPasses) -> Result<Raw, Error> {
+fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, opt: &Options) -> Result<Raw, Error> {
+    let passes = opt.cover_passes;
     let lambda = inc.wavelength_nm;
     let (n, k) = g.metal.index(lambda);
     let eps_m = c64::new(n, k) * c64::new(n, k);
@@ -364,7 +376,7 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, passes: Cove
     let kx: Vec<f64> = (-mm..=mm).map(|m| alpha + m as f64 * step).collect();
     let k0 = core::f64::consts::TAU / lambda;
     let geometry = g.slabs(slabs.max(1));
-    let pols: &[Pol] = if beta == 0.0 { &[Pol::Te, Pol::Tm] } else { &[Pol::Conical] };
+    let pols: &[Pol] = if beta == 0.0 && !opt.always_conical { &[Pol::Te, Pol::Tm] } else { &[Pol::Conical] };
     // Power matrices per polarisation set, and the channels.
     let mut results: Vec<(Vec<Channel>, Vec<Vec<f64>>)> = Vec::new();
     let mut transmitted = [0.0f64; 2];
@@ -402,7 +414,7 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, passes: Cove
         }
         if want_t {
             let sub = &stack.layers[stack.layers.len() - 1];
-            for (slot, ch) in chans.iter().filter(|c| c.order == mm as usize).enumerate() {
+            for (c, ch) in chans.iter().enumerate().filter(|(_, c)| c.order == mm as usize) {
                 let mut d = Mat::<c64>::zeros(size, 1);
                 for &(i, v) in &ch.basis {
                     d[(i, 0)] = c64::new(v, 0.0);
@@ -411,19 +423,12 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, passes: Cove
                 let h = &sub.v * &dt;
                 let e: Vec<c64> = (0..size).map(|i| dt[(i, 0)]).collect();
                 let hv: Vec<c64> = (0..size).map(|i| h[(i, 0)]).collect();
-                let mut t = 0.0;
-                for i in 0..lat.harmonics() {
-                    if modal::kz(eps_m, kx[i], beta).im.abs() < 1e-12 {
-                        t += modal::flux(&lat, &e, &hv, i);
-                    }
-                }
-                let idx = match pol {
-                    Pol::Te => 0,
-                    Pol::Tm => 1,
-                    Pol::Conical => ch.pol,
-                };
-                let _ = slot;
-                transmitted[idx] = t / fl[chans.iter().position(|c| c.order == ch.order && c.pol == ch.pol).unwrap_or(0)];
+                // Downward flux of the substrate's propagating orders over the incident flux.
+                let t: f64 = (0..lat.harmonics())
+                    .filter(|&i| modal::kz(eps_m, kx[i], beta).im.abs() < 1e-12)
+                    .map(|i| modal::flux(&lat, &e, &hv, i))
+                    .sum();
+                transmitted[ch.pol] = t / fl[c];
             }
         }
         results.push((chans, pm));
