@@ -38,7 +38,9 @@ pub enum Extrapolation {
     Off,
     /// Richardson in 1/N for the polarisations whose field crosses the profile's corners (TM in
     /// the classical mount, both in the conical mount): η∞ ≈ (N₂η₂ − N₁η₁)/(N₂ − N₁); converged
-    /// when two successive extrapolations agree.
+    /// when two successive extrapolations agree. Where they never agree within the cap but the
+    /// plain values did at some step, the last such plain values are returned
+    /// (`Solution::extrapolated` false).
     Richardson,
 }
 
@@ -106,6 +108,7 @@ pub struct Solution {
     pub slabs: usize,
     /// The error estimate: the largest change of any order's efficiency between the last two
     /// steps (of the extrapolations, where extrapolated); NaN for a fixed-truncation solve.
+    /// Plain values converging like 1/N may still be about twice this from the limit.
     pub error: f64,
     /// Whether some values are extrapolated in 1/N.
     pub extrapolated: bool,
@@ -237,10 +240,14 @@ impl Solver {
         let mut prev_n = nh;
         let mut prev_ext: Option<Vec<Order>> = None;
         let mut change = f64::NAN;
-        let mut prev_change = f64::INFINITY;
+        let mut plain_done: Option<Solution> = None;
         loop {
             let next = odd(prev_n as f64 * GROWTH);
             if next > cap {
+                // Extrapolations that never agreed, over plain steps that did: the plain values.
+                if let Some(plain) = plain_done.take() {
+                    return Ok(plain);
+                }
                 return Err(Error::NotConverged {
                     harmonics: prev_n,
                     change,
@@ -249,6 +256,16 @@ impl Solver {
             }
             let cur = solve_raw(g, &inc, next, slabs, &self.options)?;
             let plain = max_change(&prev.orders, &cur.orders);
+            if plain < tol {
+                plain_done = Some(Solution {
+                    orders: cur.orders.clone(),
+                    harmonics: next,
+                    slabs,
+                    error: plain,
+                    extrapolated: false,
+                    transmitted: cur.transmitted,
+                });
+            }
             if !extrap {
                 change = plain;
                 if plain < tol {
@@ -268,12 +285,8 @@ impl Solver {
                 let ext = richardson(&prev.orders, prev_n, &cur.orders, next, conical);
                 if let Some(pe) = &prev_ext {
                     let ch = max_change(pe, &ext).max(max_change_te(&prev.orders, &cur.orders, conical));
-                    // Two extrapolations agreeing once can be chance (the sequence oscillates):
-                    // the step before must have been settling too.
-                    let settled = prev_change < 2.0 * tol;
-                    prev_change = ch;
                     change = ch;
-                    if ch < tol && settled {
+                    if ch < tol {
                         return Ok(Solution {
                             orders: ext,
                             harmonics: next,
