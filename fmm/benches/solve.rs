@@ -9,7 +9,10 @@ fn solves(c: &mut Criterion) {
     let solver = Solver::default();
     let lamellar = Grating {
         period_nm: 740.0,
-        profile: Profile::Lamellar { duty: 0.5, depth_nm: 120.0 },
+        profile: Profile::Lamellar {
+            duty: 0.5,
+            depth_nm: 120.0,
+        },
         metal: Metal::AL,
         cover: None,
     };

@@ -278,7 +278,11 @@ impl Grating {
                     ));
                 }
                 if let Some(bad) = cos.iter().chain(sin.iter()).find(|c| !c.is_finite()) {
-                    return Err(Error::invalid("samples", *bad, "finite Fourier coefficients"));
+                    return Err(Error::invalid(
+                        "samples",
+                        *bad,
+                        "finite Fourier coefficients",
+                    ));
                 }
                 let z = self.heights();
                 depth(span(&z))?;

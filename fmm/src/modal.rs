@@ -107,7 +107,12 @@ pub(crate) fn homogeneous(lat: &Lattice, eps: c64) -> Modes {
 
 /// Fourier coefficients cₖ, k = −K..K (index k + K), of f(t) = `outside` + (`inside` −
 /// `outside`)·[t in one of `ridges`], t = x/d in [0, 1).
-pub(crate) fn coefficients(ridges: &[(f64, f64)], outside: c64, inside: c64, kmax: usize) -> Vec<c64> {
+pub(crate) fn coefficients(
+    ridges: &[(f64, f64)],
+    outside: c64,
+    inside: c64,
+    kmax: usize,
+) -> Vec<c64> {
     let mut c = vec![c64::new(0.0, 0.0); 2 * kmax + 1];
     let jump = inside - outside;
     for &(a, b) in ridges {
@@ -133,11 +138,17 @@ pub(crate) fn toeplitz(c: &[c64], n: usize) -> Mat<c64> {
 }
 
 fn finite(m: &Mat<c64>) -> bool {
-    (0..m.ncols()).all(|j| (0..m.nrows()).all(|i| m[(i, j)].re.is_finite() && m[(i, j)].im.is_finite()))
+    (0..m.ncols())
+        .all(|j| (0..m.nrows()).all(|i| m[(i, j)].re.is_finite() && m[(i, j)].im.is_finite()))
 }
 
 /// The modes of a slab whose permittivity is `eps_out` except `eps_in` on `ridges`.
-pub(crate) fn slab(lat: &Lattice, ridges: &[(f64, f64)], eps_out: c64, eps_in: c64) -> Result<Modes, Error> {
+pub(crate) fn slab(
+    lat: &Lattice,
+    ridges: &[(f64, f64)],
+    eps_out: c64,
+    eps_in: c64,
+) -> Result<Modes, Error> {
     let n = lat.harmonics();
     let one = c64::new(1.0, 0.0);
     let ce = coefficients(ridges, eps_out, eps_in, n - 1);
@@ -149,7 +160,11 @@ pub(crate) fn slab(lat: &Lattice, ridges: &[(f64, f64)], eps_out: c64, eps_in: c
         Pol::Te => {
             let p = Mat::from_fn(n, n, |i, j| if i == j { -one } else { c64::new(0.0, 0.0) });
             let q = Mat::from_fn(n, n, |i, j| {
-                let d = if i == j { c64::new(kx[i] * kx[i], 0.0) } else { c64::new(0.0, 0.0) };
+                let d = if i == j {
+                    c64::new(kx[i] * kx[i], 0.0)
+                } else {
+                    c64::new(0.0, 0.0)
+                };
                 d - e[(i, j)]
             });
             (p, q)
@@ -190,7 +205,9 @@ pub(crate) fn slab(lat: &Lattice, ridges: &[(f64, f64)], eps_out: c64, eps_in: c
     if !finite(&pq) {
         return Err(Error::Numerical("a slab's Toeplitz matrix is singular"));
     }
-    let eig = pq.eigen().map_err(|_| Error::Numerical("a slab's eigenproblem did not converge"))?;
+    let eig = pq
+        .eigen()
+        .map_err(|_| Error::Numerical("a slab's eigenproblem did not converge"))?;
     let w = eig.U().to_owned();
     let s = eig.S().column_vector();
     let lam: Vec<c64> = (0..s.nrows())
@@ -266,7 +283,11 @@ pub(crate) fn reflect(stack: &Stack, keep_chain: bool) -> Result<Reflection, Err
             chain.push(lu);
         }
         if j > 0 {
-            let x: Vec<c64> = a.lam.iter().map(|l| (c64::new(0.0, 1.0) * l * stack.thickness[j]).exp()).collect();
+            let x: Vec<c64> = a
+                .lam
+                .iter()
+                .map(|l| (c64::new(0.0, 1.0) * l * stack.thickness[j]).exp())
+                .collect();
             for jj in 0..size {
                 for ii in 0..size {
                     r[(ii, jj)] *= x[ii] * x[jj];

@@ -126,7 +126,9 @@ impl Solution {
     /// Σ over orders of the TE and TM efficiencies.
     #[must_use]
     pub fn total(&self) -> (f64, f64) {
-        self.orders.iter().fold((0.0, 0.0), |(a, b), o| (a + o.te, b + o.tm))
+        self.orders
+            .iter()
+            .fold((0.0, 0.0), |(a, b), o| (a + o.te, b + o.tm))
     }
 }
 
@@ -156,8 +158,13 @@ fn odd(n: f64) -> usize {
 impl Solver {
     /// A solver with the given options; errors name `tolerance`, `max_harmonics` or `slabs`.
     pub fn new(options: Options) -> Result<Solver, Error> {
-        if !(options.tolerance.is_finite() && options.tolerance >= 1e-9 && options.tolerance <= 0.5) {
-            return Err(Error::invalid("tolerance", options.tolerance, "in [1e-9, 0.5]"));
+        if !(options.tolerance.is_finite() && options.tolerance >= 1e-9 && options.tolerance <= 0.5)
+        {
+            return Err(Error::invalid(
+                "tolerance",
+                options.tolerance,
+                "in [1e-9, 0.5]",
+            ));
         }
         if !(3..=MAX_HARMONICS).contains(&options.max_harmonics) {
             return Err(Error::invalid(
@@ -184,7 +191,9 @@ impl Solver {
         if g.depth_nm() == 0.0 {
             0
         } else if g.is_smooth() {
-            self.options.slabs.unwrap_or_else(|| g.default_slabs(inc.wavelength_nm))
+            self.options
+                .slabs
+                .unwrap_or_else(|| g.default_slabs(inc.wavelength_nm))
         } else {
             g.slabs(1).len()
         }
@@ -203,9 +212,18 @@ impl Solver {
 
     /// One solve at a fixed odd harmonic count (an even count is raised by one), no convergence
     /// loop; `Solution::error` is NaN.
-    pub fn solve_at(&self, g: &Grating, inc: Incidence, harmonics: usize) -> Result<Solution, Error> {
+    pub fn solve_at(
+        &self,
+        g: &Grating,
+        inc: Incidence,
+        harmonics: usize,
+    ) -> Result<Solution, Error> {
         if !(3..=MAX_HARMONICS).contains(&harmonics) {
-            return Err(Error::invalid("harmonics", harmonics as f64, "in [3, 1601]"));
+            return Err(Error::invalid(
+                "harmonics",
+                harmonics as f64,
+                "in [3, 1601]",
+            ));
         }
         let nh = odd(harmonics as f64);
         self.check(g, &inc, nh)?;
@@ -230,7 +248,8 @@ impl Solver {
         let n_c = g.cover.map_or(1.0, |c| c.index);
         let slabs = self.slabs_for(g, &inc);
         let tol = self.options.tolerance;
-        let mut nh = odd((MIN_HARMONICS as f64).max(4.0 * n_c * g.period_nm / inc.wavelength_nm + 11.0));
+        let mut nh =
+            odd((MIN_HARMONICS as f64).max(4.0 * n_c * g.period_nm / inc.wavelength_nm + 11.0));
         if odd(odd(nh as f64 * GROWTH) as f64 * GROWTH) > cap {
             return Err(Error::invalid("period_nm", g.period_nm, PERIOD_REQUIREMENT));
         }
@@ -284,7 +303,8 @@ impl Solver {
                 }
                 let ext = richardson(&prev.orders, prev_n, &cur.orders, next, conical);
                 if let Some(pe) = &prev_ext {
-                    let ch = max_change(pe, &ext).max(max_change_te(&prev.orders, &cur.orders, conical));
+                    let ch =
+                        max_change(pe, &ext).max(max_change_te(&prev.orders, &cur.orders, conical));
                     change = ch;
                     if ch < tol {
                         return Ok(Solution {
@@ -317,7 +337,10 @@ fn max_change_te(a: &[Order], b: &[Order], conical: bool) -> f64 {
     if conical {
         return 0.0;
     }
-    a.iter().zip(b).map(|(x, y)| (x.te - y.te).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x.te - y.te).abs())
+        .fold(0.0, f64::max)
 }
 
 fn richardson(a: &[Order], na: usize, b: &[Order], nb: usize, conical: bool) -> Vec<Order> {
@@ -361,7 +384,9 @@ fn off_rayleigh(alpha: f64, beta: f64, step: f64, media: &[f64]) -> f64 {
     for _ in 0..4 {
         let bad = (-m_max..=m_max).any(|m| {
             let am = a + m as f64 * step;
-            media.iter().any(|&n| (n * n - am * am - beta * beta).abs() < 1e-10)
+            media
+                .iter()
+                .any(|&n| (n * n - am * am - beta * beta).abs() < 1e-10)
         });
         if !bad {
             break;
@@ -371,7 +396,13 @@ fn off_rayleigh(alpha: f64, beta: f64, step: f64, media: &[f64]) -> f64 {
     a
 }
 
-fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, opt: &Options) -> Result<Raw, Error> {
+fn solve_raw(
+    g: &Grating,
+    inc: &Incidence,
+    nh: usize,
+    slabs: usize,
+    opt: &Options,
+) -> Result<Raw, Error> {
     let passes = opt.cover_passes;
     let lambda = inc.wavelength_nm;
     let (n, k) = g.metal.index(lambda);
@@ -389,13 +420,21 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, opt: &Option
     let kx: Vec<f64> = (-mm..=mm).map(|m| alpha + m as f64 * step).collect();
     let k0 = core::f64::consts::TAU / lambda;
     let geometry = g.slabs(slabs.max(1));
-    let pols: &[Pol] = if beta == 0.0 && !opt.always_conical { &[Pol::Te, Pol::Tm] } else { &[Pol::Conical] };
+    let pols: &[Pol] = if beta == 0.0 && !opt.always_conical {
+        &[Pol::Te, Pol::Tm]
+    } else {
+        &[Pol::Conical]
+    };
     // Power matrices per polarisation set, and the channels.
     let mut results: Vec<(Vec<Channel>, Vec<Vec<f64>>)> = Vec::new();
     let mut transmitted = [0.0f64; 2];
     let want_t = k == 0.0 && g.cover.is_none();
     for &pol in pols {
-        let lat = Lattice { kx: kx.clone(), beta, pol };
+        let lat = Lattice {
+            kx: kx.clone(),
+            beta,
+            pol,
+        };
         let mut layers = vec![modal::homogeneous(&lat, eps_c)];
         let mut thickness = vec![0.0];
         for s in &geometry {
@@ -427,7 +466,11 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, opt: &Option
         }
         if want_t {
             let sub = &stack.layers[stack.layers.len() - 1];
-            for (c, ch) in chans.iter().enumerate().filter(|(_, c)| c.order == mm as usize) {
+            for (c, ch) in chans
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.order == mm as usize)
+            {
                 let mut d = Mat::<c64>::zeros(size, 1);
                 for &(i, v) in &ch.basis {
                     d[(i, 0)] = c64::new(v, 0.0);
@@ -462,10 +505,23 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, opt: &Option
     let q_inc = (alpha * alpha + beta * beta).sqrt();
     for (chans, pm) in &results {
         for (inc_pol, target) in [(0usize, 0usize), (1, 1)] {
-            let Some(c_in) = chans.iter().position(|c| c.order == mm as usize && c.pol == inc_pol) else {
+            let Some(c_in) = chans
+                .iter()
+                .position(|c| c.order == mm as usize && c.pol == inc_pol)
+            else {
                 continue;
             };
-            let eta = through_cover(chans, pm, c_in, n_c, q_inc, beta, &kx, g.cover.is_some(), passes);
+            let eta = through_cover(
+                chans,
+                pm,
+                c_in,
+                n_c,
+                q_inc,
+                beta,
+                &kx,
+                g.cover.is_some(),
+                passes,
+            );
             for (c, ch) in chans.iter().enumerate() {
                 let a = kx[ch.order];
                 if a * a + beta * beta < 1.0 {
@@ -481,7 +537,10 @@ fn solve_raw(g: &Grating, inc: &Incidence, nh: usize, slabs: usize, opt: &Option
             }
         }
     }
-    if orders.iter().any(|o| !(o.te.is_finite() && o.tm.is_finite())) {
+    if orders
+        .iter()
+        .any(|o| !(o.te.is_finite() && o.tm.is_finite()))
+    {
         return Err(Error::Numerical("a non-finite efficiency"));
     }
     Ok(Raw {
@@ -508,13 +567,33 @@ fn channels(lat: &Lattice, n_c: f64, phi: f64) -> Vec<Channel> {
             continue;
         }
         match lat.pol {
-            Pol::Te => out.push(Channel { order: i, pol: 0, basis: vec![(i, 1.0)] }),
-            Pol::Tm => out.push(Channel { order: i, pol: 1, basis: vec![(i, 1.0)] }),
+            Pol::Te => out.push(Channel {
+                order: i,
+                pol: 0,
+                basis: vec![(i, 1.0)],
+            }),
+            Pol::Tm => out.push(Channel {
+                order: i,
+                pol: 1,
+                basis: vec![(i, 1.0)],
+            }),
             Pol::Conical => {
                 let q = (a * a + b * b).sqrt();
-                let (c, s) = if q > 0.0 { (a / q, b / q) } else { (phi.cos(), phi.sin()) };
-                out.push(Channel { order: i, pol: 0, basis: vec![(i, -s), (n + i, c)] });
-                out.push(Channel { order: i, pol: 1, basis: vec![(i, c), (n + i, s)] });
+                let (c, s) = if q > 0.0 {
+                    (a / q, b / q)
+                } else {
+                    (phi.cos(), phi.sin())
+                };
+                out.push(Channel {
+                    order: i,
+                    pol: 0,
+                    basis: vec![(i, -s), (n + i, c)],
+                });
+                out.push(Channel {
+                    order: i,
+                    pol: 1,
+                    basis: vec![(i, c), (n + i, s)],
+                });
             }
         }
     }

@@ -13,7 +13,12 @@ const ENERGY_TOLERANCE: f64 = 1e-10;
 const CONICAL_CLASSICAL_TOLERANCE: f64 = 1e-10;
 
 fn flat(metal: Metal) -> Grating {
-    Grating { period_nm: 800.0, profile: Profile::Flat, metal, cover: None }
+    Grating {
+        period_nm: 800.0,
+        profile: Profile::Flat,
+        metal,
+        cover: None,
+    }
 }
 
 #[test]
@@ -26,8 +31,16 @@ fn flat_metal_is_fresnel_classical_and_conical() {
                 let sol = solver.solve(&flat(metal), inc).unwrap();
                 let o = sol.order(0).unwrap();
                 let (rs, rp) = metal.reflectance(550.0, theta.cos());
-                assert!((o.te - rs).abs() < FRESNEL_TOLERANCE, "{metal} θ {theta} φ {phi}: {} vs {rs}", o.te);
-                assert!((o.tm - rp).abs() < FRESNEL_TOLERANCE, "{metal} θ {theta} φ {phi}: {} vs {rp}", o.tm);
+                assert!(
+                    (o.te - rs).abs() < FRESNEL_TOLERANCE,
+                    "{metal} θ {theta} φ {phi}: {} vs {rs}",
+                    o.te
+                );
+                assert!(
+                    (o.tm - rp).abs() < FRESNEL_TOLERANCE,
+                    "{metal} θ {theta} φ {phi}: {} vs {rp}",
+                    o.tm
+                );
                 // Every other order carries nothing.
                 for other in sol.orders.iter().filter(|o| o.m != 0) {
                     assert!(other.te < 1e-20 && other.tm < 1e-20);
@@ -56,8 +69,15 @@ fn bessel_j(m: i32, x: f64) -> f64 {
 fn shallow_sinusoid_tends_to_the_scalar_bessel_limit() {
     let lambda = 500.0;
     let (d, h) = (5000.0, 10.0);
-    let g = Grating { period_nm: d, profile: Profile::Sinusoid { depth_nm: h }, metal: Metal::AG, cover: None };
-    let sol = Solver::default().solve_at(&g, Incidence::new(0.0, 0.0, lambda).unwrap(), 101).unwrap();
+    let g = Grating {
+        period_nm: d,
+        profile: Profile::Sinusoid { depth_nm: h },
+        metal: Metal::AG,
+        cover: None,
+    };
+    let sol = Solver::default()
+        .solve_at(&g, Incidence::new(0.0, 0.0, lambda).unwrap(), 101)
+        .unwrap();
     let r = Metal::AG.reflectance(lambda, 1.0).0;
     let k = core::f64::consts::TAU / lambda;
     for m in [-1, 0, 1] {
@@ -67,12 +87,20 @@ fn shallow_sinusoid_tends_to_the_scalar_bessel_limit() {
         let te = sol.order(m).unwrap().te;
         let rel = (te - scalar).abs() / scalar;
         println!("m {m}: rigorous {te:.6e} scalar {scalar:.6e} rel {rel:.2e}");
-        assert!(rel < if m == 0 { 3e-2 } else { 6e-2 }, "order {m}: {te} vs {scalar}");
+        assert!(
+            rel < if m == 0 { 3e-2 } else { 6e-2 },
+            "order {m}: {te} vs {scalar}"
+        );
     }
 }
 
 fn dielectric(profile: Profile) -> Grating {
-    Grating { period_nm: 800.0, profile, metal: Metal::custom(1.5, 0.0).unwrap(), cover: None }
+    Grating {
+        period_nm: 800.0,
+        profile,
+        metal: Metal::custom(1.5, 0.0).unwrap(),
+        cover: None,
+    }
 }
 
 #[test]
@@ -80,16 +108,30 @@ fn energy_is_conserved_on_lossless_media() {
     let solver = Solver::default();
     let mut worst: f64 = 0.0;
     for profile in [
-        Profile::Lamellar { duty: 0.4, depth_nm: 300.0 },
+        Profile::Lamellar {
+            duty: 0.4,
+            depth_nm: 300.0,
+        },
         Profile::Sinusoid { depth_nm: 200.0 },
         Profile::Sawtooth { blaze: 0.3 },
     ] {
-        for (theta, phi) in [(0.0, 0.0), (0.4, 0.0), (0.9, 0.0), (0.4, 0.7), (0.9, 1.2), (0.2, 2.5)] {
+        for (theta, phi) in [
+            (0.0, 0.0),
+            (0.4, 0.0),
+            (0.9, 0.0),
+            (0.4, 0.7),
+            (0.9, 1.2),
+            (0.2, 2.5),
+        ] {
             let inc = Incidence::new(theta, phi, 550.0).unwrap();
-            let sol = solver.solve_at(&dielectric(profile.clone()), inc, 41).unwrap();
+            let sol = solver
+                .solve_at(&dielectric(profile.clone()), inc, 41)
+                .unwrap();
             let (r_te, r_tm) = sol.total();
             let (t_te, t_tm) = sol.transmitted.unwrap();
-            worst = worst.max((r_te + t_te - 1.0).abs()).max((r_tm + t_tm - 1.0).abs());
+            worst = worst
+                .max((r_te + t_te - 1.0).abs())
+                .max((r_tm + t_tm - 1.0).abs());
         }
     }
     println!("energy balance: worst |ΣR + ΣT − 1| = {worst:.2e}");
@@ -99,14 +141,32 @@ fn energy_is_conserved_on_lossless_media() {
 #[test]
 fn conical_formulation_at_phi_zero_is_the_classical_one() {
     let classical = Solver::default();
-    let conical = Solver::new(Options { always_conical: true, ..Options::default() }).unwrap();
+    let conical = Solver::new(Options {
+        always_conical: true,
+        ..Options::default()
+    })
+    .unwrap();
     let mut worst: f64 = 0.0;
     for (profile, metal) in [
-        (Profile::Lamellar { duty: 0.5, depth_nm: 120.0 }, Metal::AL),
+        (
+            Profile::Lamellar {
+                duty: 0.5,
+                depth_nm: 120.0,
+            },
+            Metal::AL,
+        ),
         (Profile::Sinusoid { depth_nm: 150.0 }, Metal::AG),
-        (Profile::Sawtooth { blaze: 0.4 }, Metal::custom(1.5, 0.0).unwrap()),
+        (
+            Profile::Sawtooth { blaze: 0.4 },
+            Metal::custom(1.5, 0.0).unwrap(),
+        ),
     ] {
-        let g = Grating { period_nm: 1000.0, profile, metal, cover: None };
+        let g = Grating {
+            period_nm: 1000.0,
+            profile,
+            metal,
+            cover: None,
+        };
         for theta in [0.0, 0.5, -0.8] {
             let inc = Incidence::classical(f64::sin(theta), 600.0).unwrap();
             let a = classical.solve_at(&g, inc, 31).unwrap();
@@ -131,22 +191,31 @@ fn efficiencies_are_reciprocal() {
     let solver = Solver::default();
     let mut worst: f64 = 0.0;
     for (metal, tm) in [(Metal::custom(1.5, 0.0).unwrap(), true), (Metal::AL, false)] {
-    let g = Grating { period_nm: 1000.0, profile: Profile::Sawtooth { blaze: 0.35 }, metal, cover: None };
-    for s in [-0.6, -0.2, 0.1, 0.45] {
-        let a = solver.solve_at(&g, Incidence::classical(s, lambda).unwrap(), 61).unwrap();
-        for o in &a.orders {
-            let back = -o.alpha;
-            if back.abs() > 0.99 {
-                continue;
-            }
-            let b = solver.solve_at(&g, Incidence::classical(back, lambda).unwrap(), 61).unwrap();
-            let ob = b.order(o.m).unwrap();
-            worst = worst.max((o.te - ob.te).abs());
-            if tm {
-                worst = worst.max((o.tm - ob.tm).abs());
+        let g = Grating {
+            period_nm: 1000.0,
+            profile: Profile::Sawtooth { blaze: 0.35 },
+            metal,
+            cover: None,
+        };
+        for s in [-0.6, -0.2, 0.1, 0.45] {
+            let a = solver
+                .solve_at(&g, Incidence::classical(s, lambda).unwrap(), 61)
+                .unwrap();
+            for o in &a.orders {
+                let back = -o.alpha;
+                if back.abs() > 0.99 {
+                    continue;
+                }
+                let b = solver
+                    .solve_at(&g, Incidence::classical(back, lambda).unwrap(), 61)
+                    .unwrap();
+                let ob = b.order(o.m).unwrap();
+                worst = worst.max((o.te - ob.te).abs());
+                if tm {
+                    worst = worst.max((o.tm - ob.tm).abs());
+                }
             }
         }
-    }
     }
     println!("reciprocity: worst {worst:.2e}");
     assert!(worst < 1e-4);

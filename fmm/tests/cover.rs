@@ -28,7 +28,10 @@ fn flat_metal_under_a_cover_single_and_multiple_passes() {
         period_nm: 740.0,
         profile: Profile::Flat,
         metal: Metal::AL,
-        cover: Some(Cover { index: n_c, thickness_nm: 1.2e6 }),
+        cover: Some(Cover {
+            index: n_c,
+            thickness_nm: 1.2e6,
+        }),
     };
     let lambda = 600.0;
     let (n, k) = Metal::AL.index(lambda);
@@ -39,7 +42,11 @@ fn flat_metal_under_a_cover_single_and_multiple_passes() {
             let surf = fresnel(1.0, Complex64::new(n_c, 0.0), s);
             let metal = fresnel(n_c, Complex64::new(n, k), s / n_c);
             for passes in [CoverPasses::Single, CoverPasses::Multiple] {
-                let solver = Solver::new(Options { cover_passes: passes, ..Options::default() }).unwrap();
+                let solver = Solver::new(Options {
+                    cover_passes: passes,
+                    ..Options::default()
+                })
+                .unwrap();
                 let o = *solver.solve(&g, inc).unwrap().order(0).unwrap();
                 for (got, rs, rm) in [(o.te, surf.0, metal.0), (o.tm, surf.1, metal.1)] {
                     let t = 1.0 - rs;
@@ -47,7 +54,10 @@ fn flat_metal_under_a_cover_single_and_multiple_passes() {
                         CoverPasses::Single => rs + t * t * rm,
                         CoverPasses::Multiple => rs + t * t * rm / (1.0 - rs * rm),
                     };
-                    assert!((got - expect).abs() < COVER_TOLERANCE, "θ {theta} φ {phi} {passes:?}: {got} vs {expect}");
+                    assert!(
+                        (got - expect).abs() < COVER_TOLERANCE,
+                        "θ {theta} φ {phi} {passes:?}: {got} vs {expect}"
+                    );
                 }
             }
         }
@@ -60,12 +70,22 @@ fn flat_metal_under_a_cover_single_and_multiple_passes() {
 fn trapped_light_returns_in_the_multiple_pass_sum() {
     let g = Grating {
         period_nm: 740.0,
-        profile: Profile::Lamellar { duty: 0.5, depth_nm: 120.0 },
+        profile: Profile::Lamellar {
+            duty: 0.5,
+            depth_nm: 120.0,
+        },
         metal: Metal::AL,
-        cover: Some(Cover { index: 1.58, thickness_nm: 6e5 }),
+        cover: Some(Cover {
+            index: 1.58,
+            thickness_nm: 6e5,
+        }),
     };
     let inc = Incidence::new(0.2, 0.0, 740.0).unwrap();
-    let single = Solver::new(Options { cover_passes: CoverPasses::Single, ..Options::default() }).unwrap();
+    let single = Solver::new(Options {
+        cover_passes: CoverPasses::Single,
+        ..Options::default()
+    })
+    .unwrap();
     let multi = Solver::default();
     let a = single.solve_at(&g, inc, 81).unwrap().total();
     let b = multi.solve_at(&g, inc, 81).unwrap().total();

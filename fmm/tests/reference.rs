@@ -21,7 +21,9 @@ fn incidence(c: &Case) -> Incidence {
 fn worst(c: &Case, sol: &diffraction_fmm::Solution) -> (f64, f64) {
     let mut w = (0.0f64, 0.0f64);
     for row in &c.rows {
-        let o = sol.order(row.order).expect("the reference's orders propagate here too");
+        let o = sol
+            .order(row.order)
+            .expect("the reference's orders propagate here too");
         if row.te {
             w.0 = w.0.max((o.te - row.efficiency).abs());
         } else {
@@ -34,18 +36,26 @@ fn worst(c: &Case, sol: &diffraction_fmm::Solution) -> (f64, f64) {
 #[test]
 fn every_lamellar_case_at_the_reference_truncation() {
     let solver = Solver::default();
-    let cases: Vec<Case> = rigorous_cases().into_iter().filter(|c| c.first().profile == "lamellar").collect();
+    let cases: Vec<Case> = rigorous_cases()
+        .into_iter()
+        .filter(|c| c.first().profile == "lamellar")
+        .collect();
     assert_eq!(cases.len(), 259, "lamellar cases in the data file");
     let mut all: f64 = 0.0;
     for c in &cases {
-        let sol = solver.solve_at(&c.grating(), incidence(c), c.harmonics()).unwrap();
+        let sol = solver
+            .solve_at(&c.grating(), incidence(c), c.harmonics())
+            .unwrap();
         let (te, tm) = worst(c, &sol);
         if te.max(tm) > all {
             all = te.max(tm);
             println!("{:?}: TE {te:.2e}, TM {tm:.2e}", c.first());
         }
     }
-    println!("{} lamellar cases at equal truncation: worst {all:.2e}", cases.len());
+    println!(
+        "{} lamellar cases at equal truncation: worst {all:.2e}",
+        cases.len()
+    );
     assert!(all < EQUAL_TRUNCATION_TOLERANCE);
 }
 
@@ -56,10 +66,19 @@ fn every_lamellar_case_at_the_reference_truncation() {
 /// of the cases in TM; the Richardson figures are printed (every 8th lamellar case).
 #[test]
 fn converged_lamellar_sample() {
-    let cases: Vec<Case> = rigorous_cases().into_iter().filter(|c| c.first().profile == "lamellar").step_by(8).collect();
+    let cases: Vec<Case> = rigorous_cases()
+        .into_iter()
+        .filter(|c| c.first().profile == "lamellar")
+        .step_by(8)
+        .collect();
     for extrapolation in [Extrapolation::Off, Extrapolation::Richardson] {
-        let solver = Solver::new(Options { extrapolation, ..Options::default() }).unwrap();
-        let (mut te_worst, mut tm_worst, mut tm_within, mut capped) = (0.0f64, 0.0f64, 0usize, 0usize);
+        let solver = Solver::new(Options {
+            extrapolation,
+            ..Options::default()
+        })
+        .unwrap();
+        let (mut te_worst, mut tm_worst, mut tm_within, mut capped) =
+            (0.0f64, 0.0f64, 0usize, 0usize);
         for c in &cases {
             let sol = match solver.solve(&c.grating(), incidence(c)) {
                 Ok(sol) => sol,
@@ -96,8 +115,13 @@ fn converged_lamellar_sample() {
 #[test]
 fn staircase_sample_against_the_c_method() {
     let solver = Solver::default();
-    let cases: Vec<Case> = rigorous_cases().into_iter().filter(|c| c.first().profile != "lamellar").step_by(40).collect();
-    let (mut te_within, mut tm_within, mut te_worst, mut tm_worst) = (0usize, 0usize, 0.0f64, 0.0f64);
+    let cases: Vec<Case> = rigorous_cases()
+        .into_iter()
+        .filter(|c| c.first().profile != "lamellar")
+        .step_by(40)
+        .collect();
+    let (mut te_within, mut tm_within, mut te_worst, mut tm_worst) =
+        (0usize, 0usize, 0.0f64, 0.0f64);
     for c in &cases {
         let sol = solver.solve_at(&c.grating(), incidence(c), 81).unwrap();
         let (te, tm) = worst(c, &sol);

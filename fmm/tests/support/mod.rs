@@ -48,7 +48,9 @@ impl Case {
                 duty: r.duty.expect("duty"),
                 depth_nm: r.depth_nm,
             },
-            "sinusoid" => Profile::Sinusoid { depth_nm: r.depth_nm },
+            "sinusoid" => Profile::Sinusoid {
+                depth_nm: r.depth_nm,
+            },
             "sawtooth" => Profile::Sawtooth {
                 blaze: r.blaze_deg.expect("blaze").to_radians(),
             },
@@ -76,8 +78,11 @@ fn opt(s: &str) -> Option<f64> {
 
 /// The cases of tests/data/rigorous_orders.csv, in file order.
 pub fn rigorous_cases() -> Vec<Case> {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/rigorous_orders.csv"))
-        .expect("tests/data/rigorous_orders.csv");
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/rigorous_orders.csv"
+    ))
+    .expect("tests/data/rigorous_orders.csv");
     let mut cases: Vec<Case> = Vec::new();
     let mut key = String::new();
     for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
