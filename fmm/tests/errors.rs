@@ -1,0 +1,147 @@
+//! Bad input gets a typed error naming the parameter and value; every solve is bounded.
+
+use diffraction::relief::Metal;
+use diffraction_fmm::{Cover, Error, Grating, Incidence, Options, Profile, Solver};
+
+fn lamellar(period_nm: f64, depth_nm: f64) -> Grating {
+    Grating {
+        period_nm,
+        profile: Profile::Lamellar {
+            duty: 0.5,
+            depth_nm,
+        },
+        metal: Metal::AL,
+        cover: None,
+    }
+}
+
+fn message(r: Result<impl std::fmt::Debug, Error>) -> String {
+    r.unwrap_err().to_string()
+}
+
+#[test]
+fn bad_inputs_have_exact_messages() {
+    let s = Solver::default();
+    let inc = Incidence::new(0.2, 0.0, 550.0).unwrap();
+    assert_eq!(
+        message(s.solve(&lamellar(-5.0, 50.0), inc)),
+        "period_nm = -5: must be finite, in (0, 1e5] nm"
+    );
+    assert_eq!(
+        message(s.solve(&lamellar(f64::NAN, 50.0), inc)),
+        "period_nm = NaN: must be finite, in (0, 1e5] nm"
+    );
+    assert_eq!(
+        message(s.solve(&lamellar(1000.0, 20000.0), inc)),
+        "depth_nm = 20000: must be finite, >= 0, at most 10 periods and 1e5 nm"
+    );
+    assert_eq!(
+        message(s.solve(&lamellar(5e4, 50.0), inc)),
+        "period_nm = 50000: must be small enough that the propagating orders (2·n·d/λ + 1, ×2 and ×3 for the convergence steps) fit under max_harmonics"
+    );
+    let g = Grating {
+        profile: Profile::Lamellar {
+            duty: 1.0,
+            depth_nm: 50.0,
+        },
+        ..lamellar(1000.0, 0.0)
+    };
+    assert_eq!(message(s.solve(&g, inc)), "duty = 1: must be in (0, 1)");
+    let g = Grating {
+        profile: Profile::Sawtooth { blaze: 1.0 },
+        ..lamellar(1000.0, 0.0)
+    };
+    assert_eq!(
+        message(s.solve(&g, inc)),
+        "blaze = 1: must be in (0, π/4) radians"
+    );
+    let g = Grating {
+        profile: Profile::Sampled(vec![0.0, f64::NAN]),
+        ..lamellar(1000.0, 0.0)
+    };
+    assert_eq!(
+        message(s.solve(&g, inc)),
+        "samples = NaN: must be finite heights"
+    );
+    let g = Grating {
+        cover: Some(Cover {
+            index: 1.58,
+            thickness_nm: 100.0,
+        }),
+        ..lamellar(1000.0, 50.0)
+    };
+    assert_eq!(
+        message(s.solve(&g, inc)),
+        "cover.thickness_nm = 100: must be in [1e4, 1e9] nm (a thick, incoherent cover)"
+    );
+    let g = Grating {
+        cover: Some(Cover {
+            index: f64::NAN,
+            thickness_nm: 1e6,
+        }),
+        ..lamellar(1000.0, 50.0)
+    };
+    assert_eq!(
+        message(s.solve(&g, inc)),
+        "cover.index = NaN: must be finite, in (1, 4]"
+    );
+    assert_eq!(
+        message(Incidence::new(f64::NAN, 0.0, 550.0)),
+        "theta = NaN: must be in [0, 89.9°] (radians)"
+    );
+    assert_eq!(
+        message(Incidence::new(0.1, 0.0, 5.0)),
+        "wavelength_nm = 5: must be in [100, 20000] nm"
+    );
+    assert_eq!(
+        message(Incidence::from_cosines(0.8, 0.8, 550.0)),
+        "alpha = 0.8: must be with beta, sqrt(alpha² + beta²) <= sin(89.9°)"
+    );
+    assert_eq!(
+        message(Solver::new(Options {
+            tolerance: 0.0,
+            ..Options::default()
+        })),
+        "tolerance = 0: must be in [1e-9, 0.5]"
+    );
+    assert_eq!(
+        message(Solver::new(Options {
+            max_harmonics: 100_000,
+            ..Options::default()
+        })),
+        "max_harmonics = 100000: must be in [3, 1601]"
+    );
+    assert_eq!(
+        message(s.solve_at(&lamellar(1000.0, 50.0), inc, 5000)),
+        "harmonics = 5000: must be in [3, 1601]"
+    );
+    // NaN indices are refused where the metal is made.
+    assert_eq!(Metal::custom(f64::NAN, 1.0).unwrap_err().parameter(), "n");
+}
+
+#[test]
+fn not_converged_within_the_cap_is_an_error() {
+    let s = Solver::new(Options {
+        tolerance: 1e-9,
+        max_harmonics: 61,
+        ..Options::default()
+    })
+    .unwrap();
+    let inc = Incidence::new(0.2, 0.0, 550.0).unwrap();
+    let e = s.solve(&lamellar(1000.0, 100.0), inc).unwrap_err();
+    let Error::NotConverged {
+        harmonics,
+        change,
+        tolerance,
+    } = e
+    else {
+        panic!("{e}")
+    };
+    assert_eq!((harmonics, tolerance), (51, 1e-9));
+    assert!(change > 1e-9 && change.is_finite());
+    assert!(
+        e.to_string()
+            .starts_with("harmonics: not converged to 0.000000001 by 51 harmonics"),
+        "{e}"
+    );
+}

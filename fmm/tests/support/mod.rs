@@ -1,0 +1,112 @@
+//! Shared helpers of the solver's tests: the committed rigorous reference cases and the named
+//! tolerances.
+#![allow(dead_code)]
+
+use diffraction::relief::Metal;
+use diffraction_fmm::{Grating, Profile};
+
+/// The reference data's own convergence: the Python solvers stopped when no order changed by
+/// 1e-3 between two harmonic counts, so 1e-3 absolute per order is the agreement asked for.
+pub const REFERENCE_TOLERANCE: f64 = 1e-3;
+
+/// One reference row: a propagating order of one case.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub profile: String,
+    pub metal: String,
+    pub period_nm: f64,
+    pub depth_nm: f64,
+    pub duty: Option<f64>,
+    pub blaze_deg: Option<f64>,
+    pub lambda_nm: f64,
+    pub theta_deg: f64,
+    pub te: bool,
+    pub order: i32,
+    pub efficiency: f64,
+    pub harmonics: usize,
+}
+
+/// A case: rows sharing geometry, wavelength and angle (both polarisations).
+#[derive(Debug, Clone)]
+pub struct Case {
+    pub rows: Vec<Row>,
+}
+
+impl Case {
+    pub fn first(&self) -> &Row {
+        &self.rows[0]
+    }
+    pub fn grating(&self) -> Grating {
+        let r = self.first();
+        let metal = match r.metal.as_str() {
+            "Al" => Metal::AL,
+            "Ag" => Metal::AG,
+            other => other.parse().expect("metal"),
+        };
+        let profile = match r.profile.as_str() {
+            "lamellar" => Profile::Lamellar {
+                duty: r.duty.expect("duty"),
+                depth_nm: r.depth_nm,
+            },
+            "sinusoid" => Profile::Sinusoid {
+                depth_nm: r.depth_nm,
+            },
+            "sawtooth" => Profile::Sawtooth {
+                blaze: r.blaze_deg.expect("blaze").to_radians(),
+            },
+            p => panic!("profile {p}"),
+        };
+        Grating {
+            period_nm: r.period_nm,
+            profile,
+            metal,
+            cover: None,
+        }
+    }
+    pub fn harmonics(&self) -> usize {
+        self.first().harmonics
+    }
+}
+
+fn opt(s: &str) -> Option<f64> {
+    if s.is_empty() {
+        None
+    } else {
+        Some(s.parse().expect("number"))
+    }
+}
+
+/// The cases of tests/data/rigorous_orders.csv, in file order.
+pub fn rigorous_cases() -> Vec<Case> {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/data/rigorous_orders.csv"
+    ))
+    .expect("tests/data/rigorous_orders.csv");
+    let mut cases: Vec<Case> = Vec::new();
+    let mut key = String::new();
+    for line in text.lines().filter(|l| !l.starts_with('#')).skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let row = Row {
+            profile: f[0].to_string(),
+            metal: f[1].to_string(),
+            period_nm: f[2].parse().unwrap(),
+            depth_nm: f[3].parse().unwrap(),
+            duty: opt(f[4]),
+            blaze_deg: opt(f[5]),
+            lambda_nm: f[6].parse().unwrap(),
+            theta_deg: f[7].parse().unwrap(),
+            te: f[8] == "TE",
+            order: f[9].parse().unwrap(),
+            efficiency: f[11].parse().unwrap(),
+            harmonics: f[12].parse().unwrap(),
+        };
+        let k = f[..8].join(",");
+        if k != key {
+            cases.push(Case { rows: Vec::new() });
+            key = k;
+        }
+        cases.last_mut().unwrap().rows.push(row);
+    }
+    cases
+}
