@@ -250,8 +250,7 @@ def timing() -> Path:
         "# nannos wall time per solve of a lamellar grating at fixed harmonic counts (median of 3 runs).",
         f"# Made by `{CMD} --timing` with {rigorous._versions()}, formulation=\"{fmm.FORMULATION}\", "
         f"epsilon on {fmm.DISCRETIZATION} points, one BLAS thread (OMP_NUM_THREADS=1), on a shared 2-core machine",
-        "# (other processes running, load average 15-19 in the committed run, several times slower than idle: at the",
-        "# start of the session, load about 2, the conical Al case took 0.03 / 0.13 / 0.31 s at 41 / 81 / 121 harmonics).",
+        f"# (other processes running; load averages {', '.join(f'{x:.1f}' for x in os.getloadavg())} (1, 5, 15 min) when written).",
         "# Compare ratios measured in one run, not these absolute times.",
         "# seconds_one_polarisation: layers, eigenmodes, S-matrix and the efficiencies of one incident polarisation;",
         "# seconds_both: the same plus the second polarisation from the same eigenmodes (conical.py's solve_once).",
@@ -342,7 +341,7 @@ def build(from_cache: bool = False) -> Path:
         "transmitted (dielectric rows only): the total transmitted efficiency of the case and polarisation.",
         f"harmonics: the Fourier harmonic count of the values; counts start at fmm.first_nh and grow by x{fmm.NH_GROWTH};",
         f"a case is converged when the last two steps both changed no order (s or p) by {TOL} or more and harmonics >= {NH_FLOOR}",
-        f"(lamellar p/TM converges like 1/N, not monotonically); cap {NH_CAP} (so the last count tried is 267; Ag, with its",
+        f"(lamellar p/TM converges like 1/N, not monotonically); cap {NH_CAP} (the last count tried is the sequence's last below it, 267-323; Ag, with its",
         "surface plasmons, converges slowest). nh_change: this order's signed change",
         "between the last two counts (value at the previous count = efficiency - nh_change; its harmonic count is the",
         "previous odd(count/1.5) step of the sequence). The error left is of the order of 2 |nh_change| for 1/N convergence.",
