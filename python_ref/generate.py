@@ -10,7 +10,7 @@
 Parts: tables (src/cie_data.rs), kernels (tests/data/kernels.csv), colour (cmf_interp.csv,
 xyz_to_srgb.csv, srgb_transfer.csv, lab_de2000.csv), spectral (spectral_xyz.csv; the slow one),
 stam (stam_orders.csv), metals (src/metals_data.rs, tests/data/metals.csv), rigorous
-(tests/data/rigorous_orders.csv and data/efficiencies/*.json: hours of solves, needs
+(tests/data/rigorous_orders.csv, tests/data/rigorous_conical.csv and data/efficiencies/*.json: hours of solves, needs
 requirements-rigorous.txt; `--check` only verifies their hashes and validates the tables), presets
 (src/efficiency_presets_data.rs from data/efficiencies/*.json).
 

@@ -409,16 +409,20 @@ def check_hashed(path: Path) -> str | None:
 def check(root: Path = REPO) -> list[str]:
     import presets
 
+    import conical
+
     errs = []
     e = check_hashed(root / ORDERS_OUTPUT)
     if e:
         errs.append(e)
+    errs += conical.check(root)
     errs += presets.check_json(root)
     return errs
 
 
 def generate(out_root: Path) -> list[Path]:
-    """generate.py's part `rigorous` (write mode only): validate, the test grid, the presets' JSON.
+    """generate.py's part `rigorous` (write mode only): validate, the test grid, the conical grid
+    (conical.py), the presets' JSON.
     Always writes into the repository (the runs are resumable and far too long for a temp copy)."""
     try:
         import nannos  # noqa: F401
@@ -427,6 +431,9 @@ def generate(out_root: Path) -> list[Path]:
                          "(or skip it: `--only tables kernels colour spectral stam metals presets`)") from None
     validate()
     written = [orders()]
+    import conical
+
+    written.append(conical.build())
     import presets
 
     for p in presets.build_all(json_only=True):
