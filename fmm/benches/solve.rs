@@ -1,5 +1,6 @@
 //! One solve at a fixed truncation: lamellar (TE + TM, classical) and conical, at 41 and 81
 //! harmonics, and one staircased sinusoid.
+#![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use diffraction::relief::Metal;

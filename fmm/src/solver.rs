@@ -133,17 +133,9 @@ impl Solution {
 }
 
 /// The rigorous solver (Fourier modal method with Li's factorisation rules).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Solver {
     options: Options,
-}
-
-impl Default for Solver {
-    fn default() -> Solver {
-        Solver {
-            options: Options::default(),
-        }
-    }
 }
 
 fn odd(n: f64) -> usize {
@@ -248,7 +240,7 @@ impl Solver {
         let n_c = g.cover.map_or(1.0, |c| c.index);
         let slabs = self.slabs_for(g, &inc);
         let tol = self.options.tolerance;
-        let mut nh =
+        let nh =
             odd((MIN_HARMONICS as f64).max(4.0 * n_c * g.period_nm / inc.wavelength_nm + 11.0));
         if odd(odd(nh as f64 * GROWTH) as f64 * GROWTH) > cap {
             return Err(Error::invalid("period_nm", g.period_nm, PERIOD_REQUIREMENT));
@@ -491,8 +483,7 @@ fn solve_raw(
     }
     // The incident channels (order M; s = TE, p = TM) and the air-side passes.
     let mut orders: Vec<Order> = Vec::new();
-    for i in 0..nh {
-        let a = kx[i];
+    for (i, &a) in kx.iter().enumerate() {
         if a * a + beta * beta < 1.0 {
             orders.push(Order {
                 m: i as i32 - mm as i32,

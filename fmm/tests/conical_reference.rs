@@ -1,11 +1,8 @@
 //! Against the committed conical nannos cases (tests/data/rigorous_conical.csv, lamellar Al, Ag
 //! and a lossless dielectric, azimuths 0-80°, s and p), at the reference's own harmonic count.
 
-mod support;
-
 use diffraction::relief::Metal;
 use diffraction_fmm::{Grating, Incidence, Profile, Solver};
-use support::REFERENCE_TOLERANCE;
 
 /// Same method, same truncation: the difference is nannos's ε sampled on 2¹⁴ points. Measured
 /// worst 1.65e-6 over the 141 cases (935 order values); asserted at 5e-5 (as for the classical
@@ -120,6 +117,6 @@ fn every_conical_case_at_the_reference_truncation() {
     }
     println!("{cases} conical cases at equal truncation: worst {worst:.2e}, transmitted worst {worst_t:.2e}");
     assert!(cases > 100);
-    assert!(worst < EQUAL_TRUNCATION_TOLERANCE && worst < REFERENCE_TOLERANCE);
+    assert!(worst < EQUAL_TRUNCATION_TOLERANCE);
     assert!(worst_t < TRANSMITTED_TOLERANCE);
 }
