@@ -1,40 +1,42 @@
-//! The stored form of the colour tables (feature `serde`): a cache a renderer writes once and
+//! The stored form of a colour table (feature `serde`): a cache a renderer writes once and
 //! loads instead of rebuilding, validated on load.
 //!
-//! A table stores its format version, what it tabulates (the grating or the BSDF, the
-//! illuminant, the accuracy), its error scale and estimate, its evaluation count, the end u_lo of
-//! its first block, the interval count of every block and the node values. Node positions
-//! follow from u_lo and the interval counts (blocks of 1/8 octave, each uniform), so they are
-//! increasing by construction; derivatives and cumulative integrals are recomputed by the same
-//! code as a build, so a loaded table's lookups and means are bit-identical to the saved one's
-//! (given a format that keeps `f64` exactly: serde_json needs its `float_roundtrip` feature).
+//! A table stores its format version, what it tabulates (`grating` for the paper's source,
+//! `bsdf` for the radiometric one: exactly one of them), the illuminant, the accuracy, its
+//! error scale and estimate, its evaluation count, the end u_lo of its first block, the
+//! interval count of every block and the node values. Node positions follow from u_lo and the
+//! interval counts (blocks of 1/8 octave, each uniform), so they are increasing by
+//! construction; derivatives and cumulative integrals are recomputed by the same code as a
+//! build, so a loaded table's lookups and means are bit-identical to the saved one's (given a
+//! format that keeps `f64` exactly: serde_json needs its `float_roundtrip` feature). The form is
+//! the one `ColorTable` and the former `RadiometricTable` wrote (version 1), so their caches load.
 //!
 //! Checked on load, each error naming its field: `format_version` (= [`ColorTable::FORMAT_VERSION`]), the
-//! grating or BSDF (their own validation; N = ∞ for a `ColorTable` names `slits`, a coherence
-//! length for a `RadiometricTable` names `groove`), `accuracy` (as in a build), `u_lo` (the
-//! value the grating implies), `intervals` (one per block, powers of two in [2, 1024], at most
-//! `MAX_NODES` nodes in all), `values` (one per node, every channel finite and ≥ 0), `scale`
-//! (positive) and `error` (≥ 0).
+//! grating or BSDF (their own validation; the paper's grating with N = ∞ names `slits`, a
+//! coherence length for the BSDF names `groove`; both or neither name `grating`), `accuracy`
+//! (as in a build), `u_lo` (the value the source implies), `intervals` (one per block, powers
+//! of two in [2, 1024], at most `MAX_NODES` nodes in all), `values` (one per node, every
+//! channel finite and ≥ 0), `scale` (positive) and `error` (≥ 0).
 
 use alloc::vec::Vec;
 
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::radiometric::{factorises, radiometric_first_block};
-use super::tabulated::{Stored, Tabulated};
-use super::{first_block, ColorTable, RadiometricTable};
+use super::grid::{Grid, Stored};
+use super::source::{Source, TableSource};
+use super::{check_accuracy, ColorTable};
 use crate::error::{Error, Requirement};
-use crate::spectrum::{Illuminant, Spectral, MAX_ACCURACY, MIN_ACCURACY};
-use crate::{Grating, GratingBsdf, Slits};
+use crate::spectrum::{Illuminant, Spectral};
+use crate::{Grating, GratingBsdf};
 
 /// The version of the stored form this crate writes and reads.
 const FORMAT_VERSION: u32 = ColorTable::FORMAT_VERSION;
 
-/// The fields both tables store beside what they tabulate.
+/// The grid's stored fields.
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Grid {
+struct StoredGrid {
     scale: f64,
     error: f64,
     evaluations: u64,
@@ -43,10 +45,10 @@ struct Grid {
     values: Vec<[f64; 3]>,
 }
 
-impl Grid {
-    fn of(t: &Tabulated, evaluations: usize) -> Grid {
+impl StoredGrid {
+    fn of(t: &Grid, evaluations: usize) -> StoredGrid {
         let (intervals, values) = t.parts();
-        Grid {
+        StoredGrid {
             scale: t.scale,
             error: t.error,
             evaluations: evaluations as u64,
@@ -56,8 +58,8 @@ impl Grid {
         }
     }
 
-    fn load(&self, expected_u_lo: f64, max_nodes: usize) -> Result<Tabulated, Error> {
-        Tabulated::from_parts(
+    fn load(&self, expected_u_lo: f64, max_nodes: usize) -> Result<Grid, Error> {
+        Grid::from_parts(
             expected_u_lo,
             Stored {
                 u_lo: self.u_lo,
@@ -83,47 +85,44 @@ fn check_version(v: u32) -> Result<(), Error> {
     ))
 }
 
-fn check_accuracy(a: f64) -> Result<(), Error> {
-    if (MIN_ACCURACY..=MAX_ACCURACY).contains(&a) {
-        return Ok(());
-    }
-    Err(Error::invalid(
-        "accuracy",
-        a,
-        Requirement::Within {
-            min: MIN_ACCURACY,
-            max: MAX_ACCURACY,
-        },
-    ))
-}
-
 #[derive(Serialize)]
-struct ColorTableOut<'a> {
+struct TableOut<'a> {
     format_version: u32,
-    grating: &'a Grating,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    grating: Option<&'a Grating>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bsdf: Option<&'a GratingBsdf>,
     illuminant: Illuminant,
     accuracy: f64,
-    grid: Grid,
+    grid: StoredGrid,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct ColorTableIn {
+struct TableIn {
     format_version: u32,
-    grating: Grating,
+    #[serde(default)]
+    grating: Option<Grating>,
+    #[serde(default)]
+    bsdf: Option<GratingBsdf>,
     illuminant: Illuminant,
     accuracy: f64,
-    grid: Grid,
+    grid: StoredGrid,
 }
 
 impl Serialize for ColorTable {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        ColorTableOut {
+        let (grating, bsdf) = match self.source() {
+            TableSource::Paper(g) => (Some(g), None),
+            TableSource::Radiometric(b) => (None, Some(b)),
+        };
+        TableOut {
             format_version: FORMAT_VERSION,
-            grating: &self.grating,
+            grating,
+            bsdf,
             illuminant: self.illuminant,
             accuracy: self.accuracy,
-            grid: Grid::of(&self.grid, self.evaluations),
+            grid: StoredGrid::of(&self.grid, self.evaluations),
         }
         .serialize(s)
     }
@@ -131,72 +130,32 @@ impl Serialize for ColorTable {
 
 impl<'de> Deserialize<'de> for ColorTable {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let r = ColorTableIn::deserialize(d)?;
+        let r = TableIn::deserialize(d)?;
+        let source = match (&r.grating, &r.bsdf) {
+            (Some(g), None) => TableSource::Paper(g),
+            (None, Some(b)) => TableSource::Radiometric(b),
+            (None, None) => return Err(D::Error::missing_field("grating")),
+            (Some(_), Some(_)) => {
+                return Err(D::Error::custom(
+                    "both `grating` and `bsdf`: a table stores one source",
+                ))
+            }
+        };
         let load = || -> Result<ColorTable, Error> {
             check_version(r.format_version)?;
             check_accuracy(r.accuracy)?;
-            if r.grating.slits() == Slits::Infinite {
-                return Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite));
-            }
-            let (u_lo, unresolved) = first_block(&r.grating);
+            let (source, nodes) = Source::new(source, &Spectral::new(r.illuminant))?;
+            let (u_lo, _) = source.first_block();
             let grid = r.grid.load(u_lo, ColorTable::MAX_NODES)?;
-            Ok(ColorTable {
-                grating: r.grating,
-                illuminant: r.illuminant,
-                accuracy: r.accuracy,
-                grid,
-                exact_below: if unresolved { u_lo } else { -1.0 },
-                spectral: Spectral::new(r.illuminant),
-                evaluations: usize::try_from(r.grid.evaluations).unwrap_or(usize::MAX),
-            })
-        };
-        load().map_err(D::Error::custom)
-    }
-}
-
-#[derive(Serialize)]
-struct RadiometricOut<'a> {
-    format_version: u32,
-    bsdf: &'a GratingBsdf,
-    illuminant: Illuminant,
-    accuracy: f64,
-    grid: Grid,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RadiometricIn {
-    format_version: u32,
-    bsdf: GratingBsdf,
-    illuminant: Illuminant,
-    accuracy: f64,
-    grid: Grid,
-}
-
-impl Serialize for RadiometricTable {
-    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        RadiometricOut {
-            format_version: FORMAT_VERSION,
-            bsdf: self.bsdf(),
-            illuminant: self.illuminant(),
-            accuracy: self.accuracy(),
-            grid: Grid::of(self.grid(), self.evaluations()),
-        }
-        .serialize(s)
-    }
-}
-
-impl<'de> Deserialize<'de> for RadiometricTable {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let r = RadiometricIn::deserialize(d)?;
-        let load = || -> Result<RadiometricTable, Error> {
-            check_version(r.format_version)?;
-            check_accuracy(r.accuracy)?;
-            factorises(&r.bsdf)?;
-            let (u_lo, _) = radiometric_first_block(&r.bsdf);
-            let grid = r.grid.load(u_lo, RadiometricTable::MAX_NODES)?;
             let evaluations = usize::try_from(r.grid.evaluations).unwrap_or(usize::MAX);
-            RadiometricTable::with_grid(&r.bsdf, r.illuminant, r.accuracy, grid, evaluations)
+            Ok(ColorTable::with_grid(
+                source,
+                nodes,
+                r.illuminant,
+                r.accuracy,
+                grid,
+                evaluations,
+            ))
         };
         load().map_err(D::Error::custom)
     }
