@@ -589,7 +589,7 @@ impl ColorTable {
     #[must_use]
     pub fn bsdf(&self) -> Option<&GratingBsdf> {
         match &self.source {
-            Source::Radiometric { bsdf, .. } => Some(bsdf),
+            Source::Radiometric { bsdf, .. } => Some(bsdf.as_ref()),
             Source::Paper { .. } => None,
         }
     }

@@ -9,6 +9,8 @@
 //! [`Grid::build`] from that incidence's nodes), with `ColorTable::xyz(wo, wi)` interpolating
 //! between them; `lookup(u)`, which has no incidence, would not apply to it.
 
+use alloc::boxed::Box;
+
 use super::delta_nodes::DeltaNodes;
 use super::grating_nodes::GratingNodes;
 use super::grid::{Grid, Plan};
@@ -65,7 +67,8 @@ pub(super) enum Source {
     Paper { grating: Grating },
     /// The radiometric BSDF's C(u).
     Radiometric {
-        bsdf: GratingBsdf,
+        /// Boxed: a `GratingBsdf` is several times the size of a `Grating`.
+        bsdf: Box<GratingBsdf>,
         /// ρ²·N·d (finite N), the factor of the direct lookups; 1 for N = ∞.
         k: f64,
         /// η₀·white for N = ∞; black for finite N (order 0 is in the table).
@@ -128,7 +131,7 @@ impl Source {
                     Slits::Infinite => (1.0, plain, plain.white().scale(bsdf.efficiency(0))),
                 };
                 let source = Source::Radiometric {
-                    bsdf: bsdf.clone(),
+                    bsdf: Box::new(bsdf.clone()),
                     k,
                     specular,
                 };
@@ -141,7 +144,7 @@ impl Source {
     pub(super) fn view(&self) -> TableSource<'_> {
         match self {
             Source::Paper { grating } => TableSource::Paper(grating),
-            Source::Radiometric { bsdf, .. } => TableSource::Radiometric(bsdf),
+            Source::Radiometric { bsdf, .. } => TableSource::Radiometric(bsdf.as_ref()),
         }
     }
 
