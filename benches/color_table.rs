@@ -8,9 +8,9 @@
 //! 10⁻³ centred there. Tables are built with `diffraction::spectrum::DEFAULT_ACCURACY` under D65, slit width
 //! d/2.
 //!
-//! The `radiometric_table` groups do the same for `RadiometricTable` (the radiometric BSDF's
+//! The `radiometric_table` groups do the same for `ColorTable` of the radiometric BSDF (its
 //! colour in physical units) against `Spectral::xyz_response`, its builds beside
-//! `ColorTable`'s, and (feature `serde`) a load of its cached JSON.
+//! the paper's table of the same grating, and (feature `serde`) a load of its cached JSON.
 //!
 //! `cargo bench --features serde --bench color_table -- --warm-up-time 1 --measurement-time 2`
 
@@ -107,13 +107,13 @@ fn bench_build(c: &mut Criterion) {
     group.finish();
 }
 
-/// The radiometric table (`RadiometricTable`) of the `GratingBsdf` with a Gaussian groove
+/// The radiometric table (`ColorTable::new(&s, &bsdf, ·)`) of the `GratingBsdf` with a Gaussian groove
 /// σ = 0.02 (and of N = ∞): lookups, `xyz(wo, wi)` and means per colour against the direct
 /// colour `Spectral::xyz_response` (`Exact` and `auto(1e-3)`) at the same directions; builds
 /// at accuracy 10⁻⁴ beside `ColorTable`'s of the same grating; a load of the cached JSON
 /// (feature `serde`).
 fn bench_radiometric(c: &mut Criterion) {
-    use diffraction::{GratingBsdf, GrooveSpread, RadiometricTable, SpectralResponse};
+    use diffraction::{GratingBsdf, GrooveSpread, SpectralResponse};
     use glam::DVec3;
     let s = Spectral::new(Illuminant::D65);
     let rough = GrooveSpread::gaussian(0.02).unwrap();
@@ -138,7 +138,7 @@ fn bench_radiometric(c: &mut Criterion) {
         ),
     ];
     for (name, b) in &bsdfs {
-        let table = RadiometricTable::new(&s, b, ACCURACY).unwrap();
+        let table = ColorTable::new(&s, b, ACCURACY).unwrap();
         let mut group = c.benchmark_group(format!("radiometric_table/{name}"));
         group.throughput(Throughput::Elements(BATCH as u64));
         group.bench_function("lookup", |bch| {
@@ -192,7 +192,7 @@ fn bench_radiometric(c: &mut Criterion) {
         let g = Grating::new(d, d / 2.0, n).unwrap();
         let b = GratingBsdf::new(g).with_groove(rough);
         group.bench_function(format!("radiometric_d{d}_n{n}"), |bch| {
-            bch.iter(|| RadiometricTable::new(&s, black_box(&b), 1e-4).unwrap())
+            bch.iter(|| ColorTable::new(&s, black_box(&b), 1e-4).unwrap())
         });
         group.bench_function(format!("color_table_d{d}_n{n}"), |bch| {
             bch.iter(|| ColorTable::new(&s, black_box(&g), 1e-4).unwrap())
@@ -200,14 +200,14 @@ fn bench_radiometric(c: &mut Criterion) {
     }
     let (_, inf) = &bsdfs[1];
     group.bench_function("radiometric_d1600_inf", |bch| {
-        bch.iter(|| RadiometricTable::new(&s, black_box(inf), 1e-4).unwrap())
+        bch.iter(|| ColorTable::new(&s, black_box(inf), 1e-4).unwrap())
     });
     #[cfg(feature = "serde")]
     {
-        let table = RadiometricTable::new(&s, &bsdfs[0].1, 1e-4).unwrap();
+        let table = ColorTable::new(&s, &bsdfs[0].1, 1e-4).unwrap();
         let json = serde_json::to_string(&table).unwrap();
         group.bench_function("load_json_d1600_n1000", |bch| {
-            bch.iter(|| serde_json::from_str::<RadiometricTable>(black_box(&json)).unwrap())
+            bch.iter(|| serde_json::from_str::<ColorTable>(black_box(&json)).unwrap())
         });
     }
     group.finish();

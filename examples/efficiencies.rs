@@ -108,7 +108,7 @@ enum Profile {
 
 /// Where a tabulated model comes from.
 #[derive(Debug, Clone, PartialEq)]
-enum Tabulated {
+enum TableInput {
     Preset(Preset),
     File(String),
 }
@@ -131,7 +131,7 @@ struct Options {
     lambda_nm: f64,
     theta_deg: f64,
     polarisation: Polarisation,
-    tabulated: Option<Tabulated>,
+    tabulated: Option<TableInput>,
 }
 
 const USAGE: &str = "usage: efficiencies --profile sinusoid|lamellar|sawtooth|amplitude --period NM --depth NM [--duty F] [--blaze DEG] --metal Al|Ag|Au|Cu|Cr|N+Ki --lambda NM --theta DEG [--polarisation te|tm|unpolarised]\n   or: efficiencies --table FILE.json|--preset cd|dvd|blazed600|foil --lambda NM --theta DEG [--polarisation te|tm|unpolarised]";
@@ -210,12 +210,12 @@ fn parse(args: &[String]) -> Result<Options, String> {
             "--lambda" => lambda = Some(number(flag, value)?),
             "--theta" => theta = Some(number(flag, value)?),
             "--polarisation" => polarisation = polarisation_named(value)?,
-            "--table" => tabulated = Some(Tabulated::File(value.clone())),
+            "--table" => tabulated = Some(TableInput::File(value.clone())),
             "--preset" => {
                 let p = value
                     .parse::<Preset>()
                     .map_err(|e| format!("--preset: {e} (got {value:?})"))?;
-                tabulated = Some(Tabulated::Preset(p));
+                tabulated = Some(TableInput::Preset(p));
             }
             other => return Err(format!("{other}: unknown flag\n{USAGE}")),
         }
@@ -223,8 +223,8 @@ fn parse(args: &[String]) -> Result<Options, String> {
     let need = |v: Option<f64>, flag: &str| v.ok_or_else(|| format!("{flag}: required"));
     if let Some(t) = tabulated {
         let flag = match t {
-            Tabulated::File(_) => "--table",
-            Tabulated::Preset(_) => "--preset",
+            TableInput::File(_) => "--table",
+            TableInput::Preset(_) => "--preset",
         };
         if seen.contains(&"--table") && seen.contains(&"--preset") {
             return Err("--table: not with --preset (one tabulated model)".to_string());
@@ -288,10 +288,10 @@ fn parse(args: &[String]) -> Result<Options, String> {
 }
 
 /// The table of `--table FILE` or `--preset NAME`.
-fn load_table(t: &Tabulated) -> Result<std::borrow::Cow<'static, EfficiencyTable>, String> {
+fn load_table(t: &TableInput) -> Result<std::borrow::Cow<'static, EfficiencyTable>, String> {
     let file = match t {
-        Tabulated::Preset(p) => return Ok(std::borrow::Cow::Borrowed(p.table())),
-        Tabulated::File(f) => f,
+        TableInput::Preset(p) => return Ok(std::borrow::Cow::Borrowed(p.table())),
+        TableInput::File(f) => f,
     };
     let text = read_bounded(file, MAX_TABLE_BYTES)?;
     parse_table(file, &text).map(std::borrow::Cow::Owned)

@@ -7,7 +7,7 @@
 //! * [`LinearSrgb`]: linear-light sRGB. May be **out of gamut** (negative or above 1); nothing
 //!   clips it behind your back.
 //! * [`Srgb`]: encoded (non-linear, "gamma") sRGB, what image files and displays take.
-//! * [`Lab`]: CIE 1976 L\*a\*b\*, with the CIEDE2000 colour difference [`delta_e2000`], the
+//! * [`Lab`]: CIE 1976 L\*a\*b\*, with the CIEDE2000 colour difference [`Lab::delta_e2000`], the
 //!   crate's unit of colour error.
 //! * [`WhitePoint`]: a validated reference white for CIELAB (finite, positive components).
 //! * [`Clip`]: the three gamut-clipping schemes of Hall (1989).
@@ -73,14 +73,14 @@
 //! exact value exceeds f64::MAX (the plain overflow of the caller's own huge values). Everything
 //! else is finite for every finite input: [`srgb_decode`], [`Xyz::to_lab`] and
 //! [`LinearSrgb::luminance`] saturate at ±f64::MAX where the exact value lies beyond it,
-//! [`delta_e2000`] clamps its components to ±1e150, [`Xyz::chromaticity`] is `None` where the
+//! [`Lab::delta_e2000`] clamps its components to ±1e150, [`Xyz::chromaticity`] is `None` where the
 //! coordinates would overflow, and a CIELAB white with a zero, negative or non-finite component
 //! is rejected by [`WhitePoint::new`] with an error naming it.
 //!
 //! ```
-//! use diffraction::color::{delta_e2000, srgb_decode, Lab, WhitePoint, Xyz};
+//! use diffraction::color::{srgb_decode, Lab, WhitePoint, Xyz};
 //! assert_eq!(srgb_decode(1e300), f64::MAX);
-//! assert!(delta_e2000(Lab::new(50.0, 1e50, 0.0), Lab::default()).is_finite());
+//! assert!(Lab::new(50.0, 1e50, 0.0).delta_e2000(Lab::default()).is_finite());
 //! assert_eq!(WhitePoint::new(Xyz::default()).unwrap_err().parameter(), "white.x");
 //! ```
 //!
@@ -100,6 +100,6 @@ mod tests;
 mod xyz;
 
 pub use clip::Clip;
-pub use lab::{delta_e2000, Lab, WhitePoint};
+pub use lab::{Lab, WhitePoint};
 pub use srgb::{srgb_decode, srgb_encode, LinearSrgb, Srgb};
 pub use xyz::Xyz;

@@ -18,8 +18,8 @@
 //! let wi = DVec3::Z; // light overhead
 //! let wo = DVec3::new(0.5, 0.0, 0.75f64.sqrt()); // viewer 30° off the normal
 //! let t = DVec3::X;
-//! assert!((phase_projection(wi, wo, t) - 0.5).abs() < 1e-15); // sin 30° − sin 0°
-//! assert!((paper_half_vector_projection(wi, wo, t) - 0.2588).abs() < 1e-4); // sin 15°
+//! assert!((phase_projection(wo, wi, t) - 0.5).abs() < 1e-15); // sin 30° − sin 0°
+//! assert!((paper_half_vector_projection(wo, wi, t) - 0.2588).abs() < 1e-4); // sin 15°
 //! ```
 //!
 //! # Grating-direction fields
@@ -47,8 +47,8 @@ mod sealed {
 /// use diffraction::frame::phase_projection;
 /// use glam::{DVec3, Vec3};
 /// // `Scalar` is `f32` for `Vec3` and `f64` for `DVec3`.
-/// let a: f32 = phase_projection(Vec3::Z, Vec3::new(0.5, 0.0, 0.75f32.sqrt()), Vec3::X);
-/// let b: f64 = phase_projection(DVec3::Z, DVec3::new(0.5, 0.0, 0.75f64.sqrt()), DVec3::X);
+/// let a: f32 = phase_projection(Vec3::new(0.5, 0.0, 0.75f32.sqrt()), Vec3::Z, Vec3::X);
+/// let b: f64 = phase_projection(DVec3::new(0.5, 0.0, 0.75f64.sqrt()), DVec3::Z, DVec3::X);
 /// assert_eq!((a, b), (0.5, 0.5));
 /// ```
 pub trait Vector: sealed::Sealed + Copy {
@@ -86,7 +86,8 @@ impl Vector for DVec3 {
 
 /// The phase projection u = (wi + wo)·t, for [`Vec3`] or [`DVec3`].
 ///
-/// `wi` toward the light, `wo` toward the viewer, `t` the unit grating vector; all in one frame.
+/// `wo` toward the viewer, `wi` toward the light (the order of every function of the crate
+/// that takes both), `t` the unit grating vector; all in one frame.
 /// For unit vectors |u| ≤ 2; for vectors the caller made huge (components near `f64::MAX`)
 /// the dot product overflows like any other, which is the caller's own arithmetic.
 ///
@@ -96,12 +97,12 @@ impl Vector for DVec3 {
 /// // Mirror configuration: u = 0.
 /// let wi = Vec3::new(-0.6, 0.0, 0.8);
 /// let wo = Vec3::new(0.6, 0.0, 0.8);
-/// assert_eq!(phase_projection(wi, wo, Vec3::X), 0.0);
+/// assert_eq!(phase_projection(wo, wi, Vec3::X), 0.0);
 /// ```
 #[inline]
 #[must_use]
-pub fn phase_projection<V: Vector>(wi: V, wo: V, t: V) -> V::Scalar {
-    V::sum_dot(wi, wo, t)
+pub fn phase_projection<V: Vector>(wo: V, wi: V, t: V) -> V::Scalar {
+    V::sum_dot(wo, wi, t)
 }
 
 /// The paper's step-5 substitute for u: the normalised half vector's component along t.
@@ -114,13 +115,13 @@ pub fn phase_projection<V: Vector>(wi: V, wo: V, t: V) -> V::Scalar {
 /// use glam::DVec3;
 /// let wi = DVec3::new(-0.6, 0.0, 0.8);
 /// let wo = DVec3::new(0.8, 0.0, 0.6);
-/// let ratio = paper_half_vector_projection(wi, wo, DVec3::X) / phase_projection(wi, wo, DVec3::X);
+/// let ratio = paper_half_vector_projection(wo, wi, DVec3::X) / phase_projection(wo, wi, DVec3::X);
 /// assert!((ratio - 1.0 / (wi + wo).length()).abs() < 1e-12);
 /// ```
 #[inline]
 #[must_use]
-pub fn paper_half_vector_projection<V: Vector>(wi: V, wo: V, t: V) -> V::Scalar {
-    V::half_dot(wi, wo, t)
+pub fn paper_half_vector_projection<V: Vector>(wo: V, wi: V, t: V) -> V::Scalar {
+    V::half_dot(wo, wi, t)
 }
 
 /// An orthonormal shading frame: `normal` (local z), `grating` vector t (local x) and the groove

@@ -55,8 +55,9 @@
 //!   the colour XYZ(u) in nanoseconds a lookup, with the footprint mean for antialiasing over the
 //!   interval of u a pixel sees ([`footprint::u_interval`], from its ray differentials and the
 //!   light's size), then [`color`]'s conversion and Hall's clipping; in physical units, for the
-//!   radiometric [`GratingBsdf`] (Gaussian or ideal groove, finite N or N = ∞), a
-//!   [`RadiometricTable`]: the colour per unit of cos θi·g(v). Both can be cached (feature `serde`).
+//!   radiometric [`GratingBsdf`] (Gaussian or ideal groove, finite N or N = ∞), the same
+//!   [`ColorTable`] built from the BSDF ([`TableSource`]): the colour per unit of cos θi·g(v).
+//!   Tables can be cached (feature `serde`).
 //! * **Real time**: the same table, or the slit kernels ([`kernel`], `f32` and `f64`) evaluated at
 //!   a few wavelengths.
 //! * **How bright each order of a real grating is** (a relief on a metal, TE and TM):
@@ -101,8 +102,8 @@
 //! * [`cie`]: the CIE 1931 2° observer and illuminants E, D65, A at 1 nm (from colour-science).
 //! * [`spectrum`]: the reference colour XYZ of a grating or of any model, by named strategies
 //!   with stated cost and bound (`spectrum::bounds`).
-//! * [`ColorTable`]: a grating's colour tabulated once, O(1) lookups and footprint means;
-//!   [`RadiometricTable`]: the same for the radiometric BSDF's colour in physical units.
+//! * [`ColorTable`], [`TableSource`]: a grating's colour tabulated once (the paper's, or the
+//!   radiometric BSDF's in physical units), O(1) lookups and footprint means.
 //! * [`color`]: XYZ, linear and encoded sRGB, Hall's clipping schemes, CIELAB and ΔE2000.
 //!
 //! ## From a hit point to a pixel
@@ -135,7 +136,7 @@
 //! ## Feature flags
 //!
 //! * `std` (default): maths from the standard library; implies `alloc`.
-//! * `alloc`: heap storage for [`ColorTable`] and [`RadiometricTable`], for `no_std` targets with an allocator.
+//! * `alloc`: heap storage for [`ColorTable`], for `no_std` targets with an allocator.
 //! * `libm`: maths from the `libm` crate, for `no_std` (disable default features).
 //! * `serde`: `Serialize`/`Deserialize` for the parameter types, validated on the way in, and
 //!   (with `alloc`) for the colour tables, as caches with a format version.
@@ -209,7 +210,10 @@ pub use bxdf::{
 #[cfg(feature = "stam")]
 pub use bxdf::{Profile, Stam};
 #[cfg(feature = "alloc")]
-pub use color_table::{ColorTable, RadiometricTable};
+#[allow(deprecated)]
+pub use color_table::RadiometricTable;
+#[cfg(feature = "alloc")]
+pub use color_table::{ColorTable, TableSource};
 pub use error::{Error, Requirement};
 pub use film::SpectralFilm;
 pub use float::Float;

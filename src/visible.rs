@@ -97,20 +97,20 @@ pub fn cdf(lambda_nm: f64) -> f64 {
     ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
 }
 
-/// The wavelength with CDF `u` (the exact inverse of [`cdf`]), nm, in [360, 830]; `u` by the
+/// The wavelength with CDF `uc` (the exact inverse of [`cdf`]), nm, in [360, 830]; `uc` by the
 /// crate's rule for random numbers ([`unit_random`](crate::unit_random())).
 ///
 /// ```
 /// use diffraction::visible::{cdf, sample};
 /// assert_eq!(sample(0.0), 360.0);
-/// for u in [0.1, 0.37, 0.9] {
-///     assert!((cdf(sample(u)) - u).abs() < 1e-15);
+/// for uc in [0.1, 0.37, 0.9] {
+///     assert!((cdf(sample(uc)) - uc).abs() < 1e-15);
 /// }
 /// assert_eq!(sample(f64::NAN), 360.0); // non-finite input counts as 0
 /// ```
 #[must_use]
-pub fn sample(u: f64) -> f64 {
-    let u = unit_random(u);
+pub fn sample(uc: f64) -> f64 {
+    let u = unit_random(uc);
     let (t0, t1) = ends();
     let l = CENTER_NM + math::atanh(t0 + u * (t1 - t0)) / SHARPNESS_PER_NM;
     l.clamp(TABLE_FIRST_NM, TABLE_LAST_NM)

@@ -57,8 +57,8 @@ impl SampledWavelengths {
     /// ```
     pub const MIN_PDF: f64 = f64::MIN_POSITIVE;
 
-    /// Stratified uniform wavelengths: the hero at `band.min + u·B`, the others B/4 apart
-    /// (wrapping around the band), each with density 1/B. `u` by the crate's rule for random
+    /// Stratified uniform wavelengths: the hero at `band.min + uc·B`, the others B/4 apart
+    /// (wrapping around the band), each with density 1/B. `uc` by the crate's rule for random
     /// numbers ([`unit_random`](crate::unit_random)). Every wavelength is in the band and every
     /// density finite and at most 10⁶ per nm ([`Band::MIN_WIDTH_NM`]), and at least
     /// [`MIN_PDF`](Self::MIN_PDF) (a band wider than 1/`MIN_PDF` = 4.5·10³⁰⁷ nm gets that
@@ -72,8 +72,8 @@ impl SampledWavelengths {
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
-    pub fn sample_uniform(u: f64, band: Band) -> SampledWavelengths {
-        let u = unit_random(u);
+    pub fn sample_uniform(uc: f64, band: Band) -> SampledWavelengths {
+        let u = unit_random(uc);
         let b = band.width_nm();
         let mut lambda = [0.0; 4];
         for (i, l) in lambda.iter_mut().enumerate() {
@@ -91,10 +91,10 @@ impl SampledWavelengths {
 
     /// Stratified wavelengths from the visible importance density of pbrt-v4
     /// ([`visible`](crate::visible): ∝ 1/cosh²(0.0072·(λ − 538)) over 360-830 nm): the hero
-    /// at the inverse CDF of `u`, the others at the inverse CDF of u + ¼, u + ½, u + ¾ (modulo
-    /// 1), each with its density [`visible::pdf`](crate::visible::pdf). Fewer samples fall
-    /// where the eye sees little (violet, deep red) than with
-    /// [`sample_uniform`](Self::sample_uniform). `u` by the crate's rule for random numbers.
+    /// at the inverse CDF of `uc`, the others at the inverse CDF of uc + ¼, uc + ½, uc + ¾
+    /// (modulo 1), each with its density [`visible::pdf`](crate::visible::pdf). Fewer samples
+    /// fall where the eye sees little (violet, deep red) than with
+    /// [`sample_uniform`](Self::sample_uniform). `uc` by the crate's rule for random numbers.
     ///
     /// ```
     /// use diffraction::{visible, SampledWavelengths};
@@ -104,8 +104,8 @@ impl SampledWavelengths {
     /// assert_eq!(l.pdf()[1], visible::pdf(l.lambda()[1]));
     /// ```
     #[must_use]
-    pub fn sample_visible(u: f64) -> SampledWavelengths {
-        let u = unit_random(u);
+    pub fn sample_visible(uc: f64) -> SampledWavelengths {
+        let u = unit_random(uc);
         let mut lambda = [0.0; 4];
         let mut pdf = [0.0; 4];
         for i in 0..4 {

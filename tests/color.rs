@@ -5,9 +5,7 @@
 mod fixed_seed;
 use approx::assert_abs_diff_eq;
 use diffraction::cie::Illuminant;
-use diffraction::color::{
-    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz,
-};
+use diffraction::color::{srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz};
 use diffraction::ParseError;
 use proptest::prelude::*;
 
@@ -592,7 +590,7 @@ fn delta_e2000_reproduces_sharma_table() {
         let a = Lab::new(row[0], row[1], row[2]);
         let b = Lab::new(row[3], row[4], row[5]);
         let expected = row[6];
-        for d in [delta_e2000(a, b), delta_e2000(b, a), a.delta_e2000(b)] {
+        for d in [a.delta_e2000(b), b.delta_e2000(a)] {
             if i == 13 {
                 // Pair 14: the hues differ by exactly 180° (up to one ulp of atan2), where the
                 // mean hue jumps by 180°; the paper's 4.8045 and the other side's 4.7461 are
@@ -615,16 +613,16 @@ fn delta_e2000_reproduces_sharma_table() {
 #[test]
 fn delta_e2000_edge_cases() {
     let grey = Lab::new(50.0, 0.0, 0.0);
-    assert_eq!(delta_e2000(grey, grey), 0.0);
+    assert_eq!(grey.delta_e2000(grey), 0.0);
     // Pure lightness difference between greys: ΔL'/S_L only.
-    let d = delta_e2000(grey, Lab::new(60.0, 0.0, 0.0));
+    let d = grey.delta_e2000(Lab::new(60.0, 0.0, 0.0));
     let l50 = 25.0; // (55 − 50)²
     let s_l = 1.0 + 0.015 * l50 / (20.0f64 + l50).sqrt();
     assert_abs_diff_eq!(d, 10.0 / s_l, epsilon = tol::DE2000_CLOSED_FORM);
     // Both on the a' = b = 0 axis and one with chroma: C'1·C'2 = 0 path.
-    let d = delta_e2000(grey, Lab::new(50.0, 10.0, 0.0));
+    let d = grey.delta_e2000(Lab::new(50.0, 10.0, 0.0));
     assert!(d.is_finite() && d > 0.0);
-    assert!(delta_e2000(Lab::new(f64::NAN, 0.0, 0.0), grey).is_nan());
+    assert!(Lab::new(f64::NAN, 0.0, 0.0).delta_e2000(grey).is_nan());
 }
 
 fn lab() -> impl Strategy<Value = Lab> {
@@ -636,11 +634,11 @@ proptest! {
 
     #[test]
     fn delta_e2000_is_a_symmetric_non_negative_difference(a in lab(), b in lab()) {
-        let ab = delta_e2000(a, b);
-        let ba = delta_e2000(b, a);
+        let ab = a.delta_e2000(b);
+        let ba = b.delta_e2000(a);
         prop_assert!(ab >= 0.0);
         prop_assert!((ab - ba).abs() <= tol::SYMMETRY * ab.max(1.0), "{} vs {}", ab, ba);
-        prop_assert_eq!(delta_e2000(a, a), 0.0);
+        prop_assert_eq!(a.delta_e2000(a), 0.0);
         prop_assert_eq!(a.delta_e2000(b), ab);
     }
 
@@ -649,6 +647,6 @@ proptest! {
         let white = Xyz::new(0.95047, 1.0, 1.08883);
         let lab_white = WhitePoint::new(white).unwrap();
         let l = Xyz::new(x, y, z).to_lab(lab_white);
-        prop_assert_eq!(delta_e2000(l, l), 0.0);
+        prop_assert_eq!(l.delta_e2000(l), 0.0);
     }
 }

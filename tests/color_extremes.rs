@@ -16,9 +16,7 @@ mod rng;
 mod tol;
 
 use diffraction::cie::{cmf, Illuminant};
-use diffraction::color::{
-    delta_e2000, srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz,
-};
+use diffraction::color::{srgb_decode, srgb_encode, Clip, Lab, LinearSrgb, Srgb, WhitePoint, Xyz};
 use diffraction::{Error, ParseError};
 
 /// XYZ → linear sRGB, IEC 61966-2-1 as colour-science 0.4.7 has it (`matrix_XYZ_to_RGB`).
@@ -223,7 +221,7 @@ fn run(seed: u64, iterations: u64) -> Counts {
             Ok(wp) => {
                 let l = xyz.to_lab(wp);
                 finite("to_lab", (v, white), &[l.l, l.a, l.b]);
-                let de = delta_e2000(l, lab);
+                let de = l.delta_e2000(lab);
                 finite("delta_e2000", (l, lab), &[de]);
                 assert!(de >= 0.0);
             }
@@ -244,7 +242,7 @@ fn run(seed: u64, iterations: u64) -> Counts {
         let (p, q) = (Lab::new(v[0], v[1], v[2]), Lab::new(w[0], w[1], w[2]));
         let de = p.delta_e2000(q);
         finite("delta_e2000", (p, q), &[de]);
-        assert!(de >= 0.0, "delta_e2000({p:?}, {q:?}) = {de}");
+        assert!(de >= 0.0, "{p:?}.delta_e2000({q:?}) = {de}");
         n.calls += 5;
 
         // The CIE tables at any wavelength.
@@ -331,9 +329,9 @@ fn documented_edges() {
     // ΔE2000 is computed for components up to 1e150 and clamped beyond: a = 1e50 is finite, and
     // two colours that differ only beyond the clamp have ΔE2000 = 0.
     let grey = Lab::new(50.0, 0.0, 0.0);
-    assert!(delta_e2000(Lab::new(50.0, 1e50, 0.0), grey).is_finite());
+    assert!(Lab::new(50.0, 1e50, 0.0).delta_e2000(grey).is_finite());
     assert_eq!(
-        delta_e2000(Lab::new(50.0, 1e200, 0.0), Lab::new(50.0, f64::MAX, 0.0)),
+        Lab::new(50.0, 1e200, 0.0).delta_e2000(Lab::new(50.0, f64::MAX, 0.0)),
         0.0
     );
 

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use diffraction::color::{delta_e2000, srgb_decode, srgb_encode, Lab, LinearSrgb, WhitePoint, Xyz};
+use diffraction::color::{srgb_decode, srgb_encode, Lab, LinearSrgb, WhitePoint, Xyz};
 
 /// Tolerances, each with its reason and measurement.
 #[path = "support/color_tolerance.rs"]
@@ -273,7 +273,7 @@ fn opposite_hues(p: Lab, q: Lab) -> bool {
 fn one_sided_limits(p: Lab, q: Lab) -> [f64; 2] {
     [tol::LIMIT_STEP_RAD, -tol::LIMIT_STEP_RAD].map(|t| {
         let (s, c) = t.sin_cos();
-        delta_e2000(p, Lab::new(q.l, c * q.a - s * q.b, s * q.a + c * q.b))
+        p.delta_e2000(Lab::new(q.l, c * q.a - s * q.b, s * q.a + c * q.b))
     })
 }
 
@@ -325,7 +325,7 @@ fn xyz_to_lab_and_delta_e2000() {
             _ => panic!("row {}: only one of the two XYZ triples given", i + 1),
         };
 
-        if opposite_hues(p, q) && (delta_e2000(p, q) - want_de).abs() > tol::DE2000 {
+        if opposite_hues(p, q) && (p.delta_e2000(q) - want_de).abs() > tol::DE2000 {
             // On the discontinuity, and the two libraries picked different sides: both our
             // value and colour-science's must be one of the one-sided limits.
             let limits = one_sided_limits(p, q);
@@ -337,19 +337,19 @@ fn xyz_to_lab_and_delta_e2000() {
                 };
                 one_sided.close(i, label, got, nearest);
             };
-            check_side("ours", delta_e2000(p, q));
+            check_side("ours", p.delta_e2000(q));
             check_side("colour-science", want_de);
             println!(
                 "row {}: hue difference 180 degrees: ours {}, colour-science {}, limits {:?}",
                 i + 1,
-                delta_e2000(p, q),
+                p.delta_e2000(q),
                 want_de,
                 limits
             );
             continue;
         }
-        de_fixture_lab.close(i, "dE2000", delta_e2000(p, q), want_de);
-        de_fixture_lab.close(i, "dE2000 swapped", delta_e2000(q, p), want_de);
+        de_fixture_lab.close(i, "dE2000", p.delta_e2000(q), want_de);
+        de_fixture_lab.close(i, "dE2000 swapped", q.delta_e2000(p), want_de);
         if let Some((op, oq)) = ours {
             de_our_lab.close(i, "dE2000", op.delta_e2000(oq), want_de);
         }

@@ -37,6 +37,8 @@ use glam::{DVec2, DVec3};
 
 #[path = "support/generic_models.rs"]
 mod generic_models;
+#[path = "support/groove_proxy.rs"]
+mod groove_proxy;
 #[path = "support/rng.rs"]
 mod rng;
 use generic_models::Model;
@@ -405,7 +407,7 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
         models.push(t);
     }
     if let Some(s) = &stam {
-        finite(s.phase(wi, wo, lambda), "Stam phase");
+        finite(s.phase(wo, wi, lambda), "Stam phase");
         models.push(s);
     }
     let light = rng.positive().min(1e6);
@@ -506,7 +508,7 @@ fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
     // Unit vectors (overflow of the caller's own huge vectors is documented).
     let unit = |v: DVec3| v.try_normalize().unwrap_or(DVec3::Z);
     finite(
-        phase_projection(unit(wi), unit(wo), unit(t)),
+        phase_projection(unit(wo), unit(wi), unit(t)),
         "phase_projection",
     );
     if let Some(f) = ShadingFrame::new(rng.direction(), rng.direction()) {
@@ -780,7 +782,6 @@ fn wavelengths_and_grooves(rng: &mut Rng, band: Band, lambda: f64, tally: &mut T
         for (what, x) in [
             ("value", groove.value(v, lambda)),
             ("width", groove.width(lambda)),
-            ("proxy_scale", groove.proxy_scale(lambda)),
             ("pdf", groove.pdf(v, lambda)),
             ("mean", groove.mean(v, v1, lambda)),
             ("proxy_bound", groove.proxy_bound()),
@@ -799,7 +800,7 @@ fn wavelengths_and_grooves(rng: &mut Rng, band: Band, lambda: f64, tally: &mut T
         // in logarithms, which cannot overflow), is between 10⁻³⁰⁰ and f64::MAX (beyond it,
         // at λ below 10⁻³⁰⁹·L, the documented 0).
         let pdf = groove.pdf(x, lambda);
-        let sc = groove.proxy_scale(lambda);
+        let sc = groove_proxy::proxy_scale(groove, lambda);
         let (big, small) = (sc.max(x.abs()), sc.min(x.abs()));
         let ln_pdf = sc.ln()
             - std::f64::consts::PI.ln()

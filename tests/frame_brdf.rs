@@ -32,7 +32,7 @@ proptest! {
         let m = AguHill::new(g);
         let shading = Illumination::new(0.0, 0.0, k).unwrap();
         let (wo, wi) = (unit_upper(t2, p2), unit_upper(t1, p1));
-        let u = phase_projection(wi, wo, DVec3::X);
+        let u = phase_projection(wo, wi, DVec3::X);
         let v = m.eval(wo, wi, l);
         prop_assert_eq!(v, g.intensity(u, l));
         prop_assert_eq!(shading.eval(&m, wo, wi, l, 1.0, 1.0), k * v);

@@ -150,8 +150,8 @@ fn paper_half_vector_misplaces_peaks() {
     let wi = DVec3::new(-(20f64.to_radians().sin()), 0.0, 20f64.to_radians().cos());
     let wo_x = 550.0 / 1600.0 - wi.x;
     let wo = DVec3::new(wo_x, 0.0, (1.0 - wo_x * wo_x).sqrt());
-    let u = phase_projection(wi, wo, t);
-    let u_paper = paper_half_vector_projection(wi, wo, t);
+    let u = phase_projection(wo, wi, t);
+    let u_paper = paper_half_vector_projection(wo, wi, t);
     let peak = g.peaks(u, Band::VISIBLE).next().unwrap();
     assert!((peak.wavelength_nm - 550.0).abs() <= tolerance::GRATING_EQUATION * 550.0);
     let tol = tolerance::INTENSITY_AT_PEAK_REL * peak.intensity + tolerance::INTENSITY_AT_PEAK_ABS;

@@ -1,4 +1,4 @@
-//! `RadiometricTable` against the crate's direct colour of the radiometric `GratingBsdf`:
+//! `ColorTable` of the radiometric `GratingBsdf` (`TableSource::Radiometric`) against the crate's direct colour of the radiometric `GratingBsdf`:
 //! lookups at random (wo, wi) against `Spectral::xyz_response(.., Strategy::EXACT)` of the BSDF's
 //! grating response (finite N, Gaussian groove) and against the closed-form areas of its delta
 //! peaks (N = ∞, computed here from the public CIE tables); means over intervals of u against a
@@ -18,7 +18,7 @@ use diffraction::cie::{cmf, cmf_areas, Illuminant};
 use diffraction::color::{WhitePoint, Xyz};
 use diffraction::spectrum::{Spectral, Strategy};
 use diffraction::{
-    Band, Grating, GratingBsdf, GrooveSpread, RadiometricTable, Requirement, SpectralResponse,
+    Band, ColorTable, Grating, GratingBsdf, GrooveSpread, Requirement, SpectralResponse,
 };
 use glam::DVec3;
 use tolerance::*;
@@ -100,7 +100,7 @@ fn errors(got: Xyz, want: Xyz, bright: f64, white: Xyz) -> (f64, f64) {
 }
 
 /// The worst (relative, ΔE2000) of `table.xyz` over random directions.
-fn lookup_errors(s: &Spectral, b: &GratingBsdf, table: &RadiometricTable, seed: u64) -> (f64, f64) {
+fn lookup_errors(s: &Spectral, b: &GratingBsdf, table: &ColorTable, seed: u64) -> (f64, f64) {
     let g = b.grating();
     let n = norm(s.illuminant());
     let pairs = directions(400, seed);
@@ -137,7 +137,7 @@ fn finite_gaussian_lookups_match_exact() {
     ] {
         let s = Spectral::new(ill);
         let b = gaussian(d, n);
-        let t = RadiometricTable::new(&s, &b, ACCURACY).unwrap();
+        let t = ColorTable::new(&s, &b, ACCURACY).unwrap();
         let (rel, de) = lookup_errors(&s, &b, &t, seed);
         println!(
             "d = {d}, N = {n}, {ill:?}: {} nodes, {} evaluations, estimate {:.2e}; worst {rel:.2e} rel, ΔE2000 {de:.4}",
@@ -174,7 +174,7 @@ fn infinite_lookups_match_the_delta_peaks() {
     ] {
         let s = Spectral::new(ill);
         let b = GratingBsdf::new(Grating::infinite(d, d / 2.0).unwrap()).with_groove(groove);
-        let t = RadiometricTable::new(&s, &b, ACCURACY).unwrap();
+        let t = ColorTable::new(&s, &b, ACCURACY).unwrap();
         let (rel, de) = lookup_errors(&s, &b, &t, seed);
         println!(
             "d = {d}, N = ∞, {ill:?}: {} nodes, {} evaluations, estimate {:.2e}; worst {rel:.2e} rel, ΔE2000 {de:.4}",
@@ -194,9 +194,9 @@ fn infinite_lookups_match_the_delta_peaks() {
 fn exposure_relation() {
     let s = Spectral::new(Illuminant::D65);
     let g = Grating::new(1600.0, 800.0, 300).unwrap();
-    let rough = RadiometricTable::new(&s, &gaussian(1600.0, 300), 1e-3).unwrap();
+    let rough = ColorTable::new(&s, &gaussian(1600.0, 300), 1e-3).unwrap();
     let ideal_bsdf = GratingBsdf::new(g).with_groove(GrooveSpread::IDEAL);
-    let ideal = RadiometricTable::new(&s, &ideal_bsdf, 1e-3).unwrap();
+    let ideal = ColorTable::new(&s, &ideal_bsdf, 1e-3).unwrap();
     for u in [0.0, 1e-4, 0.3, 0.77, 1.5] {
         assert_eq!(rough.lookup(u), ideal.lookup(u));
     }
@@ -212,7 +212,7 @@ fn exposure_relation() {
     }
     // N = ∞ against N = 10⁶ (direct), away from order 0: O(1/N).
     let inf = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap());
-    let t = RadiometricTable::new(&s, &inf, ACCURACY).unwrap();
+    let t = ColorTable::new(&s, &inf, ACCURACY).unwrap();
     let big = gaussian(1600.0, 1_000_000);
     let mut worst = 0.0f64;
     for u in [0.3, 0.34, 0.41, 0.5, 0.77, 1.1, 1.6] {
@@ -256,7 +256,7 @@ fn reference_mean(s: &Spectral, b: &GratingBsdf, a: f64, c: f64) -> Xyz {
 fn footprint_means_match_a_quadrature() {
     let s = Spectral::new(Illuminant::D65);
     let b = gaussian(1600.0, 1000);
-    let t = RadiometricTable::new(&s, &b, ACCURACY).unwrap();
+    let t = ColorTable::new(&s, &b, ACCURACY).unwrap();
     let mut worst = (0.0f64, 0.0f64);
     for (a, c) in [
         (0.30, 0.31),
@@ -272,7 +272,7 @@ fn footprint_means_match_a_quadrature() {
     // N = ∞: the reference C(u) is the delta peaks' areas over cos θi·g(0).
     let inf = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap())
         .with_groove(GrooveSpread::gaussian(SIGMA).unwrap());
-    let t = RadiometricTable::new(&s, &inf, ACCURACY).unwrap();
+    let t = ColorTable::new(&s, &inf, ACCURACY).unwrap();
     let n = norm(s.illuminant());
     let c_of = |u: f64| {
         let wi = DVec3::new(0.5 * u, 0.0, (1.0 - 0.25 * u * u).sqrt());
@@ -305,12 +305,12 @@ fn bad_input_is_refused_with_the_parameter_named() {
     let b = gaussian(1600.0, 100);
     for a in [0.0, f64::NAN, 2.0, -1.0] {
         assert_eq!(
-            RadiometricTable::new(&s, &b, a).unwrap_err().parameter(),
+            ColorTable::new(&s, &b, a).unwrap_err().parameter(),
             "accuracy"
         );
     }
     let coherent = GratingBsdf::new(Grating::new(1600.0, 800.0, 100).unwrap());
-    let e = RadiometricTable::new(&s, &coherent, 1e-3).unwrap_err();
+    let e = ColorTable::new(&s, &coherent, 1e-3).unwrap_err();
     assert_eq!(e.parameter(), "groove");
     assert_eq!(e.value(), 160_000.0);
     assert!(matches!(
@@ -321,7 +321,7 @@ fn bad_input_is_refused_with_the_parameter_named() {
         }
     ));
     assert!(e.to_string().contains("groove"), "{e}");
-    let t = RadiometricTable::new(&s, &b, 1e-2).unwrap();
+    let t = ColorTable::new(&s, &b, 1e-2).unwrap();
     for u in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
         assert_eq!(t.lookup(u), Xyz::default());
         assert_eq!(t.mean(0.0, u), Xyz::default());
@@ -344,7 +344,7 @@ fn coherence_length_does_not_factorise() {
     let diffraction::GrooveKind::CoherenceLength { length_nm } = coherent.groove().kind() else {
         panic!("the default groove is a coherence length");
     };
-    let t = RadiometricTable::new(&s, &gaussian(1600.0, 1000), ACCURACY).unwrap();
+    let t = ColorTable::new(&s, &gaussian(1600.0, 1000), ACCURACY).unwrap();
     let white = WhitePoint::new(s.white()).unwrap();
     let mut r = Lcg(21);
     let (mut rel, mut de) = (0.0f64, 0.0f64);
@@ -389,7 +389,7 @@ fn extreme_gratings_are_bounded_and_finite() {
     ];
     for b in &bsdfs {
         let start = std::time::Instant::now();
-        let t = RadiometricTable::new(&s, b, 1e-2).unwrap();
+        let t = ColorTable::new(&s, b, 1e-2).unwrap();
         println!(
             "d = {:e}, N = {:?}: {} nodes, {} evaluations, {:.3} s",
             b.grating().period_nm(),
@@ -398,8 +398,8 @@ fn extreme_gratings_are_bounded_and_finite() {
             t.evaluations(),
             start.elapsed().as_secs_f64()
         );
-        assert!(t.node_count() <= RadiometricTable::MAX_NODES);
-        assert!(t.evaluations() <= RadiometricTable::MAX_WORK + 2600);
+        assert!(t.node_count() <= ColorTable::MAX_NODES);
+        assert!(t.evaluations() <= ColorTable::MAX_WORK + 2600);
         assert!(t.scale() > 0.0 && t.scale().is_finite());
         for u in [0.0, 1e-300, 1e-20, 1e-6, 0.3, 1.0, 2.0, 5.0] {
             for c in [t.lookup(u), t.mean(u, u + 1e-3), t.mean(-u, 2.0 * u)] {
@@ -409,4 +409,23 @@ fn extreme_gratings_are_bounded_and_finite() {
             }
         }
     }
+}
+
+/// The deprecated `RadiometricTable` is `ColorTable` of the BSDF: the same table, by the same
+/// constructor; `bsdf()` and `source()` say what it holds, `grating()` the BSDF's grating.
+#[test]
+#[allow(deprecated)]
+fn the_deprecated_name_builds_the_same_table() {
+    let s = Spectral::new(Illuminant::E);
+    let b = gaussian(1600.0, 30);
+    let old = diffraction::RadiometricTable::new(&s, &b, 1e-2).unwrap();
+    let new = ColorTable::new(&s, &b, 1e-2).unwrap();
+    assert_eq!(old, new);
+    assert_eq!(new.bsdf(), Some(&b));
+    assert_eq!(new.grating(), b.grating());
+    assert_eq!(new.source(), diffraction::TableSource::Radiometric(&b));
+    assert_eq!(
+        diffraction::RadiometricTable::MAX_NODES,
+        ColorTable::MAX_NODES
+    );
 }

@@ -167,13 +167,14 @@ fn stam_etas(case: &Case) -> Option<Vec<f64>> {
         .unwrap();
     let s = case.s();
     let wi = DVec3::new(-s, 0.0, (1.0 - s * s).sqrt());
-    let clamp = |c: f64| c.max(diffraction::stam::GRAZING_COS);
+    // Stam's documented clamp of the geometry factor's cosines (the `stam` module docs).
+    let clamp = |c: f64| c.max(0.01);
     Some(
         case.orders
             .iter()
             .map(|&(m, sm, _)| {
                 let wo = DVec3::new(sm, 0.0, (1.0 - sm * sm).sqrt());
-                let phi = stam.phase(wi, wo, case.lambda_nm);
+                let phi = stam.phase(wo, wi, case.lambda_nm);
                 let c = (1.0 + wi.dot(wo)).clamp(0.0, 2.0);
                 let t = 1.0 - (0.5 * c).sqrt();
                 let f2 = r0 + (1.0 - r0) * t.powi(5);

@@ -4,7 +4,7 @@
 #![cfg(feature = "serde")]
 
 use diffraction::spectrum::{Illuminant, Spectral};
-use diffraction::{ColorTable, Grating, GratingBsdf, GrooveSpread, RadiometricTable};
+use diffraction::{ColorTable, Grating, GratingBsdf, GrooveSpread, TableSource};
 use serde_json::{json, Value};
 
 /// Values of u that reach every kind of cell: order 0's lobe and tail, orders, the ends, and
@@ -56,7 +56,7 @@ fn color_tables() -> Vec<ColorTable> {
     .collect()
 }
 
-fn radiometric_tables() -> Vec<RadiometricTable> {
+fn radiometric_tables() -> Vec<ColorTable> {
     let s = Spectral::new(Illuminant::E);
     let rough = GrooveSpread::gaussian(0.01).unwrap();
     [
@@ -65,7 +65,7 @@ fn radiometric_tables() -> Vec<RadiometricTable> {
         GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap()),
     ]
     .iter()
-    .map(|b| RadiometricTable::new(&s, b, 1e-3).unwrap())
+    .map(|b| ColorTable::new(&s, b, 1e-3).unwrap())
     .collect()
 }
 
@@ -100,7 +100,7 @@ fn color_tables_round_trip_bit_identically() {
 fn radiometric_tables_round_trip_bit_identically() {
     for t in radiometric_tables() {
         let json = serde_json::to_string(&t).unwrap();
-        let back: RadiometricTable = serde_json::from_str(&json).unwrap();
+        let back: ColorTable = serde_json::from_str(&json).unwrap();
         assert_eq!(back, t);
         identical(&|u| [t.lookup(u), back.lookup(u)], &|a, b| {
             [t.mean(a, b), back.mean(a, b)]
@@ -197,14 +197,40 @@ fn corrupted_radiometric_tables_are_refused_naming_the_field() {
     for t in radiometric_tables() {
         let base = serde_json::to_value(&t).unwrap();
         for (v, field) in corruptions(&base) {
-            refused::<RadiometricTable>(&v, field);
+            refused::<ColorTable>(&v, field);
         }
     }
     let base = serde_json::to_value(&radiometric_tables()[0]).unwrap();
     let mut v = base.clone();
     v["bsdf"]["groove"] = json!({"CoherenceLength": {"length_nm": 480000.0}});
-    refused::<RadiometricTable>(&v, "groove");
+    refused::<ColorTable>(&v, "groove");
     let mut v = base;
     v["bsdf"]["groove"] = json!({"Gaussian": {"sigma": -1.0}});
-    refused::<RadiometricTable>(&v, "sigma");
+    refused::<ColorTable>(&v, "sigma");
+}
+
+/// One stored form for both sources: the paper's writes `grating`, the radiometric one `bsdf`
+/// (the fields `ColorTable` and the former `RadiometricTable` wrote, version 1), each loads
+/// back with its source, and a form with both or neither is refused naming `grating`.
+#[test]
+fn the_stored_form_names_its_source() {
+    let paper = &color_tables()[0];
+    let v = serde_json::to_value(paper).unwrap();
+    assert!(v.get("grating").is_some() && v.get("bsdf").is_none());
+    assert_eq!(v["format_version"], json!(1));
+    let radiometric = &radiometric_tables()[0];
+    let w = serde_json::to_value(radiometric).unwrap();
+    assert!(w.get("bsdf").is_some() && w.get("grating").is_none());
+    let back: ColorTable = serde_json::from_value(w.clone()).unwrap();
+    assert!(matches!(back.source(), TableSource::Radiometric(b) if Some(b) == radiometric.bsdf()));
+    // The deprecated name still loads the same form.
+    #[allow(deprecated)]
+    let old: diffraction::RadiometricTable = serde_json::from_value(w.clone()).unwrap();
+    assert_eq!(&old, radiometric);
+    let mut both = w.clone();
+    both["grating"] = v["grating"].clone();
+    refused::<ColorTable>(&both, "grating");
+    let mut neither = w;
+    neither.as_object_mut().unwrap().remove("bsdf");
+    refused::<ColorTable>(&neither, "grating");
 }

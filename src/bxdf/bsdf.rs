@@ -542,7 +542,8 @@ pub trait Bsdf: DiffractionBrdf {
 
 /// The default sampler of models without their own: a cosine-weighted direction on the upper
 /// hemisphere (Malley's method: a uniform point on the unit disk, concentric map, lifted).
-/// Its density is [`cosine_hemisphere_pdf`]`(wi.z)` = cos θ/π. `u` is clamped into [0, 1].
+/// Its density is [`cosine_hemisphere_pdf`]`(wi.z)` = cos θ/π. `u2` is clamped into [0, 1]
+/// (a non-finite component taken as ½).
 ///
 /// ```
 /// use diffraction::bsdf::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
@@ -552,7 +553,7 @@ pub trait Bsdf: DiffractionBrdf {
 /// assert!((cosine_hemisphere_pdf(w.z) - 1.0 / std::f64::consts::PI).abs() < 1e-16);
 /// ```
 #[must_use]
-pub fn sample_cosine_hemisphere(u: DVec2) -> DVec3 {
+pub fn sample_cosine_hemisphere(u2: DVec2) -> DVec3 {
     use core::f64::consts::FRAC_PI_4;
     let clamp = |x: f64| {
         if x.is_finite() {
@@ -561,7 +562,7 @@ pub fn sample_cosine_hemisphere(u: DVec2) -> DVec3 {
             0.5
         }
     };
-    let (a, b) = (2.0 * clamp(u.x) - 1.0, 2.0 * clamp(u.y) - 1.0);
+    let (a, b) = (2.0 * clamp(u2.x) - 1.0, 2.0 * clamp(u2.y) - 1.0);
     if a == 0.0 && b == 0.0 {
         return DVec3::Z;
     }

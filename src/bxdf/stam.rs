@@ -63,7 +63,7 @@
 //!   exactly is Parseval, Σ_m |c_m|² = 1, and reciprocity f(wi, wo) = f(wo, wi).
 //! * **Grazing angles**: G/w² grows without bound toward the horizon (as 1/cos θo at normal
 //!   incidence), where the Kirchhoff approximation fails (the surface shadows itself). Each
-//!   cosine of G/w²'s denominator is taken as at least [`GRAZING_COS`] (a grazing angle of
+//!   cosine of G/w²'s denominator is taken as at least 0.01 (a grazing angle of
 //!   0.57°): a documented clamp that leaves the model unchanged above it and bounds G/w² by
 //!   10⁸ everywhere; with σ_c ≤ [`MAX_COHERENCE_NM`] every value is finite.
 //! * It is a BRDF (1/sr, cosine excluded): the renderer multiplies by cos θi, and its
@@ -102,7 +102,7 @@ const SQRT_PI: f64 = 1.772453850905516;
 /// approximation it comes from has no validity (the tangent plane is shadowed); the clamp
 /// bounds it by 1/`GRAZING_COS`⁴ = 10⁸ and changes the model only within a projected solid
 /// angle of π·`GRAZING_COS`² = 3·10⁻⁴ sr of the horizon.
-pub const GRAZING_COS: f64 = 0.01;
+pub(crate) const GRAZING_COS: f64 = 0.01;
 /// The longest accepted coherence width σ_c, nm (10⁶ km, the crate's longest coherence length,
 /// [`MAX_COHERENCE_NM`](crate::groove::MAX_COHERENCE_NM)): the lobe's peak k²σ_c²/π then stays
 /// below 1.3·10³¹ at λ ≥ 1 nm, so every value of the model is finite.
@@ -125,7 +125,7 @@ const PEAK_BESSEL_STEPS: f64 = 2000.0;
 /// ```
 ///
 /// with (u, v, w) = wi + wo in the local frame, k = 2π/λ, G = (1 + wi·wo)²/(wi.z·wo.z) (each
-/// cosine of G/w² at least [`GRAZING_COS`], see the module docs), c_m the
+/// cosine of G/w² at least 0.01, see the module docs), c_m the
 /// [`Profile`]'s Fourier coefficients and F² Schlick's reflectance. A BRDF: multiply by
 /// cos θi (its [`response`](SpectralResponse::response) does).
 ///
@@ -346,7 +346,7 @@ impl Stam {
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
-    pub fn phase(&self, wi: DVec3, wo: DVec3, lambda_nm: f64) -> f64 {
+    pub fn phase(&self, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
         if !(lambda_nm >= MIN_WAVELENGTH_NM && lambda_nm.is_finite()) {
             return 0.0;
         }
@@ -357,7 +357,7 @@ impl Stam {
     /// F²·G/w², the factor common to every order, with each cosine of G/w² taken in
     /// [[`GRAZING_COS`], 1] and 1 + wi·wo in [0, 2] (their ranges for unit directions), so that
     /// it is at most 1/`GRAZING_COS`⁴ for every input.
-    fn geometry(&self, wi: DVec3, wo: DVec3) -> f64 {
+    fn geometry(&self, wo: DVec3, wi: DVec3) -> f64 {
         let (ci, co) = (grazing_cosine(wi.z), grazing_cosine(wo.z));
         let w = ci + co;
         let c = (1.0 + wi.dot(wo)).clamp(0.0, 2.0);
@@ -419,7 +419,7 @@ impl DiffractionBrdf for Stam {
             let du = u - m as f64 * step;
             math::exp(-ks2 * (du * du + v * v))
         };
-        let phase = self.phase(wi, wo, lambda_nm);
+        let phase = self.phase(wo, wi, lambda_nm);
         let sum = match self.profile {
             Profile::Sine => bessel_squares(phase.abs(), lo, hi, &mut |m| lobe(m)),
             Profile::Binary { fraction } => (lo..=hi)
@@ -429,7 +429,7 @@ impl DiffractionBrdf for Stam {
                 })
                 .sum(),
         };
-        let f = self.geometry(wi, wo) * ks2 / PI * sum;
+        let f = self.geometry(wo, wi) * ks2 / PI * sum;
         if f.is_finite() {
             f
         } else {
@@ -462,7 +462,7 @@ impl SpectralResponse for Stam {
         let d = self.equation.period_nm();
         let sigma = self.coherence_nm;
         // The response carries cos θi (a BRDF).
-        let geometry = self.geometry(wi, wo) * wi.z.min(1.0);
+        let geometry = self.geometry(wo, wi) * wi.z.min(1.0);
         let mut orders = 0;
         for p in self.equation.orders(u, band).take(MAX_ORDERS as usize) {
             let l = p.wavelength_nm;
@@ -471,7 +471,7 @@ impl SpectralResponse for Stam {
             // The same cut-off as `eval`: beyond 6 widths off the cone the lobe is 0.
             let efficiency = if l >= MIN_WAVELENGTH_NM && ks * v.abs() < CUTOFF {
                 self.profile
-                    .efficiency_bounded(p.order, self.phase(wi, wo, l), PEAK_BESSEL_STEPS)
+                    .efficiency_bounded(p.order, self.phase(wo, wi, l), PEAK_BESSEL_STEPS)
             } else {
                 0.0
             };

@@ -155,18 +155,38 @@ impl Lab {
         Lab { l, a, b }
     }
 
-    /// The CIEDE2000 colour difference to `other`; see [`delta_e2000`].
+    /// The CIEDE2000 colour difference ΔE₀₀ to `other`, with the parametric factors
+    /// kL = kC = kH = 1.
+    ///
+    /// Implements G. Sharma, W. Wu, E. N. Dalal, "The CIEDE2000 color-difference formula:
+    /// implementation notes, supplementary test data, and mathematical observations", *Color Res.
+    /// Appl.* 30 (2005), eqs. 1-22, including its conventions for the hue: h' = 0 when a' = b = 0;
+    /// Δh' = 0 when C'₁C'₂ = 0, otherwise the difference taken the short way round the circle; the
+    /// mean hue h̄' = h'₁ + h'₂ when C'₁C'₂ = 0, otherwise the mean taken the short way round (adding
+    /// or subtracting 360° as the paper prescribes). It reproduces the paper's 34 test pairs and
+    /// colour-science's `delta_E_CIE2000`.
+    ///
+    /// The result is symmetric, zero for identical inputs, and non-negative (the rotation term is
+    /// bounded by |R_T| < 2, so the quadratic form is positive definite; a rounding-level negative
+    /// radicand is returned as 0). NaN input gives NaN.
+    ///
+    /// Finite for every finite input: components are first clamped to ±1e150 (far beyond any real
+    /// colour, whose CIELAB components are below 10³), which keeps every square of the formula finite.
     ///
     /// ```
     /// use diffraction::color::Lab;
-    /// let a = Lab::new(50.0, 2.6772, -79.7751);
-    /// let b = Lab::new(50.0, 0.0, -82.7485);
-    /// assert!((a.delta_e2000(b) - 2.0425).abs() < 1e-4);
+    /// let a = Lab::new(50.0, 2.5, 0.0);
+    /// let b = Lab::new(73.0, 25.0, -18.0);
+    /// assert!((a.delta_e2000(b) - 27.1492).abs() < 1e-4);
+    /// assert_eq!(a.delta_e2000(a), 0.0);
+    /// assert!(Lab::new(50.0, 1e50, 0.0).delta_e2000(a).is_finite());
+    /// let (c, d) = (Lab::new(50.0, 2.6772, -79.7751), Lab::new(50.0, 0.0, -82.7485));
+    /// assert!((c.delta_e2000(d) - 2.0425).abs() < 1e-4); // Sharma et al.'s first pair
     /// ```
     #[inline]
     #[must_use]
     pub fn delta_e2000(self, other: Lab) -> f64 {
-        delta_e2000(self, other)
+        ciede2000(self, other)
     }
 }
 
@@ -211,34 +231,8 @@ fn hue_deg(b: f64, a: f64) -> f64 {
     }
 }
 
-/// The CIEDE2000 colour difference ΔE₀₀ between two CIELAB colours, with the parametric factors
-/// kL = kC = kH = 1.
-///
-/// Implements G. Sharma, W. Wu, E. N. Dalal, "The CIEDE2000 color-difference formula:
-/// implementation notes, supplementary test data, and mathematical observations", *Color Res.
-/// Appl.* 30 (2005), eqs. 1-22, including its conventions for the hue: h' = 0 when a' = b = 0;
-/// Δh' = 0 when C'₁C'₂ = 0, otherwise the difference taken the short way round the circle; the
-/// mean hue h̄' = h'₁ + h'₂ when C'₁C'₂ = 0, otherwise the mean taken the short way round (adding
-/// or subtracting 360° as the paper prescribes). It reproduces the paper's 34 test pairs and
-/// colour-science's `delta_E_CIE2000`.
-///
-/// The result is symmetric, zero for identical inputs, and non-negative (the rotation term is
-/// bounded by |R_T| < 2, so the quadratic form is positive definite; a rounding-level negative
-/// radicand is returned as 0). NaN input gives NaN.
-///
-/// Finite for every finite input: components are first clamped to ±1e150 (far beyond any real
-/// colour, whose CIELAB components are below 10³), which keeps every square of the formula finite.
-///
-/// ```
-/// use diffraction::color::{delta_e2000, Lab};
-/// let a = Lab::new(50.0, 2.5, 0.0);
-/// let b = Lab::new(73.0, 25.0, -18.0);
-/// assert!((delta_e2000(a, b) - 27.1492).abs() < 1e-4);
-/// assert_eq!(delta_e2000(a, a), 0.0);
-/// assert!(delta_e2000(Lab::new(50.0, 1e50, 0.0), a).is_finite());
-/// ```
-#[must_use]
-pub fn delta_e2000(lab1: Lab, lab2: Lab) -> f64 {
+/// CIEDE2000 (see [`Lab::delta_e2000`]).
+fn ciede2000(lab1: Lab, lab2: Lab) -> f64 {
     let m = |v: f64| v.clamp(-DE2000_COMPONENT_MAX, DE2000_COMPONENT_MAX);
     let (l1, a1, b1) = (m(lab1.l), m(lab1.a), m(lab1.b));
     let (l2, a2, b2) = (m(lab2.l), m(lab2.a), m(lab2.b));

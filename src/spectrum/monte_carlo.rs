@@ -42,11 +42,11 @@ impl Spectral {
         Xyz::new(acc.x, acc.y, acc.z)
     }
 
-    /// Hero wavelengths: one random number `xi` in [0, 1) places the first of `count`
+    /// Hero wavelengths: one random number `uc` in [0, 1) places the first of `count`
     /// wavelengths uniformly in the band and the others at equal spacing after it, wrapping
     /// around (the rotation of Wilkie et al. 2014, with pbrt-v4's `SampleUniform` for the first
     /// wavelength, not its default visible-wavelength importance sampling); an unbiased estimate
-    /// of [`xyz`](Self::xyz). `xi` outside [0, 1) is taken modulo 1; a non-finite `xi` or
+    /// of [`xyz`](Self::xyz). `uc` outside [0, 1) is taken modulo 1; a non-finite `uc` or
     /// `count` = 0 gives black. `count` is capped at [`MAX_WAVELENGTHS`]
     /// (still unbiased: fewer, equally spaced wavelengths).
     ///
@@ -55,7 +55,7 @@ impl Spectral {
     /// use diffraction::{color::Xyz, Grating};
     /// let g = Grating::new(1600.0, 800.0, 3)?;
     /// let s = Spectral::new(Illuminant::E);
-    /// // xi = 0.5/count puts the wavelengths at the strata midpoints: the uniform rule.
+    /// // uc = 0.5/count puts the wavelengths at the strata midpoints: the uniform rule.
     /// let hero = s.xyz_hero(&g, 0.4, 0.5 / 8.0, 8);
     /// let uniform = s.xyz(&g, 0.4, Strategy::uniform(8)?);
     /// assert!((hero.y - uniform.y).abs() < 1e-12 * uniform.y); // same wavelengths, rounded apart
@@ -63,8 +63,8 @@ impl Spectral {
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
-    pub fn xyz_hero(&self, grating: &Grating, u: f64, xi: f64, count: u32) -> Xyz {
-        let Some(xi) = unit_interval(xi) else {
+    pub fn xyz_hero(&self, grating: &Grating, u: f64, uc: f64, count: u32) -> Xyz {
+        let Some(xi) = unit_interval(uc) else {
             return Xyz::default();
         };
         let count = count.min(MAX_WAVELENGTHS);

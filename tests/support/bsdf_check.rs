@@ -6,8 +6,11 @@
 use diffraction::{Bsdf, GratingBsdf, Slits};
 use glam::DVec3;
 
+#[path = "groove_proxy.rs"]
+mod groove_proxy;
 #[path = "quadrature.rs"]
 mod quadrature;
+pub use groove_proxy::proxy_scale;
 #[path = "rng.rs"]
 mod rng;
 pub use quadrature::integrate;
@@ -202,7 +205,7 @@ pub fn lobe_coordinates(b: &GratingBsdf, wo: DVec3, wi: DVec3, lambda: f64) -> (
     let m = x.round();
     let r = x - m;
     let xu = period_xi(n, r);
-    let s = b.groove().proxy_scale(lambda);
+    let s = proxy_scale(b.groove(), lambda);
     let xv = 0.5 + (v / s).atan() / std::f64::consts::PI;
     (m as i64, xu, xv.clamp(0.0, 1.0))
 }
@@ -220,7 +223,7 @@ pub fn lobe_direction(
     let n = slits_f64(b);
     let step = lambda / b.grating().period_nm();
     let (r, dr) = period_r(n, xu);
-    let s = b.groove().proxy_scale(lambda);
+    let s = proxy_scale(b.groove(), lambda);
     let v = s * (std::f64::consts::PI * (xv - 0.5)).tan();
     let dv = std::f64::consts::PI * s * (1.0 + (v / s).powi(2));
     let u = (m as f64 + r) * step;
@@ -274,7 +277,7 @@ pub fn chi2_grating(
     // and the inside's ξ_u-range is known), so the quadrature sees a smooth integrand.
     let (gx, gw) = (&quadrature::X8, &quadrature::W8);
     let n = slits_f64(b);
-    let s = b.groove().proxy_scale(lambda);
+    let s = proxy_scale(b.groove(), lambda);
     let xi_v = |v: f64| 0.5 + (v / s).atan() / std::f64::consts::PI;
     let xi_u_of_u = |m: i64, u: f64| {
         let r = u / step - m as f64;

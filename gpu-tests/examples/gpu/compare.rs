@@ -1,8 +1,8 @@
 //! The GPU's picture against the reference tracer's: CIEDE2000 per pixel (the crate's
-//! `color::delta_e2000`) between the two linear images as the PNG shows them (clipped with the
+//! `color::Lab::delta_e2000`) between the two linear images as the PNG shows them (clipped with the
 //! scene's rule), in CIELAB relative to the sRGB white.
 
-use diffraction::color::{delta_e2000, Clip, Lab, LinearSrgb, WhitePoint};
+use diffraction::color::{Clip, Lab, LinearSrgb, WhitePoint};
 
 use crate::output::Image;
 
@@ -30,7 +30,7 @@ pub fn difference(a: &Image, b: &Image, clip: Clip) -> Difference {
     };
     let (mut sum, mut max, mut above) = (0.0, 0.0f64, 0usize);
     for (p, q) in a.pixels.iter().zip(&b.pixels) {
-        let e = delta_e2000(lab(*p), lab(*q));
+        let e = lab(*p).delta_e2000(lab(*q));
         sum += e;
         max = max.max(e);
         above += (e > 1.0) as usize;

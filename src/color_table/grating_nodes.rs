@@ -1,11 +1,12 @@
-//! The node values of a grating's colour: which strategy computes each node, the nodes that are
-//! provably dark, and the evaluation counters (shared by [`ColorTable`](super::ColorTable) and
-//! the finite-N [`RadiometricTable`](super::RadiometricTable)).
+//! The node values of a finite grating's colour: which strategy computes each node, the nodes
+//! that are provably dark, and the evaluation counters (the paper's source and the finite-N
+//! radiometric source of [`ColorTable`](super::ColorTable)).
 
 use core::cell::Cell;
 
-use super::grid::work_units;
-use super::{DARK_SHARE, LAMBDA_MAX_NM, ORDER0_HALF_PERIOD_NM};
+use super::layout::{
+    work_units, ASYMPTOTIC_ACCURACY, DARK_SHARE, LAMBDA_MAX_NM, ORDER0_HALF_PERIOD_NM,
+};
 use crate::error::Error;
 use crate::spectrum::bounds::{self, accuracy_floor};
 use crate::spectrum::{Spectral, Strategy, MIN_ACCURACY};
@@ -55,8 +56,7 @@ impl<'a> GratingNodes<'a> {
             grating,
             k,
             white,
-            fast: n >= bounds::ASYMPTOTIC_MIN_SLITS as f64
-                && accuracy >= super::ColorTable::ASYMPTOTIC_ACCURACY,
+            fast: n >= bounds::ASYMPTOTIC_MIN_SLITS as f64 && accuracy >= ASYMPTOTIC_ACCURACY,
             order0_from: ORDER0_HALF_PERIOD_NM / grating.period_nm(),
             // Where order 0's light reaches the band, `Asymptotic` is within ORDER0_BOUND of
             // that light: a relative error δ moves CIELAB's f(t) by δ·t^(1/3)/3, within the

@@ -1,0 +1,301 @@
+//! What a colour table tabulates: the paper's grating or the radiometric [`GratingBsdf`], and
+//! what each source brings to the shared grid (its checks, its error floor, its first block,
+//! its node values, its direct lookups where the grid leaves the first block to them, the
+//! order-0 delta of N = ∞).
+//!
+//! A source whose colour is not one function of u (a BSDF whose order efficiencies depend on
+//! incidence, such as a tabulated relief) is refused by [`factorises`] today. It would be a
+//! third [`Source`] variant holding its own grids (one per incidence node, each built by
+//! [`Grid::build`] from that incidence's nodes), with `ColorTable::xyz(wo, wi)` interpolating
+//! between them; `lookup(u)`, which has no incidence, would not apply to it.
+
+use alloc::boxed::Box;
+
+use super::delta_nodes::{peak_weight, DeltaNodes};
+use super::grating_nodes::GratingNodes;
+use super::grid::{Grid, Limits, Plan};
+use super::layout::{comb_block, lobe_block, LAMBDA_MIN_NM};
+use crate::color::Xyz;
+use crate::error::{Error, Requirement};
+use crate::spectrum::Spectral;
+use crate::{Envelope, Grating, GratingBsdf, GrooveKind, Slits};
+
+/// What a [`ColorTable`](crate::ColorTable) tabulates: the argument of
+/// [`ColorTable::new`](crate::ColorTable::new) (from `&Grating` or `&GratingBsdf`, by `From`)
+/// and the answer of [`ColorTable::source`](crate::ColorTable::source).
+///
+/// ```
+/// use diffraction::spectrum::{Illuminant, Spectral};
+/// use diffraction::{ColorTable, Grating, GratingBsdf, GrooveSpread, TableSource};
+/// let g = Grating::new(1600.0, 800.0, 30)?;
+/// let s = Spectral::new(Illuminant::E);
+/// let paper = ColorTable::new(&s, &g, 1e-2)?;
+/// assert_eq!(paper.source(), TableSource::Paper(&g));
+/// let b = GratingBsdf::new(g).with_groove(GrooveSpread::gaussian(0.02)?);
+/// let physical = ColorTable::new(&s, &b, 1e-2)?;
+/// assert_eq!(physical.source(), TableSource::Radiometric(&b));
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum TableSource<'a> {
+    /// The paper's unitless intensity I(u, λ) = S(β)·F_N(α) of a finite grating: the table
+    /// holds its colour [`Spectral::xyz`].
+    Paper(&'a Grating),
+    /// The radiometric BSDF with a groove spread that does not depend on λ (Gaussian or
+    /// ideal) and the amplitude order efficiencies: the table holds C(u), its colour per unit
+    /// of cos θi·g(v), in physical units.
+    Radiometric(&'a GratingBsdf),
+}
+
+impl<'a> From<&'a Grating> for TableSource<'a> {
+    fn from(g: &'a Grating) -> TableSource<'a> {
+        TableSource::Paper(g)
+    }
+}
+
+impl<'a> From<&'a GratingBsdf> for TableSource<'a> {
+    fn from(b: &'a GratingBsdf) -> TableSource<'a> {
+        TableSource::Radiometric(b)
+    }
+}
+
+/// The source a table keeps, with what its direct lookups need.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Source {
+    /// The paper's colour of a finite grating.
+    Paper { grating: Grating },
+    /// The radiometric BSDF's C(u).
+    Radiometric {
+        /// Boxed: a `GratingBsdf` is several times the size of a `Grating`.
+        bsdf: Box<GratingBsdf>,
+        /// ρ²·N·d (finite N), the factor of the direct lookups; 1 for N = ∞.
+        k: f64,
+        /// η₀·white for N = ∞; black for finite N (order 0 is in the table).
+        specular: Xyz,
+    },
+}
+
+/// Whether the BSDF's colour factorises as g(v)·C(u): its order efficiencies must not depend
+/// on the directions or λ, and its groove spread not on λ. Errors name `efficiency` or `groove`.
+fn factorises(bsdf: &GratingBsdf) -> Result<(), Error> {
+    // An efficiency model that depends on incidence or λ does not factorise into one C(u).
+    #[cfg(feature = "relief")]
+    if let Some(t) = bsdf.order_efficiency().table() {
+        return Err(Error::invalid(
+            "efficiency",
+            t.orders().count() as f64,
+            Requirement::NotTabulated,
+        ));
+    }
+    match bsdf.groove().kind() {
+        GrooveKind::CoherenceLength { length_nm } => Err(Error::invalid(
+            "groove",
+            length_nm,
+            Requirement::IndependentOfWavelength,
+        )),
+        GrooveKind::Gaussian { .. } | GrooveKind::Ideal => Ok(()),
+    }
+}
+
+impl Source {
+    /// The checked source of `source` under `spectral`, and the integrator of its nodes and
+    /// direct lookups: `spectral` itself for the paper's grating; for the BSDF its illuminant
+    /// with the envelope λ⁻¹ (finite N) or plain (N = ∞, whose nodes are sums over orders).
+    ///
+    /// # Errors
+    ///
+    /// The paper's grating with N = ∞ (`slits`); a BSDF whose colour does not factorise
+    /// (`efficiency`, `groove`).
+    pub(super) fn new(
+        source: TableSource<'_>,
+        spectral: &Spectral,
+    ) -> Result<(Source, Spectral), Error> {
+        match source {
+            TableSource::Paper(g) => {
+                if g.slits() == Slits::Infinite {
+                    return Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite));
+                }
+                Ok((Source::Paper { grating: *g }, *spectral))
+            }
+            TableSource::Radiometric(bsdf) => {
+                factorises(bsdf)?;
+                let plain = Spectral::new(spectral.illuminant());
+                let g = bsdf.grating();
+                let rho = g.open_fraction();
+                let (k, nodes, specular) = match g.slits() {
+                    Slits::Finite(n) => (
+                        (rho * rho * n as f64 * g.period_nm()).min(f64::MAX),
+                        plain.with_envelope(Envelope::new(1, 0.0)?),
+                        Xyz::default(),
+                    ),
+                    Slits::Infinite => (1.0, plain, plain.white().scale(bsdf.efficiency(0))),
+                };
+                let source = Source::Radiometric {
+                    bsdf: Box::new(bsdf.clone()),
+                    k,
+                    specular,
+                };
+                Ok((source, nodes))
+            }
+        }
+    }
+
+    /// The public view.
+    pub(super) fn view(&self) -> TableSource<'_> {
+        match self {
+            Source::Paper { grating } => TableSource::Paper(grating),
+            Source::Radiometric { bsdf, .. } => TableSource::Radiometric(bsdf.as_ref()),
+        }
+    }
+
+    /// The grating of the source.
+    pub(super) fn grating(&self) -> &Grating {
+        match self {
+            Source::Paper { grating } => grating,
+            Source::Radiometric { bsdf, .. } => bsdf.grating(),
+        }
+    }
+
+    /// The end of the first block and whether that block is left to direct lookups: finite N
+    /// the end of order 0's lobe block; N = ∞ (the BSDF) 2^⌊log₂(360 nm/d)⌋.
+    pub(super) fn first_block(&self) -> (f64, bool) {
+        let g = self.grating();
+        match g.slits() {
+            Slits::Finite(_) => lobe_block(g),
+            Slits::Infinite => comb_block(g),
+        }
+    }
+
+    /// The colour at |u| = `a` computed directly (`Exact`), as the grid's nodes are.
+    pub(super) fn direct(&self, spectral: &Spectral, a: f64) -> Xyz {
+        use crate::spectrum::{saturate, Strategy};
+        match self {
+            Source::Paper { grating } => spectral.xyz(grating, a, Strategy::EXACT),
+            Source::Radiometric { bsdf, k, .. } => {
+                let c = spectral.xyz(bsdf.grating(), a, Strategy::EXACT);
+                saturate(c.scale(*k))
+            }
+        }
+    }
+
+    /// What a build of this source can produce, for the checks of a stored table: node values
+    /// at most twice the largest a build makes (the white for the paper's grating, k·white/360
+    /// nm with k = ρ²·N·d for the BSDF of finite N, d times the largest film weight for N = ∞,
+    /// since Σ η ≤ 1), the error scale from the build's floor to twice the largest Y, and
+    /// error·scale at most 10⁴ times the largest value over the white.
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(super) fn stored_limits(&self, illuminant: crate::spectrum::Illuminant) -> Limits {
+        /// Headroom over the largest node value a build produces, for the strategies' rounding.
+        const VALUE_HEADROOM: f64 = 2.0;
+        /// A bound of error·scale per unit of (largest value)/white: the worst midpoint error
+        /// is a difference of the interpolant (within a small multiple of the largest value)
+        /// and a node value, over a tolerance of at least (6/29)²·white·scale = 0.043·white·
+        /// scale; 10⁴ is ample.
+        const ERROR_FACTOR: f64 = 1e4;
+        let plain = Spectral::new(illuminant);
+        let w = plain.white();
+        let white = [w.x, w.y, w.z];
+        let g = self.grating();
+        let (d, rho) = (g.period_nm(), g.open_fraction());
+        let (max_value, floor) = match (self, g.slits()) {
+            (Source::Paper { .. }, slits) => (white, GratingNodes::paper_floor(slits.as_f64())),
+            (Source::Radiometric { .. }, slits) => {
+                // As the build's.
+                let floor =
+                    (rho * rho * d / crate::cie::cmf_areas()[1]).clamp(f64::MIN_POSITIVE, f64::MAX);
+                let max = match slits {
+                    Slits::Finite(n) => {
+                        let k = (rho * rho * n as f64 * d).min(f64::MAX);
+                        white.map(|c| k * c / LAMBDA_MIN_NM)
+                    }
+                    Slits::Infinite => peak_weight(&plain).map(|c| d * c),
+                };
+                (max, floor)
+            }
+        };
+        let value = max_value.map(|v| VALUE_HEADROOM * v);
+        let ratio = (0..3).map(|c| value[c] / white[c]).fold(0.0, f64::max);
+        Limits {
+            value,
+            scale: (floor, floor.max(value[1])),
+            error_times_scale: ERROR_FACTOR * ratio,
+        }
+    }
+
+    /// The order-0 delta's colour (black but for the BSDF with N = ∞).
+    pub(super) fn specular(&self) -> Xyz {
+        match self {
+            Source::Paper { .. } => Xyz::default(),
+            Source::Radiometric { specular, .. } => *specular,
+        }
+    }
+
+    /// Builds the grid of the source to `accuracy` (validated by the caller) with the nodes'
+    /// integrator `spectral` (from [`Source::new`]), within the caps; returns it with the
+    /// evaluations it took.
+    pub(super) fn build(
+        &self,
+        spectral: &Spectral,
+        accuracy: f64,
+        max_nodes: usize,
+        max_work: usize,
+    ) -> Result<(Grid, usize), Error> {
+        let g = self.grating();
+        let d = g.period_nm();
+        let (u_lo, unresolved) = self.first_block();
+        let mut plan = Plan {
+            accuracy,
+            white: [0.0; 3],
+            floor: 0.0,
+            diffracted_from: LAMBDA_MIN_NM / d,
+            u_lo,
+            // Where the first block holds a lobe no grid of that spacing resolves, lookups
+            // there are direct, so the block is neither refined nor checked (its values only
+            // enter `mean`).
+            skip_first: unresolved,
+            period_nm: d,
+            max_nodes,
+            max_work,
+        };
+        match (self, g.slits()) {
+            (Source::Paper { .. }, Slits::Finite(n)) => {
+                let n = n as f64;
+                let white = spectral.white();
+                plan.white = [white.x, white.y, white.z];
+                plan.floor = GratingNodes::paper_floor(n);
+                let nodes =
+                    GratingNodes::new(spectral, g, n, accuracy, 1.0, plan.white, plan.floor)?;
+                let grid = Grid::build(&plan, &|u, scale| nodes.eval(u, scale), &|| {
+                    nodes.work_done.get()
+                });
+                Ok((grid, nodes.evaluations.get()))
+            }
+            (Source::Radiometric { bsdf, k, .. }, slits) => {
+                let white = Spectral::new(spectral.illuminant()).white();
+                plan.white = [white.x, white.y, white.z];
+                let rho = g.open_fraction();
+                // Clamped to the normal range: a scale of 0 (d = 5e-324 nm) would leave no
+                // tolerance.
+                plan.floor =
+                    (rho * rho * d / crate::cie::cmf_areas()[1]).clamp(f64::MIN_POSITIVE, f64::MAX);
+                if let Slits::Finite(n) = slits {
+                    let (w, f) = (plan.white, plan.floor);
+                    let nodes = GratingNodes::new(spectral, g, n as f64, accuracy, *k, w, f)?;
+                    let grid = Grid::build(&plan, &|u, scale| nodes.eval(u, scale), &|| {
+                        nodes.work_done.get()
+                    });
+                    Ok((grid, nodes.evaluations.get()))
+                } else {
+                    let delta = DeltaNodes::new(spectral, bsdf, accuracy, plan.white, plan.floor);
+                    let grid = Grid::build(&plan, &|u, _| delta.eval(u), &|| delta.work_done.get());
+                    Ok((grid, delta.evaluations.get()))
+                }
+            }
+            // `Source::new` refuses N = ∞ for the paper's grating.
+            (Source::Paper { .. }, Slits::Infinite) => {
+                Err(Error::invalid("slits", f64::INFINITY, Requirement::Finite))
+            }
+        }
+    }
+}
