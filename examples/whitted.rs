@@ -320,7 +320,7 @@ fn exposure(spectral: &Spectral, grating: &Grating) -> f64 {
         .filter(|u| u.abs() >= u_min)
         .map(|u| spectral.xyz(grating, u, Strategy::PEAK_SEARCH).y)
         .fold(0.0, f64::max);
-    (max_y > 0.0).then(|| 1.0 / max_y).unwrap_or(1.0)
+    1.0 / if max_y > 0.0 { max_y } else { 1.0 }
 }
 
 fn prepare(mut scene: Scene, table: bool) -> Result<Prepared, diffraction::Error> {
