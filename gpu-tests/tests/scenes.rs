@@ -7,53 +7,53 @@
 //! and are not run again here.
 #![allow(dead_code, unused_imports)] // the included modules' test-only items
 
-#[path = "../../examples/common/budget.rs"]
+#[path = "../../tools/render/common/budget.rs"]
 pub mod budget;
-#[path = "../../examples/common/camera.rs"]
+#[path = "../../tools/render/common/camera.rs"]
 pub mod camera;
-#[path = "../../examples/common/cli.rs"]
+#[path = "../../tools/render/common/cli.rs"]
 pub mod cli;
-#[path = "../../examples/common/colour.rs"]
+#[path = "../../tools/render/common/colour.rs"]
 pub mod colour;
 #[path = "../examples/gpu/compare.rs"]
 pub mod compare;
 #[path = "../examples/gpu/device.rs"]
 pub mod device;
-#[path = "../../examples/common/diagnostics.rs"]
+#[path = "../../tools/render/common/diagnostics.rs"]
 pub mod diagnostics;
-#[path = "../../examples/common/files.rs"]
+#[path = "../../tools/render/common/files.rs"]
 pub mod files;
-#[path = "../../examples/common/font.rs"]
+#[path = "../../tools/render/common/font.rs"]
 pub mod font;
-#[path = "../../examples/raytrace/footprint.rs"]
+#[path = "../../tools/render/raytrace/footprint.rs"]
 pub mod footprint;
 #[path = "../examples/gpu/gbuffer.rs"]
 pub mod gbuffer;
-#[path = "../../examples/common/geometry.rs"]
+#[path = "../../tools/render/common/geometry.rs"]
 pub mod geometry;
 #[path = "../../tests/support/gpu_tolerance.rs"]
 mod gpu_tolerance;
-#[path = "../../examples/common/limits.rs"]
+#[path = "../../tools/render/common/limits.rs"]
 pub mod limits;
-#[path = "../../examples/common/material.rs"]
+#[path = "../../tools/render/common/material.rs"]
 pub mod material;
-#[path = "../../examples/raytrace/model.rs"]
+#[path = "../../tools/render/raytrace/model.rs"]
 pub mod model;
-#[path = "../../examples/common/output.rs"]
+#[path = "../../tools/render/common/output.rs"]
 pub mod output;
 #[path = "../examples/gpu/renderer.rs"]
 pub mod renderer;
-#[path = "../../examples/common/run.rs"]
+#[path = "../../tools/render/common/run.rs"]
 pub mod run;
-#[path = "../../examples/common/sampling.rs"]
+#[path = "../../tools/render/common/sampling.rs"]
 pub mod sampling;
-#[path = "../../examples/common/scene.rs"]
+#[path = "../../tools/render/common/scene.rs"]
 pub mod scene;
-#[path = "../../examples/common/schema.rs"]
+#[path = "../../tools/render/common/schema.rs"]
 pub mod schema;
-#[path = "../../examples/common/texture.rs"]
+#[path = "../../tools/render/common/texture.rs"]
 pub mod texture;
-#[path = "../../examples/raytrace/whitted.rs"]
+#[path = "../../tools/render/raytrace/whitted.rs"]
 pub mod whitted;
 
 use run::Renderer;

@@ -261,7 +261,7 @@ impl run::Renderer for Raytracer {
 
 /// Where the generated can label is shipped.
 fn label_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/assets/label.png")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/label.png")
 }
 
 fn main() -> ExitCode {

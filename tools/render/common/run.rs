@@ -45,9 +45,9 @@ pub trait Renderer: Sync {
     }
 }
 
-/// The crate's root directory (`examples/` is there): the including package's manifest
-/// directory, or `DIFFRACTION_EXAMPLES_ROOT` at compile time (set by the build script of the
-/// workspace member `gpu-tests`, which includes these files too).
+/// The renderers' directory (`tools/render`: `scenes/` and `assets/` are there): the including
+/// package's manifest directory, or `DIFFRACTION_EXAMPLES_ROOT` at compile time (set by the build
+/// script of the workspace member `gpu-tests`, which includes these files too).
 pub const ROOT: &str = match option_env!("DIFFRACTION_EXAMPLES_ROOT") {
     Some(root) => root,
     None => env!("CARGO_MANIFEST_DIR"),
@@ -55,7 +55,7 @@ pub const ROOT: &str = match option_env!("DIFFRACTION_EXAMPLES_ROOT") {
 
 /// Where the shipped scenes live.
 pub fn scenes_dir() -> PathBuf {
-    Path::new(ROOT).join("examples/scenes")
+    Path::new(ROOT).join("scenes")
 }
 
 /// The shipped scene names, sorted.

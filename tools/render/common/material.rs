@@ -358,7 +358,7 @@ pub fn is_the_label(file: &Path) -> bool {
         }
         out
     };
-    let label = Path::new(crate::run::ROOT).join("examples/assets/label.png");
+    let label = Path::new(crate::run::ROOT).join("assets/label.png");
     clean(file) == clean(&label)
 }
 

@@ -433,7 +433,7 @@ fn scene_files_and_textures_are_bounded_before_they_are_read() {
         )
     );
     // The hint about `raytrace make-label` is for the shipped label's own errors only.
-    let label = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/assets/label.png");
+    let label = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/label.png");
     assert!(crate::material::is_the_label(&label));
     assert!(crate::material::is_the_label(
         &label.join("../../assets/./label.png")

@@ -130,7 +130,7 @@ fn footprint_against_a_reference() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(256);
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/images");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/images");
     for name in ["fig4b", "fig6"] {
         let mut base = shipped(name);
         base.settings.width = 320;
