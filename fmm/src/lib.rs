@@ -41,3 +41,5 @@ pub use solver::{
     CoverPasses, Extrapolation, Options, Order, Solution, Solver, DEFAULT_MAX_HARMONICS,
     DEFAULT_TOLERANCE, GROWTH, MAX_HARMONICS, MIN_HARMONICS,
 };
+
+pub mod table;

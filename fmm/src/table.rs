@@ -1,0 +1,797 @@
+//! Error-controlled efficiency tables: a grid in (sin θi, λ) refined until the interpolation
+//! error, measured against held-out rigorous solves, is below a tolerance.
+//!
+//! The table is the crate's `diffraction::relief::EfficiencyTable` (the JSON format of
+//! `docs/efficiency_tables.md`), read back by the library's own interpolation rule, so the error
+//! measured here is the error a renderer sees. The solver is anything that implements
+//! [`OrderSolver`]: the reflected orders' TE and TM efficiencies at one (s, λ).
+//!
+//! How the grid is made ([`build_table`]):
+//!
+//! 1. Start: s from the range's low end to its high end in steps of at most
+//!    [`TableSpec::initial_sin_step`] (with ±0.98 added near grazing, where order 0 changes
+//!    fastest), λ in steps of at most [`TableSpec::initial_lambda_step_nm`]; plus breakpoints on
+//!    the Rayleigh lines s + m·λ/d = ±1 where orders appear: the wavelengths d/|m| (order m
+//!    at grazing exit for normal incidence) and 2d/|m| (its onset at grazing incidence), and
+//!    the s values where each line crosses the shortest and the longest wavelength. Breakpoints
+//!    closer than a tenth of a step to a node are merged into it.
+//! 2. Solve every node; build the table.
+//! 3. Held-out checks: solve at the midpoint of every s interval on every λ row, and at the
+//!    midpoint of every λ interval on every s column; compare every order of both
+//!    polarisations with the table's interpolation. An interval whose largest error exceeds the
+//!    tolerance is bisected (its midpoints, already solved, become nodes), unless it is already
+//!    narrower than [`TableSpec::min_sin_step`] / [`TableSpec::min_lambda_step_nm`]. Repeat from 2
+//!    until no interval is bisected.
+//! 4. Validation: solve at [`TableSpec::validation_points`] random points (seeded) and compare;
+//!    a point above the tolerance bisects both intervals of its cell and the loop goes on.
+//!
+//! The achieved error stored with the table is the largest absolute error over the held-out
+//! points of the final grid (the last round's midpoints, which are not nodes, and the random
+//! points). Work is bounded: more than [`TableSpec::max_solves`] solves, or a grid beyond the
+//! loader's [`MAX_TABLE_NODES`] per axis, stops the build with [`TableError::Budget`], which
+//! says the error reached so far.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::sync::mpsc;
+use std::time::Instant;
+
+use diffraction::relief::{EfficiencyTable, MAX_TABLE_NODES};
+use diffraction::{Error, Requirement};
+
+mod json;
+mod rigorous;
+
+pub use json::TableMeta;
+pub use rigorous::Rigorous;
+
+/// The reflected orders of one solve: `te[k]`, `tm[k]` are the efficiencies of order
+/// `order_min + k`. Orders not listed, and evanescent ones, count as 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Orders {
+    /// The first order listed.
+    pub order_min: i32,
+    /// TE (E along the grooves) efficiencies, consecutive orders from `order_min`.
+    pub te: Vec<f64>,
+    /// TM (H along the grooves) efficiencies, as long as `te`.
+    pub tm: Vec<f64>,
+}
+
+impl Orders {
+    /// (TE, TM) of order `m`, 0 where not listed.
+    #[must_use]
+    pub fn get(&self, m: i32) -> (f64, f64) {
+        let k = i64::from(m) - i64::from(self.order_min);
+        if k < 0 || k as usize >= self.te.len() {
+            return (0.0, 0.0);
+        }
+        let k = k as usize;
+        (self.te[k], self.tm.get(k).copied().unwrap_or(0.0))
+    }
+
+    /// The last order listed.
+    #[must_use]
+    pub fn order_max(&self) -> i32 {
+        self.order_min + self.te.len() as i32 - 1
+    }
+
+    /// The same orders for the mirrored grating (m → −m).
+    fn mirrored(&self) -> Orders {
+        let mut te = self.te.clone();
+        let mut tm = self.tm.clone();
+        te.reverse();
+        tm.reverse();
+        Orders {
+            order_min: -self.order_max(),
+            te,
+            tm,
+        }
+    }
+}
+
+/// A rigorous solver of a grating's reflected orders in the classical mount.
+pub trait OrderSolver: Sync {
+    /// The grating period d in nm (the orders leave at s + m·λ/d).
+    fn period_nm(&self) -> f64;
+
+    /// Whether the profile is mirror-symmetric, so that η_m(s) = η₋m(−s): the builder then
+    /// solves only s ≥ 0 and mirrors.
+    fn mirror_symmetric(&self) -> bool {
+        false
+    }
+
+    /// The efficiencies of the propagating reflected orders at s = sin θi (the x component of
+    /// the incident direction of travel) and λ in nm, converged to the solver's own tolerance
+    /// (well below the table's).
+    fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String>;
+}
+
+/// What to build: the grid's range, the tolerance and the work allowed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TableSpec {
+    /// The s range, inside (−1, 1) (the solvers need cos θi > 0); default ±0.9999 as the presets.
+    pub sin_theta_range: (f64, f64),
+    /// The wavelength range in nm; default 360-830 nm.
+    pub lambda_range_nm: (f64, f64),
+    /// The largest absolute interpolation error allowed, per order and polarisation; default 10⁻².
+    pub tolerance: f64,
+    /// The most solves the build may make (nodes and checks, mirrored solves not counted);
+    /// default 20,000.
+    pub max_solves: usize,
+    /// The starting s step; default 0.2.
+    pub initial_sin_step: f64,
+    /// The starting λ step in nm; default 50.
+    pub initial_lambda_step_nm: f64,
+    /// Intervals narrower than this in s are not bisected; default 2·10⁻³.
+    pub min_sin_step: f64,
+    /// Intervals narrower than this in λ (nm) are not bisected; default 1 nm.
+    pub min_lambda_step_nm: f64,
+    /// Random held-out points checked after the midpoints pass; default 64.
+    pub validation_points: usize,
+    /// The seed of those points.
+    pub seed: u64,
+    /// Worker threads (0: the machine's parallelism).
+    pub threads: usize,
+}
+
+impl Default for TableSpec {
+    fn default() -> Self {
+        TableSpec {
+            sin_theta_range: (-0.9999, 0.9999),
+            lambda_range_nm: (360.0, 830.0),
+            tolerance: 1e-2,
+            max_solves: 20_000,
+            initial_sin_step: 0.2,
+            initial_lambda_step_nm: 50.0,
+            min_sin_step: 2e-3,
+            min_lambda_step_nm: 1.0,
+            validation_points: 64,
+            seed: 0x5eed_7ab1e,
+            threads: 0,
+        }
+    }
+}
+
+/// Why a build stopped.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum TableError {
+    /// A field of [`TableSpec`] (or the solver's period) out of range, named by the error.
+    Invalid(Error),
+    /// The solver failed at a point.
+    Solver {
+        /// s of the failed solve.
+        sin_theta_i: f64,
+        /// λ of the failed solve, nm.
+        lambda_nm: f64,
+        /// The solver's message.
+        message: String,
+    },
+    /// The solver's values do not make a valid table (e.g. a node's sum above 1).
+    Table(Error),
+    /// The tolerance was not reached within the work allowed.
+    Budget {
+        /// What ran out: `"max_solves"`, `"nodes"` (the loader's per-axis limit) or
+        /// `"min_step"` (the intervals above the tolerance are at the minimum width).
+        limit: &'static str,
+        /// Solves made.
+        solves: usize,
+        /// The grid reached (s nodes, λ nodes).
+        grid: (usize, usize),
+        /// The largest held-out error of the last round.
+        achieved: f64,
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The last complete table (nodes solved, held-out error measured), if a round
+        /// finished: a table claiming its achieved error, for a caller that accepts it.
+        best: Option<Box<BuiltTable>>,
+    },
+}
+
+impl fmt::Display for TableError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TableError::Invalid(e) | TableError::Table(e) => write!(f, "{e}"),
+            TableError::Solver {
+                sin_theta_i,
+                lambda_nm,
+                message,
+            } => write!(
+                f,
+                "solver failed at sin_theta_i = {sin_theta_i}, lambda_nm = {lambda_nm}: {message}"
+            ),
+            TableError::Budget {
+                limit,
+                solves,
+                grid,
+                achieved,
+                tolerance,
+                ..
+            } => write!(
+                f,
+                "tolerance {tolerance:e} not reached: {limit} exhausted after {solves} solves \
+                 on a {} x {} grid, held-out error {achieved:.3e}",
+                grid.0, grid.1
+            ),
+        }
+    }
+}
+
+impl std::error::Error for TableError {}
+
+/// Progress of a build, reported after every solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Refinement round (1 = the starting grid).
+    pub round: usize,
+    /// Solves done in this round and planned for it.
+    pub done: usize,
+    /// Solves planned for this round.
+    pub planned: usize,
+    /// Solves made in the whole build so far.
+    pub total_solves: usize,
+    /// The largest held-out error of the previous round (NaN in round 1).
+    pub error: f64,
+    /// Seconds per solve so far (wall time over solves).
+    pub seconds_per_solve: f64,
+}
+
+/// The error statistics of a built table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BuildReport {
+    /// The tolerance asked for.
+    pub tolerance: f64,
+    /// The largest absolute error over the held-out points of the final grid (per order and
+    /// polarisation): the table's achieved error.
+    pub achieved_abs_error: f64,
+    /// 95th percentile of the per-point largest errors.
+    pub abs_error_p95: f64,
+    /// Median of the per-point largest errors.
+    pub abs_error_median: f64,
+    /// Held-out points compared (midpoints of the final grid and random points).
+    pub held_out_points: usize,
+    /// The largest error at the random points alone.
+    pub random_points_max: f64,
+    /// Where the largest error is: (s, λ nm).
+    pub worst_point: (f64, f64),
+    /// Intervals that exceeded the tolerance but were at the minimum width (not bisected).
+    pub unresolved_intervals: usize,
+    /// Solves made (nodes and checks; mirrored values not counted).
+    pub solves: usize,
+    /// Refinement rounds.
+    pub rounds: usize,
+    /// Wall time of the build, seconds.
+    pub seconds: f64,
+}
+
+/// A table and how it was made.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BuiltTable {
+    /// The s nodes.
+    pub sin_theta_i: Vec<f64>,
+    /// The λ nodes, nm.
+    pub lambda_nm: Vec<f64>,
+    /// The first order stored.
+    pub order_min: i32,
+    /// The last order stored.
+    pub order_max: i32,
+    /// TE efficiencies flattened `[order][λ][s]`.
+    pub te: Vec<f64>,
+    /// TM efficiencies flattened `[order][λ][s]`.
+    pub tm: Vec<f64>,
+    /// The table as the library reads it.
+    pub table: EfficiencyTable,
+    /// The error statistics.
+    pub report: BuildReport,
+}
+
+fn invalid(name: &'static str, value: f64, requirement: Requirement) -> TableError {
+    TableError::Invalid(Error::InvalidParameter {
+        name,
+        value,
+        requirement,
+    })
+}
+
+// The negated comparisons reject NaN with the out-of-range values.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+fn check_spec(spec: &TableSpec, period_nm: f64) -> Result<(), TableError> {
+    if !(period_nm.is_finite() && period_nm > 0.0) {
+        return Err(invalid("period_nm", period_nm, Requirement::Positive));
+    }
+    let (s0, s1) = spec.sin_theta_range;
+    let open = Requirement::Within {
+        min: -0.99999,
+        max: 0.99999,
+    };
+    for (name, v) in [("sin_theta_range.0", s0), ("sin_theta_range.1", s1)] {
+        if !(v.abs() <= 0.99999) {
+            return Err(invalid(name, v, open));
+        }
+    }
+    if !(s1 > s0) {
+        let r = Requirement::GreaterThan {
+            bound_name: "sin_theta_range.0",
+            bound: s0,
+        };
+        return Err(invalid("sin_theta_range.1", s1, r));
+    }
+    let (l0, l1) = spec.lambda_range_nm;
+    let lam = Requirement::Within {
+        min: 100.0,
+        max: 20_000.0,
+    };
+    for (name, v) in [("lambda_range_nm.0", l0), ("lambda_range_nm.1", l1)] {
+        if !(100.0..=20_000.0).contains(&v) {
+            return Err(invalid(name, v, lam));
+        }
+    }
+    if !(l1 > l0) {
+        let r = Requirement::GreaterThan {
+            bound_name: "lambda_range_nm.0",
+            bound: l0,
+        };
+        return Err(invalid("lambda_range_nm.1", l1, r));
+    }
+    let positive = [
+        ("tolerance", spec.tolerance),
+        ("initial_sin_step", spec.initial_sin_step),
+        ("initial_lambda_step_nm", spec.initial_lambda_step_nm),
+        ("min_sin_step", spec.min_sin_step),
+        ("min_lambda_step_nm", spec.min_lambda_step_nm),
+    ];
+    for (name, v) in positive {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(invalid(name, v, Requirement::Positive));
+        }
+    }
+    if spec.max_solves == 0 {
+        return Err(invalid("max_solves", 0.0, Requirement::AtLeastOne));
+    }
+    Ok(())
+}
+
+/// Even steps of at most `step` from `a` to `b`, both ends included.
+fn even_steps(a: f64, b: f64, step: f64) -> Vec<f64> {
+    let n = ((b - a) / step).ceil().clamp(1.0, 4096.0) as usize;
+    (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
+}
+
+/// Adds `extra` points inside (a, b) to the sorted `nodes`, skipping any within `gap` of a node.
+fn merge(nodes: &mut Vec<f64>, extra: impl IntoIterator<Item = f64>, gap: f64) {
+    let (a, b) = (nodes[0], nodes[nodes.len() - 1]);
+    for x in extra {
+        if x > a && x < b && nodes.iter().all(|&n| (n - x).abs() >= gap) {
+            nodes.push(x);
+            nodes.sort_by(f64::total_cmp);
+        }
+    }
+}
+
+/// The starting grid (step 1 of the module docs). A range symmetric about s = 0 gets a mirror-
+/// symmetric s axis (exact negatives), so a symmetric profile's mirrored solves are cache hits.
+fn initial_grid(spec: &TableSpec, d: f64) -> (Vec<f64>, Vec<f64>) {
+    let (s0, s1) = spec.sin_theta_range;
+    let (l0, l1) = spec.lambda_range_nm;
+    let max_m = (2.0 * d / l0).floor().min(4096.0) as i32;
+    let mut sb = vec![-0.98, 0.98];
+    for m in -max_m..=max_m {
+        for lam in [l0, l1] {
+            let shift = f64::from(m) * lam / d;
+            sb.push(1.0 - shift);
+            sb.push(-1.0 - shift);
+        }
+    }
+    let gap = 0.1 * spec.initial_sin_step;
+    let s = if s0 == -s1 {
+        let mut half = even_steps(0.0, s1, spec.initial_sin_step);
+        merge(&mut half, sb.iter().map(|x| x.abs()), gap);
+        let mut full: Vec<f64> = half.iter().rev().map(|&x| -x).collect();
+        full.pop(); // -0.0: the 0 of `half` stays
+        full.extend(half);
+        full
+    } else {
+        let mut s = even_steps(s0, s1, spec.initial_sin_step);
+        merge(&mut s, sb, gap);
+        s
+    };
+    let mut l = even_steps(l0, l1, spec.initial_lambda_step_nm);
+    let mut breaks = Vec::new();
+    for m in 1..=max_m {
+        breaks.push(d / f64::from(m));
+        breaks.push(2.0 * d / f64::from(m));
+    }
+    merge(&mut l, breaks, 0.1 * spec.initial_lambda_step_nm);
+    (s, l)
+}
+
+/// Solves with a cache (keyed on the exact floats; mirrored for symmetric profiles).
+struct Cache<'a, S: OrderSolver> {
+    solver: &'a S,
+    map: HashMap<(u64, u64), Orders>,
+    solves: usize,
+    threads: usize,
+    start: Instant,
+}
+
+fn key(s: f64, l: f64, symmetric: bool) -> (u64, u64) {
+    let s = if symmetric { s.abs() } else { s };
+    ((s + 0.0).to_bits(), l.to_bits())
+}
+
+impl<'a, S: OrderSolver> Cache<'a, S> {
+    /// Solves every point not yet known, in parallel, reporting progress.
+    fn solve_all(
+        &mut self,
+        points: &[(f64, f64)],
+        max_solves: usize,
+        round: usize,
+        error: f64,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Result<(), TableError> {
+        let sym = self.solver.mirror_symmetric();
+        let mut todo: Vec<(f64, f64)> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for &(s, l) in points {
+            let k = key(s, l, sym);
+            if !self.map.contains_key(&k) && seen.insert(k) {
+                todo.push((if sym { s.abs() } else { s }, l));
+            }
+        }
+        if self.solves + todo.len() > max_solves {
+            return Err(TableError::Budget {
+                limit: "max_solves",
+                solves: self.solves,
+                grid: (0, 0),
+                achieved: error,
+                tolerance: f64::NAN,
+                best: None,
+            });
+        }
+        let planned = todo.len();
+        let threads = self.threads.max(1).min(planned.max(1));
+        let solver = self.solver;
+        let (tx, rx) = mpsc::channel();
+        let mut failure = None;
+        std::thread::scope(|scope| {
+            for t in 0..threads {
+                let tx = tx.clone();
+                let mine: Vec<(f64, f64)> = todo.iter().copied().skip(t).step_by(threads).collect();
+                scope.spawn(move || {
+                    for (s, l) in mine {
+                        let r = solver.solve(s, l);
+                        let stop = r.is_err();
+                        if tx.send((s, l, r)).is_err() || stop {
+                            return;
+                        }
+                    }
+                });
+            }
+            drop(tx);
+            let mut done = 0;
+            for (s, l, r) in rx {
+                match r {
+                    Ok(o) => {
+                        self.map.insert(key(s, l, sym), o);
+                        self.solves += 1;
+                        done += 1;
+                        let elapsed = self.start.elapsed().as_secs_f64();
+                        progress(&Progress {
+                            round,
+                            done,
+                            planned,
+                            total_solves: self.solves,
+                            error,
+                            seconds_per_solve: elapsed / self.solves as f64,
+                        });
+                    }
+                    Err(message) => {
+                        failure.get_or_insert(TableError::Solver {
+                            sin_theta_i: s,
+                            lambda_nm: l,
+                            message,
+                        });
+                    }
+                }
+            }
+        });
+        failure.map_or(Ok(()), Err)
+    }
+
+    fn get(&self, s: f64, l: f64) -> Orders {
+        let sym = self.solver.mirror_symmetric();
+        let o = &self.map[&key(s, l, sym)];
+        if sym && s < 0.0 {
+            o.mirrored()
+        } else {
+            o.clone()
+        }
+    }
+}
+
+/// The table's largest absolute error at one point against a solve there.
+fn point_error(table: &EfficiencyTable, solve: &Orders, s: f64, l: f64) -> f64 {
+    let mut out = vec![diffraction::relief::Polarised::default(); table.order_count()];
+    table.efficiencies(s, l, &mut out);
+    let first = *table.orders().start();
+    let mut worst: f64 = 0.0;
+    for (k, t) in out.iter().enumerate() {
+        let (te, tm) = solve.get(first + k as i32);
+        worst = worst.max((t.te - te).abs()).max((t.tm - tm).abs());
+    }
+    // Orders the solve has and the table does not store.
+    for (k, (&te, &tm)) in solve.te.iter().zip(&solve.tm).enumerate() {
+        if !table.orders().contains(&(solve.order_min + k as i32)) {
+            worst = worst.max(te.abs()).max(tm.abs());
+        }
+    }
+    worst
+}
+
+/// (order_min, order_max, TE, TM flattened `[order][λ][s]`, the library's table).
+type Assembled = (i32, i32, Vec<f64>, Vec<f64>, EfficiencyTable);
+
+/// Assembles the flattened arrays and the library's table from the solved nodes.
+fn assemble(
+    cache: &Cache<'_, impl OrderSolver>,
+    s: &[f64],
+    l: &[f64],
+    d: f64,
+) -> Result<Assembled, TableError> {
+    let mut lo = i32::MAX;
+    let mut hi = i32::MIN;
+    for &lam in l {
+        for &x in s {
+            let o = cache.get(x, lam);
+            for (k, (&a, &b)) in o.te.iter().zip(&o.tm).enumerate() {
+                if a > 0.0 || b > 0.0 {
+                    lo = lo.min(o.order_min + k as i32);
+                    hi = hi.max(o.order_min + k as i32);
+                }
+            }
+        }
+    }
+    if lo > hi {
+        lo = 0;
+        hi = 0;
+    }
+    let n = (hi - lo + 1) as usize * s.len() * l.len();
+    let mut te = vec![0.0; n];
+    let mut tm = vec![0.0; n];
+    for (j, &lam) in l.iter().enumerate() {
+        for (i, &x) in s.iter().enumerate() {
+            let o = cache.get(x, lam);
+            for m in lo..=hi {
+                // The loader's own test of evanescence: exactly 0 there.
+                let sm = x + f64::from(m) * lam / d;
+                if 1.0 - sm * sm <= 0.0 {
+                    continue;
+                }
+                let (a, b) = o.get(m);
+                let at = ((m - lo) as usize * l.len() + j) * s.len() + i;
+                te[at] = a.max(0.0);
+                tm[at] = b.max(0.0);
+            }
+        }
+    }
+    let table = EfficiencyTable::new(d, lo, s.to_vec(), l.to_vec(), te.clone(), tm.clone())
+        .map_err(TableError::Table)?;
+    Ok((lo, hi, te, tm, table))
+}
+
+/// A small seeded generator (SplitMix64) for the validation points.
+fn splitmix(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+fn percentile(sorted: &[f64], p: f64) -> f64 {
+    if sorted.is_empty() {
+        return 0.0;
+    }
+    let i = ((sorted.len() - 1) as f64 * p).round() as usize;
+    sorted[i]
+}
+
+fn cell(nodes: &[f64], x: f64) -> usize {
+    let i = nodes.partition_point(|&n| n <= x);
+    i.clamp(1, nodes.len() - 1) - 1
+}
+
+/// Builds a table of `solver`'s efficiencies to `spec` (the module docs say how), calling
+/// `progress` after every solve.
+///
+/// # Errors
+/// [`TableError::Invalid`] for a field of `spec` out of range (named), [`TableError::Solver`]
+/// if a solve fails, [`TableError::Table`] if the solver's values break the table's checks,
+/// [`TableError::Budget`] if the tolerance is not reached within `spec.max_solves` solves or
+/// the loader's node limit.
+pub fn build_table<S: OrderSolver>(
+    solver: &S,
+    spec: &TableSpec,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<BuiltTable, TableError> {
+    let d = solver.period_nm();
+    check_spec(spec, d)?;
+    let threads = if spec.threads == 0 {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        spec.threads
+    };
+    let mut cache = Cache {
+        solver,
+        map: HashMap::new(),
+        solves: 0,
+        threads,
+        start: Instant::now(),
+    };
+    let (mut s, mut l) = initial_grid(spec, d);
+    let mut rng = spec.seed;
+    let mut error = f64::NAN;
+    let mut round = 0;
+    let mut last: Option<BuiltTable> = None;
+    let budget = |cache: &Cache<'_, S>, last: &Option<BuiltTable>, limit| {
+        let best = last.clone().map(Box::new);
+        let (grid, achieved) = best.as_ref().map_or(((0, 0), f64::NAN), |b| {
+            (
+                (b.sin_theta_i.len(), b.lambda_nm.len()),
+                b.report.achieved_abs_error,
+            )
+        });
+        TableError::Budget {
+            limit,
+            solves: cache.solves,
+            grid,
+            achieved,
+            tolerance: spec.tolerance,
+            best,
+        }
+    };
+    loop {
+        round += 1;
+        if s.len() > MAX_TABLE_NODES || l.len() > MAX_TABLE_NODES {
+            return Err(budget(&cache, &last, "nodes"));
+        }
+        // Nodes and the midpoint checks in one batch (the checks of intervals that get
+        // bisected become nodes of the next round).
+        let mut points: Vec<(f64, f64)> = Vec::new();
+        for &lam in &l {
+            for (i, &x) in s.iter().enumerate() {
+                points.push((x, lam));
+                if i + 1 < s.len() {
+                    points.push((0.5 * (x + s[i + 1]), lam));
+                }
+            }
+        }
+        for j in 0..l.len() - 1 {
+            let mid = 0.5 * (l[j] + l[j + 1]);
+            for &x in &s {
+                points.push((x, mid));
+            }
+        }
+        cache
+            .solve_all(&points, spec.max_solves, round, error, progress)
+            .map_err(|e| match e {
+                TableError::Budget { .. } => budget(&cache, &last, "max_solves"),
+                e => e,
+            })?;
+        let (lo, hi, te, tm, table) = assemble(&cache, &s, &l, d)?;
+        let mut errs = Vec::new();
+        let mut at: Vec<(f64, f64)> = Vec::new();
+        let mut split_s = vec![false; s.len() - 1];
+        let mut split_l = vec![false; l.len() - 1];
+        let mut unresolved = 0;
+        for &lam in &l {
+            for i in 0..s.len() - 1 {
+                let x = 0.5 * (s[i] + s[i + 1]);
+                let e = point_error(&table, &cache.get(x, lam), x, lam);
+                errs.push(e);
+                at.push((x, lam));
+                if e > spec.tolerance {
+                    split_s[i] = true;
+                }
+            }
+        }
+        for j in 0..l.len() - 1 {
+            let mid = 0.5 * (l[j] + l[j + 1]);
+            for &x in &s {
+                let e = point_error(&table, &cache.get(x, mid), x, mid);
+                errs.push(e);
+                at.push((x, mid));
+                if e > spec.tolerance {
+                    split_l[j] = true;
+                }
+            }
+        }
+        let mut random_max: f64 = 0.0;
+        let any_split = split_s.iter().chain(&split_l).any(|&b| b);
+        let refinable = |split: &mut [bool], nodes: &[f64], min: f64, unresolved: &mut usize| {
+            for (i, b) in split.iter_mut().enumerate() {
+                if *b && nodes[i + 1] - nodes[i] < 2.0 * min {
+                    *b = false;
+                    *unresolved += 1;
+                }
+            }
+        };
+        if !any_split {
+            // The random validation points (step 4).
+            let (s0, s1) = spec.sin_theta_range;
+            let (l0, l1) = spec.lambda_range_nm;
+            let pts: Vec<(f64, f64)> = (0..spec.validation_points)
+                .map(|_| {
+                    let a = s0 + (s1 - s0) * splitmix(&mut rng);
+                    (a, l0 + (l1 - l0) * splitmix(&mut rng))
+                })
+                .collect();
+            cache
+                .solve_all(&pts, spec.max_solves, round, error, progress)
+                .map_err(|e| match e {
+                    TableError::Budget { .. } => budget(&cache, &last, "max_solves"),
+                    e => e,
+                })?;
+            for &(x, lam) in &pts {
+                let e = point_error(&table, &cache.get(x, lam), x, lam);
+                errs.push(e);
+                at.push((x, lam));
+                random_max = random_max.max(e);
+                if e > spec.tolerance {
+                    split_s[cell(&s, x)] = true;
+                    split_l[cell(&l, lam)] = true;
+                }
+            }
+        }
+        refinable(&mut split_s, &s, spec.min_sin_step, &mut unresolved);
+        refinable(&mut split_l, &l, spec.min_lambda_step_nm, &mut unresolved);
+        let worst = (0..errs.len()).fold(0, |w, i| if errs[i] > errs[w] { i } else { w });
+        error = errs.get(worst).copied().unwrap_or(0.0);
+        let worst_point = at.get(worst).copied().unwrap_or((f64::NAN, f64::NAN));
+        let mut sorted = errs.clone();
+        sorted.sort_by(f64::total_cmp);
+        let candidate = BuiltTable {
+            sin_theta_i: s.clone(),
+            lambda_nm: l.clone(),
+            order_min: lo,
+            order_max: hi,
+            te,
+            tm,
+            table,
+            report: BuildReport {
+                tolerance: spec.tolerance,
+                achieved_abs_error: error,
+                abs_error_p95: percentile(&sorted, 0.95),
+                abs_error_median: percentile(&sorted, 0.5),
+                held_out_points: errs.len(),
+                random_points_max: random_max,
+                worst_point,
+                unresolved_intervals: unresolved,
+                solves: cache.solves,
+                rounds: round,
+                seconds: cache.start.elapsed().as_secs_f64(),
+            },
+        };
+        if !split_s.iter().chain(&split_l).any(|&b| b) {
+            if error > spec.tolerance {
+                // Only intervals at the minimum width are left: not reachable on this grid.
+                return Err(budget(&cache, &Some(candidate), "min_step"));
+            }
+            return Ok(candidate);
+        }
+        last = Some(candidate);
+        let bisect = |nodes: &[f64], split: &[bool]| {
+            let mut out = Vec::with_capacity(nodes.len() * 2);
+            for i in 0..nodes.len() {
+                out.push(nodes[i]);
+                if i < split.len() && split[i] {
+                    out.push(0.5 * (nodes[i] + nodes[i + 1]));
+                }
+            }
+            out
+        };
+        s = bisect(&s, &split_s);
+        l = bisect(&l, &split_l);
+    }
+}

@@ -1,0 +1,251 @@
+//! The `grating-table` command: bad input exits with code 2 and a message naming the flag,
+//! before any solve; a failed build leaves no file; a small table is written and loads.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn run(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_grating-table"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn temp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("grating-table-{}-{name}", std::process::id()))
+}
+
+#[test]
+fn bad_flags_are_named_with_exit_code_2() {
+    let out = temp("never.json");
+    let o = out.to_str().unwrap();
+    let base = [
+        "--profile",
+        "lamellar",
+        "--depth",
+        "50",
+        "--duty",
+        "0.5",
+        "--metal",
+        "Al",
+        "--out",
+        o,
+    ];
+    let with = |extra: &[&'static str]| -> Vec<String> {
+        let mut v: Vec<String> = base.iter().map(|s| s.to_string()).collect();
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v
+    };
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (with(&["--period", "-5"]), "--period"),
+        (with(&["--period", "abc"]), "--period"),
+        (with(&["--lines-per-mm", "0"]), "--lines-per-mm"),
+        (
+            with(&["--period", "1000", "--lines-per-mm", "1000"]),
+            "--lines-per-mm and --period",
+        ),
+        (with(&[]), "--period"),
+        (
+            with(&["--period", "1000", "--tolerance", "2"]),
+            "--tolerance",
+        ),
+        (
+            with(&["--period", "1000", "--tolerance", "nan"]),
+            "--tolerance",
+        ),
+        (with(&["--period", "1000", "--cover", "glass"]), "--cover"),
+        (with(&["--period", "1000", "--nk", "1.2"]), "--nk"),
+        (
+            with(&["--period", "1000", "--nk", "1.2,7"]),
+            "--metal and --nk",
+        ),
+        (
+            with(&["--period", "1000", "--lambda", "800,400"]),
+            "--lambda",
+        ),
+        (with(&["--period", "1000", "--blaze", "10"]), "--blaze"),
+        (
+            with(&["--period", "1000", "--frobnicate", "1"]),
+            "--frobnicate",
+        ),
+        (
+            with(&["--period", "1000", "--max-solves", "0"]),
+            "--max-solves",
+        ),
+        (with(&["--period", "1000", "--duty", "1.5"]), "--duty"),
+        (with(&["--period", "1000", "--metal"]), "--metal"),
+    ];
+    for (args, flag) in cases {
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, err) = run(&refs);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(&format!("error: {flag}")), "{args:?}: {err}");
+    }
+    for (args, flag) in [
+        (
+            vec![
+                "--period",
+                "1000",
+                "--profile",
+                "sinusoid",
+                "--metal",
+                "Ag",
+                "--out",
+                o,
+            ],
+            "--depth",
+        ),
+        (
+            vec![
+                "--period",
+                "1000",
+                "--profile",
+                "sawtooth",
+                "--depth",
+                "5",
+                "--blaze",
+                "10",
+                "--metal",
+                "Ag",
+                "--out",
+                o,
+            ],
+            "--depth",
+        ),
+        (
+            vec![
+                "--period",
+                "1000",
+                "--profile",
+                "wavy",
+                "--metal",
+                "Ag",
+                "--out",
+                o,
+            ],
+            "--profile",
+        ),
+        (
+            vec![
+                "--period",
+                "1000",
+                "--profile",
+                "sinusoid",
+                "--depth",
+                "50",
+                "--metal",
+                "Pt",
+                "--out",
+                o,
+            ],
+            "--metal",
+        ),
+        (
+            vec![
+                "--period",
+                "1000",
+                "--profile",
+                "sinusoid",
+                "--depth",
+                "50",
+                "--metal",
+                "Ag",
+            ],
+            "--out",
+        ),
+    ] {
+        let (code, err) = run(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(&format!("error: {flag}")), "{args:?}: {err}");
+    }
+    // The grating's own checks (the solver's limits) are bad input too, named by parameter.
+    let (code, err) = run(&with(&["--period", "1e9"])
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("period_nm"), "{err}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_failed_build_writes_nothing_and_keeps_an_existing_file() {
+    let out = temp("keep.json");
+    std::fs::write(&out, "previous").unwrap();
+    let o = out.to_str().unwrap();
+    // Two solves cannot make a table: the budget error, exit 1, the old file untouched.
+    let (code, err) = run(&[
+        "--period",
+        "1000",
+        "--profile",
+        "lamellar",
+        "--depth",
+        "20",
+        "--duty",
+        "0.5",
+        "--metal",
+        "Al",
+        "--lambda",
+        "500,600",
+        "--max-solves",
+        "2",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("max_solves"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "previous");
+    let dir = out.parent().unwrap();
+    let stem = out.file_name().unwrap().to_str().unwrap().to_string();
+    let leftovers = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(Result::ok)
+        .filter(|e| {
+            let n = e.file_name().to_string_lossy().into_owned();
+            n.starts_with(&stem) && n != stem
+        })
+        .count();
+    assert_eq!(leftovers, 0);
+    std::fs::remove_file(&out).unwrap();
+}
+
+/// Expensive: a rigorous build (minutes on the shared 2-core machine). Run with `--ignored`.
+#[test]
+#[ignore]
+fn a_small_table_is_written_and_loads() {
+    let out = temp("small.json");
+    let o = out.to_str().unwrap();
+    // A shallow lamellar Al grating over a narrow range: a few hundred cheap solves.
+    let (code, err) = run(&[
+        "--lines-per-mm",
+        "1000",
+        "--profile",
+        "lamellar",
+        "--depth",
+        "20",
+        "--duty",
+        "0.5",
+        "--metal",
+        "Al",
+        "--lambda",
+        "500,600",
+        "--sin-max",
+        "0.5",
+        "--tolerance",
+        "0.02",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("ETA"), "{err}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let t: diffraction::relief::EfficiencyTable = serde_json::from_str(&text).unwrap();
+    assert!(t.orders().contains(&0));
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(v["validation"]["achieved_abs_error"].as_f64().unwrap() <= 0.02);
+    std::fs::remove_file(&out).unwrap();
+}
