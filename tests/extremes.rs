@@ -26,7 +26,7 @@ use std::cell::Cell;
 
 use diffraction::frame::{phase_projection, GratingField, ShadingFrame, Tile};
 use diffraction::kernel::{n_slit, n_slit_cycles, single_slit, single_slit_cycles};
-use diffraction::spectrum::{GenericStrategy, Illuminant, Spectral, Strategy};
+use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::stam::bessel_j;
 use diffraction::{
     AguHill, Band, Bsdf, ColorTable, DiffractionBrdf, Grating, GratingBsdf, GratingEquation,
@@ -35,12 +35,15 @@ use diffraction::{
 };
 use glam::{DVec2, DVec3};
 
+#[path = "support/extreme_inputs.rs"]
+mod extreme_inputs;
 #[path = "support/generic_models.rs"]
 mod generic_models;
 #[path = "support/groove_proxy.rs"]
 mod groove_proxy;
 #[path = "support/rng.rs"]
 mod rng;
+use extreme_inputs::{generic_strategies, strategies, Rng, COUNTS};
 use generic_models::Model;
 
 /// The most `response` calls one `Spectral::xyz_brdf` call may make on the generic path.
@@ -72,86 +75,6 @@ const TABLE_EVERY: u64 = 16;
 /// 10.7 s at 300-512 of them, by the measurement); the sweep calls it where 2·d/λ is
 /// at most this.
 const ALBEDO_MAX_ORDERS: f64 = 64.0;
-
-/// Inputs drawn from the tests' seeded generator, so that every run tries the same ones.
-struct Rng(rng::Rng);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0.next_u64()
-    }
-    fn pick<T: Copy>(&mut self, pool: &[T]) -> T {
-        pool[(self.next() % pool.len() as u64) as usize]
-    }
-    /// A value from the pool of extremes, or (one time in four) a log-uniform one in
-    /// [1e-320, 1e308] with a random sign.
-    fn real(&mut self) -> f64 {
-        if self.next() % 4 == 0 {
-            let e = -320.0 + 628.0 * (self.next() as f64 / u64::MAX as f64);
-            let v = 10f64.powf(e);
-            if self.next() % 2 == 0 {
-                v
-            } else {
-                -v
-            }
-        } else {
-            self.pick(EXTREMES)
-        }
-    }
-    fn positive(&mut self) -> f64 {
-        self.real().abs()
-    }
-    fn direction(&mut self) -> DVec3 {
-        // Mostly unit directions, sometimes wild ones.
-        if self.next() % 3 == 0 {
-            DVec3::new(self.real(), self.real(), self.real())
-        } else {
-            let (a, b) = (
-                self.next() as f64 / u64::MAX as f64,
-                self.next() as f64 / u64::MAX as f64,
-            );
-            let (z, phi) = (a, std::f64::consts::TAU * b);
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        }
-    }
-}
-
-const EXTREMES: &[f64] = &[
-    0.0,
-    -0.0,
-    5e-324,
-    -5e-324,
-    1e-310,
-    f64::MIN_POSITIVE,
-    1e-300,
-    1e-23,
-    1e-12,
-    1e-9,
-    1e-6,
-    0.3,
-    0.5,
-    1.0,
-    -1.0,
-    1.999,
-    2.0,
-    -2.0,
-    360.0,
-    550.0,
-    830.0,
-    1600.0,
-    1e6,
-    1e9,
-    1.7824e12,
-    1e12,
-    1e19,
-    1e300,
-    -1e300,
-    f64::MAX,
-    -f64::MAX,
-];
-
-const COUNTS: &[u32] = &[0, 1, 2, 3, 7, 1000, 1_000_000, 10_000_000, u32::MAX];
 
 /// A model that counts what the colour integrator asks of it, delegating to `inner`.
 struct Counting<'a> {
@@ -201,121 +124,6 @@ fn finite_nonneg(v: f64, what: &str) {
 
 fn finite(v: f64, what: &str) {
     assert!(v.is_finite(), "{what}: {v}");
-}
-
-/// Every grating strategy at the ends of its accepted range.
-fn strategies() -> Vec<Strategy> {
-    vec![
-        Strategy::uniform(1).unwrap(),
-        Strategy::uniform(7).unwrap(),
-        Strategy::uniform(diffraction::spectrum::MAX_WAVELENGTHS).unwrap(),
-        Strategy::gauss_legendre(1).unwrap(),
-        Strategy::gauss_legendre(16).unwrap(),
-        Strategy::gauss_legendre(diffraction::spectrum::MAX_WAVELENGTHS / 8).unwrap(),
-        Strategy::PEAK_SEARCH,
-        Strategy::PEAK_SEARCH_REFINED,
-        Strategy::ASYMPTOTIC,
-        Strategy::EXACT,
-        Strategy::auto(1e-3).unwrap(),
-        Strategy::auto(diffraction::spectrum::MIN_ACCURACY).unwrap(),
-        Strategy::auto(diffraction::spectrum::MAX_ACCURACY).unwrap(),
-    ]
-}
-
-/// Every generic rule at the ends of its accepted range.
-fn generic_strategies() -> Vec<GenericStrategy> {
-    vec![
-        GenericStrategy::uniform(1).unwrap(),
-        GenericStrategy::uniform(diffraction::spectrum::MAX_WAVELENGTHS).unwrap(),
-        GenericStrategy::gauss_legendre(16).unwrap(),
-        GenericStrategy::gauss_legendre(diffraction::spectrum::MAX_WAVELENGTHS / 8).unwrap(),
-        GenericStrategy::PEAK_SEARCH,
-        GenericStrategy::WINDOWS,
-        GenericStrategy::auto(1e-3).unwrap(),
-        GenericStrategy::auto(diffraction::spectrum::MIN_ACCURACY).unwrap(),
-    ]
-}
-
-/// Counts and accuracies outside the accepted ranges are refused where the strategy is built,
-/// with the parameter's name.
-#[test]
-fn strategies_outside_their_range_are_refused() {
-    for k in [0, diffraction::spectrum::MAX_WAVELENGTHS + 1, u32::MAX] {
-        assert_eq!(Strategy::uniform(k).unwrap_err().parameter(), "samples");
-        assert_eq!(
-            GenericStrategy::uniform(k).unwrap_err().parameter(),
-            "samples"
-        );
-    }
-    for k in [0, diffraction::spectrum::MAX_WAVELENGTHS, u32::MAX] {
-        assert_eq!(
-            Strategy::gauss_legendre(k).unwrap_err().parameter(),
-            "intervals"
-        );
-    }
-    for a in [
-        0.0,
-        -1.0,
-        5e-324,
-        1e-12,
-        2.0,
-        f64::MAX,
-        f64::NAN,
-        f64::INFINITY,
-    ] {
-        assert_eq!(
-            Strategy::auto(a).unwrap_err().parameter(),
-            "accuracy",
-            "{a}"
-        );
-        assert_eq!(
-            GenericStrategy::auto(a).unwrap_err().parameter(),
-            "accuracy",
-            "{a}"
-        );
-    }
-}
-
-/// Every strategy's printed name parses back to it; other strings are errors, never panics.
-#[test]
-fn strategies_parse_their_names() {
-    for s in strategies() {
-        assert_eq!(s.to_string().parse::<Strategy>(), Ok(s), "{s}");
-    }
-    for s in generic_strategies() {
-        assert_eq!(s.to_string().parse::<GenericStrategy>(), Ok(s), "{s}");
-    }
-    let mut rng = Rng(rng::Rng(0xC0DE));
-    let pieces = [
-        "uniform",
-        "gauss",
-        "auto",
-        "peaks",
-        "exact",
-        "windows",
-        ":",
-        "1",
-        "0",
-        "-1",
-        "1e-3",
-        "nan",
-        "inf",
-        "4294967296",
-        "99999999999999999999",
-        "1e400",
-        " ",
-        "",
-        "é",
-    ];
-    for _ in 0..2000 {
-        let s: String = (0..rng.next() % 4).map(|_| rng.pick(&pieces)).collect();
-        if let Ok(st) = s.parse::<Strategy>() {
-            assert_eq!(st.to_string().parse::<Strategy>(), Ok(st), "{s:?}");
-        }
-        if let Ok(st) = s.parse::<GenericStrategy>() {
-            assert_eq!(st.to_string().parse::<GenericStrategy>(), Ok(st), "{s:?}");
-        }
-    }
 }
 
 fn one_case(rng: &mut Rng, spectral: &Spectral, tally: &mut Tally) {
