@@ -24,8 +24,9 @@
 //!
 //! # Physical order efficiencies
 //!
-//! [`GratingBsdf::preset`] and [`GratingBsdf::with_efficiency`] replace the amplitude reading by
-//! tabulated efficiencies of a relief grating on a metal ([`OrderEfficiency::Tabulated`]):
+//! `GratingBsdf::preset` (feature `presets`) and [`GratingBsdf::with_efficiency`] replace the
+//! amplitude reading by tabulated efficiencies of a relief grating on a metal
+//! (`OrderEfficiency::Tabulated`, feature `relief`):
 //! f = η̃_m·ℓ_m(u, v) with ℓ_m = (N·d/λ)·F_N·g the order's unit-integral lobe and
 //! η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) (unpolarised), exactly reciprocal; the sampler
 //! picks m ∝ η_m(−wo.x, λ) (the weight is then at most Σ η·B_N·sup g/q_v, B_N below), and the
@@ -136,7 +137,9 @@ mod regularize;
 mod wavelength;
 
 pub use albedo::{ALBEDO_CUT_MARGIN, MAX_ALBEDO_ORDERS};
-pub use efficiency::{OrderEfficiency, Tabulated, MAX_TABULATED_ORDERS};
+pub use efficiency::OrderEfficiency;
+#[cfg(feature = "relief")]
+pub use efficiency::{Tabulated, MAX_TABULATED_ORDERS};
 use lobe::{GrooveFactor, Lobe, PeriodProxy};
 use orders::{Candidates, OrderDistribution};
 pub use orders::{DEFENSIVE_ORDER_SHARE, MAX_WEIGHTED_ORDERS};
@@ -352,6 +355,7 @@ impl GratingBsdf {
         else {
             return 0.0;
         };
+        #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
             return self.tab_weight_bound(t, wo, lambda_nm, &c).min(f64::MAX);
         }
@@ -379,6 +383,7 @@ impl DiffractionBrdf for GratingBsdf {
         if !self.is_glossy() {
             return 0.0;
         }
+        #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
             return self.tab_value(t, wo, wi, lambda_nm);
         }
@@ -393,6 +398,7 @@ impl DiffractionBrdf for GratingBsdf {
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
         }
+        #[cfg(feature = "relief")]
         if self.table().is_some() {
             return lambdas.lambda().map(|l| self.eval(wo, wi, l));
         }
@@ -505,6 +511,7 @@ impl SpectralResponse for GratingBsdf {
         let Slits::Finite(n) = self.grating.slits() else {
             return None;
         };
+        #[cfg(feature = "relief")]
         if self.table().is_some() {
             // η̃ depends on λ, which the envelope cannot express: the generic colour path.
             return None;
@@ -545,6 +552,7 @@ impl Bsdf for GratingBsdf {
         let c = self
             .orders
             .candidates(wo, self.grating.period_nm() / lambda_nm)?;
+        #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
             return self.tab_sample(t, wo, lambda_nm, &c, [uc, ux, uy]);
         }
@@ -700,6 +708,7 @@ impl GratingBsdf {
         };
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let x = self.lobe.phase(u, lambda_nm);
+        #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
             return self.tab_pdf(t, &c, wo, x, v, wi.z, lambda_nm);
         }
@@ -708,6 +717,7 @@ impl GratingBsdf {
 
     /// [`pdf_finite`](Self::pdf_finite) for a tabulated model at the phase x. Not inlined: its
     /// order buffer would otherwise enlarge the amplitude model's stack frame.
+    #[cfg(feature = "relief")]
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
     fn tab_pdf(

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+#[cfg(feature = "relief")]
 use super::efficiency::eta;
 use super::GratingBsdf;
 use crate::bxdf::MIN_COS_THETA;
@@ -54,7 +55,7 @@ impl GratingBsdf {
     /// about 10⁻⁶ (tests compare with an independent quadrature of `f`, and the 16-point rule
     /// with the lobe-by-lobe rule on every period).
     ///
-    /// A tabulated model ([`OrderEfficiency::Tabulated`](super::OrderEfficiency)): the same
+    /// A tabulated model (`OrderEfficiency::Tabulated`, feature `relief`): the same
     /// rules with ρ²·S replaced by η̃_m(u) = min(η_m(wo.x − u, λ), η_m(−wo.x, λ)), every period
     /// lobe by lobe (η̃ has the table's kinks); at most Σ_m η_m(−wo.x, λ) ≤ 1. For N = ∞:
     /// Σ_m η̃_m·∫ g over the chord. Measured against the Monte-Carlo furnace within 1.6
@@ -93,15 +94,20 @@ impl GratingBsdf {
         let rho = self.grating.open_fraction();
         // A tabulated model: η_m(−wo.x, λ) of the candidates, and η̃_m at u (the min with
         // η_m(−wi.x, λ), wi.x = u − wo.x); every period lobe by lobe (η̃ has the table's kinks).
-        let table = self.table();
-        let tab = match table {
+        #[cfg(feature = "relief")]
+        let tab = match self.table() {
             Some(t) => match self.tab_orders(t, wo, lambda_nm, &c) {
                 Some(o) => Some((t, o)),
                 None => return Some(0.0),
             },
             None => None,
         };
+        #[cfg(not(feature = "relief"))]
+        let tab: Option<core::convert::Infallible> = None;
         let moments = moments && tab.is_none();
+        #[cfg(not(feature = "relief"))]
+        let eta_at = |_: i64, _: f64| 0.0;
+        #[cfg(feature = "relief")]
         let eta_at = |m: i64, u: f64| match &tab {
             Some((t, o)) => {
                 let w = o.weight(m);
@@ -158,6 +164,7 @@ impl GratingBsdf {
                 ];
                 let mut rule: Option<MomentRule> = None;
                 for m in c.lo..=c.hi {
+                    #[cfg(feature = "relief")]
                     if tab.as_ref().is_some_and(|(_, o)| o.weight(m) == 0.0) {
                         // f = 0 on the period (η̃ ≤ η_m(−wo.x) = 0).
                         continue;
@@ -198,11 +205,11 @@ impl GratingBsdf {
                 }
             }
         }
-        let cap = match &tab {
-            Some((_, o)) => o.total.min(1.0),
-            None => rho,
-        };
-        Some(sum.clamp(0.0, cap))
+        #[cfg(feature = "relief")]
+        if let Some((_, o)) = &tab {
+            return Some(sum.clamp(0.0, o.total.min(1.0)));
+        }
+        Some(sum.clamp(0.0, rho))
     }
 }
 

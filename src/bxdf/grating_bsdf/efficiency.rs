@@ -42,25 +42,35 @@
 //! path (response + peaks); `peaks` reports each order with η̃ at the peak's λ, and the
 //! wavelength sampler weighs peak m by η̃_m(λ_m)·(d/|m|)·g.
 
-#[cfg(feature = "alloc")]
+#[cfg(all(feature = "relief", feature = "alloc"))]
 use alloc::sync::Arc;
 
 use glam::DVec3;
 
+#[cfg(feature = "relief")]
 use super::lobe::GrooveFactor;
+#[cfg(feature = "relief")]
 use super::orders::Candidates;
 use super::GratingBsdf;
+#[cfg(feature = "relief")]
 use crate::bxdf::bsdf::{BsdfFlags, BsdfSample};
+#[cfg(feature = "relief")]
 use crate::error::{Error, Requirement};
 use crate::kernel::single_slit_cycles;
+#[cfg(feature = "relief")]
 use crate::math;
-use crate::relief::{EfficiencyTable, Polarised, Preset};
+#[cfg(feature = "presets")]
+use crate::relief::Preset;
+#[cfg(feature = "relief")]
+use crate::relief::{EfficiencyTable, Polarised};
+#[cfg(feature = "relief")]
 use crate::{Grating, Slits};
 
 /// The most orders a tabulated model's table may store: the sampler reads every order's
 /// efficiency for `wo` into a buffer of this many entries on the stack (no allocation). The
 /// shipped presets store 9-19; a baked scalar relief stores about 4·d/λ_min + 1 (d up to about
 /// 11 µm at 360 nm).
+#[cfg(feature = "relief")]
 pub const MAX_TABULATED_ORDERS: usize = 128;
 
 /// Where a grating's order efficiencies come from.
@@ -68,23 +78,23 @@ pub const MAX_TABULATED_ORDERS: usize = 128;
 /// * [`Amplitude`](Self::Amplitude), the paper's grating read as an amplitude grating
 ///   (reflecting strips of width w on an absorbing background, open fraction ρ = w/d):
 ///   η_m = ρ²·S(π·ρ·m), Σ_m η_m = ρ (Parseval), the same at every angle and wavelength.
-/// * [`Tabulated`](Self::Tabulated): the efficiencies of a relief grating on a metal read from
-///   an [`EfficiencyTable`] at the incidence and the wavelength (a shipped [`Preset`], a
-///   `&'static` table, or with feature `alloc` a shared table such as a baked scalar relief):
-///   see [`OrderEfficiency::preset`] and the [module docs](super) for the value
-///   min(η_m(−wi.x), η_m(−wo.x)).
+/// * `Tabulated` (feature `relief`): the efficiencies of a relief grating on a metal read
+///   from an `EfficiencyTable` at the incidence and the wavelength (a shipped `Preset`,
+///   feature `presets`; a `&'static` table; or with feature `alloc` a shared table such as a
+///   baked scalar relief): see `OrderEfficiency::preset` and the [module docs](super) for the
+///   value min(η_m(−wi.x), η_m(−wo.x)).
 ///
 /// Equality compares tables by address. A tabulated model is not serialised (serde skips the
 /// variant: serialising one is an error).
 ///
 /// ```
 /// use diffraction::grating_bsdf::OrderEfficiency;
-/// use diffraction::relief::Preset;
 /// use diffraction::{Grating, GratingBsdf};
 /// let b = GratingBsdf::new(Grating::new(1600.0, 800.0, 100)?);
 /// assert_eq!(b.order_efficiency(), OrderEfficiency::Amplitude);
 /// assert_eq!(b.efficiency(0), 0.25); // ρ² with ρ = ½
-/// assert!(OrderEfficiency::preset(Preset::Cd).is_tabulated());
+/// # #[cfg(feature = "presets")]
+/// assert!(OrderEfficiency::preset(diffraction::relief::Preset::Cd).is_tabulated());
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -96,15 +106,18 @@ pub enum OrderEfficiency {
     Amplitude,
     /// η_m(sin θi, λ) from a table (built by [`OrderEfficiency::preset`],
     /// [`OrderEfficiency::from_static`] or [`OrderEfficiency::from_table`]).
+    #[cfg(feature = "relief")]
     #[cfg_attr(feature = "serde", serde(skip))]
     Tabulated(Tabulated),
 }
 
 /// A table of order efficiencies held by an [`OrderEfficiency::Tabulated`]: `&'static` (the
 /// presets; no allocation, `no_std`) or shared (`Arc`, feature `alloc`).
+#[cfg(feature = "relief")]
 #[derive(Debug, Clone)]
 pub struct Tabulated(Held);
 
+#[cfg(feature = "relief")]
 #[derive(Debug, Clone)]
 enum Held {
     Static(&'static EfficiencyTable),
@@ -112,6 +125,7 @@ enum Held {
     Shared(Arc<EfficiencyTable>),
 }
 
+#[cfg(feature = "relief")]
 impl Tabulated {
     /// The table.
     #[must_use]
@@ -124,6 +138,7 @@ impl Tabulated {
     }
 }
 
+#[cfg(feature = "relief")]
 impl PartialEq for Tabulated {
     fn eq(&self, other: &Tabulated) -> bool {
         core::ptr::eq(self.table(), other.table())
@@ -131,6 +146,7 @@ impl PartialEq for Tabulated {
 }
 
 /// A table's order count within [`MAX_TABULATED_ORDERS`], or the error naming `table`.
+#[cfg(feature = "relief")]
 fn checked(t: &EfficiencyTable) -> Result<(), Error> {
     let count = t.orders().count();
     if count > MAX_TABULATED_ORDERS {
@@ -155,6 +171,7 @@ impl OrderEfficiency {
     /// let e = OrderEfficiency::preset(Preset::Foil);
     /// assert_eq!(e.table().unwrap().period_nm(), Preset::Foil.period_nm());
     /// ```
+    #[cfg(feature = "presets")]
     #[must_use]
     pub fn preset(preset: Preset) -> OrderEfficiency {
         OrderEfficiency::Tabulated(Tabulated(Held::Static(preset.table())))
@@ -162,6 +179,7 @@ impl OrderEfficiency {
 
     /// The efficiencies of a `&'static` table; an error naming `table` when it stores more than
     /// [`MAX_TABULATED_ORDERS`] orders.
+    #[cfg(feature = "relief")]
     pub fn from_static(table: &'static EfficiencyTable) -> Result<OrderEfficiency, Error> {
         checked(table)?;
         Ok(OrderEfficiency::Tabulated(Tabulated(Held::Static(table))))
@@ -170,13 +188,14 @@ impl OrderEfficiency {
     /// The efficiencies of a shared table (for instance a baked
     /// [`ScalarRelief`](crate::relief::ScalarRelief)); an error naming `table` when it stores
     /// more than [`MAX_TABULATED_ORDERS`] orders.
-    #[cfg(feature = "alloc")]
+    #[cfg(all(feature = "relief", feature = "alloc"))]
     pub fn from_table(table: Arc<EfficiencyTable>) -> Result<OrderEfficiency, Error> {
         checked(&table)?;
         Ok(OrderEfficiency::Tabulated(Tabulated(Held::Shared(table))))
     }
 
     /// The table of a tabulated model.
+    #[cfg(feature = "relief")]
     #[must_use]
     pub fn table(&self) -> Option<&EfficiencyTable> {
         match self {
@@ -185,10 +204,15 @@ impl OrderEfficiency {
         }
     }
 
-    /// Whether the efficiencies come from a table (they depend on incidence and λ).
+    /// Whether the efficiencies come from a table (they depend on incidence and λ); always
+    /// false without the feature `relief`.
     #[must_use]
     pub fn is_tabulated(&self) -> bool {
-        self.table().is_some()
+        match self {
+            OrderEfficiency::Amplitude => false,
+            #[cfg(feature = "relief")]
+            OrderEfficiency::Tabulated(_) => true,
+        }
     }
 
     /// η_m for a grating of open fraction `rho` (amplitude reading).
@@ -203,12 +227,14 @@ impl OrderEfficiency {
     pub(crate) fn relative(&self, rho: f64, order: i64) -> f64 {
         match self {
             OrderEfficiency::Amplitude => single_slit_cycles(rho * order as f64),
+            #[cfg(feature = "relief")]
             OrderEfficiency::Tabulated(_) => 1.0,
         }
     }
 }
 
 /// Unpolarised η of one order of a table, 0 outside its orders.
+#[cfg(feature = "relief")]
 #[inline]
 pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: f64) -> f64 {
     if order < i64::from(*t.orders().start()) || order > i64::from(*t.orders().end()) {
@@ -226,6 +252,7 @@ pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: 
 
 /// The sampler's order weights for a tabulated model at one (wo, λ): η_m(−wo.x, λ) of every
 /// stored order, the candidate range clipped to the table and Σ η over it.
+#[cfg(feature = "relief")]
 pub(super) struct TabOrders {
     buf: [Polarised; MAX_TABULATED_ORDERS],
     first: i64,
@@ -234,6 +261,7 @@ pub(super) struct TabOrders {
     pub total: f64,
 }
 
+#[cfg(feature = "relief")]
 impl TabOrders {
     /// η_m(−wo.x, λ) of order m (0 outside the candidates).
     #[inline]
@@ -275,6 +303,7 @@ impl GratingBsdf {
     /// single-slit factor, and the orders' powers are the table's). The groove spread is kept.
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::grating_bsdf::OrderEfficiency;
     /// use diffraction::relief::Preset;
     /// use diffraction::{Grating, GratingBsdf};
@@ -282,18 +311,21 @@ impl GratingBsdf {
     ///     .with_efficiency(OrderEfficiency::preset(Preset::Cd));
     /// assert_eq!(b.grating().period_nm(), 1600.0);
     /// assert!(b.order_efficiency().is_tabulated());
+    /// # }
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn with_efficiency(&self, efficiency: OrderEfficiency) -> GratingBsdf {
-        let grating = match efficiency.table() {
-            Some(t) if t.period_nm() != self.grating.period_nm() => {
-                let d = t.period_nm();
-                Grating::with_slits(d, self.grating.open_fraction() * d, self.grating.slits())
-                    .unwrap_or(self.grating)
+        #[cfg_attr(not(feature = "relief"), allow(unused_mut))]
+        let mut grating = self.grating;
+        #[cfg(feature = "relief")]
+        if let Some(t) = efficiency.table() {
+            let d = t.period_nm();
+            if d != grating.period_nm() {
+                grating = Grating::with_slits(d, grating.open_fraction() * d, grating.slits())
+                    .unwrap_or(grating);
             }
-            _ => self.grating,
-        };
+        }
         GratingBsdf::build(grating, self.groove, efficiency)
     }
 
@@ -319,6 +351,7 @@ impl GratingBsdf {
     /// assert_eq!(GratingBsdf::preset(Preset::Cd, 0).unwrap_err().parameter(), "slits");
     /// # Ok::<(), diffraction::Error>(())
     /// ```
+    #[cfg(feature = "presets")]
     pub fn preset(preset: Preset, slits: impl Into<Slits>) -> Result<GratingBsdf, Error> {
         let d = preset.period_nm();
         let grating = Grating::with_slits(d, 0.5 * d, slits.into())?;
@@ -357,21 +390,23 @@ impl GratingBsdf {
     /// 550 nm.
     #[must_use]
     pub fn efficiency(&self, order: i32) -> f64 {
-        match self.table() {
-            None => self
-                .efficiency
-                .efficiency(self.grating.open_fraction(), order as i64),
-            Some(t) => eta(t, i64::from(order), 0.0, 550.0),
+        #[cfg(feature = "relief")]
+        if let Some(t) = self.table() {
+            return eta(t, i64::from(order), 0.0, 550.0);
         }
+        self.efficiency
+            .efficiency(self.grating.open_fraction(), order as i64)
     }
 
     /// The table of a tabulated model.
+    #[cfg(feature = "relief")]
     #[inline]
     pub(super) fn table(&self) -> Option<&EfficiencyTable> {
         self.efficiency.table()
     }
 
     /// η_m(−wo.x, λ) of the candidates `c`, `None` when they carry nothing.
+    #[cfg(feature = "relief")]
     pub(super) fn tab_orders(
         &self,
         t: &EfficiencyTable,
@@ -402,6 +437,7 @@ impl GratingBsdf {
     /// (wo, wi) and ≥ 0; 0 for orders the table does not store and for non-finite input.
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// use diffraction::GratingBsdf;
     /// use glam::DVec3;
@@ -412,20 +448,23 @@ impl GratingBsdf {
     /// let e = cd.efficiency_at(1, wo, wi, 550.0);
     /// assert!(e > 0.0 && e < 1.0);
     /// assert_eq!(e, cd.efficiency_at(1, wi, wo, 550.0)); // reciprocal
+    /// # }
     /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[must_use]
     pub fn efficiency_at(&self, order: i32, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
-        match self.table() {
-            None => self.efficiency(order),
-            Some(t) => {
-                let m = i64::from(order);
-                eta(t, m, -wi.x, lambda_nm).min(eta(t, m, -wo.x, lambda_nm))
-            }
+        #[cfg(feature = "relief")]
+        if let Some(t) = self.table() {
+            let m = i64::from(order);
+            return eta(t, m, -wi.x, lambda_nm).min(eta(t, m, -wo.x, lambda_nm));
         }
+        #[cfg(not(feature = "relief"))]
+        let _ = (wo, wi, lambda_nm);
+        self.efficiency(order)
     }
 }
 
+#[cfg(feature = "relief")]
 impl GratingBsdf {
     /// f of a tabulated model with finite N and a groove spread: η̃_m·ℓ_m(u, v) for the order
     /// m owning u (the phase `eval` reads), after the hemisphere checks.

@@ -31,10 +31,14 @@ impl GratingBsdf {
             let l = lambdas.lambda();
             for k in 1..4 {
                 if l[k] > 0.0 && l[k].is_finite() {
-                    f[k] = match self.table() {
+                    #[cfg(feature = "relief")]
+                    let value = match self.table() {
                         Some(t) => self.tab_value(t, wo, wi, l[k]),
                         None => self.lobe.value(u, v, l[k]),
                     };
+                    #[cfg(not(feature = "relief"))]
+                    let value = self.lobe.value(u, v, l[k]);
+                    f[k] = value;
                     pdf[k] = self.pdf_finite(wo, wi, l[k]);
                 }
             }

@@ -195,20 +195,21 @@ impl GratingBsdf {
                 self.groove.value(v, mid)
             };
             let rho = self.grating.open_fraction();
-            let f = match self.table() {
-                None => {
-                    rho * rho
-                        * (mix.n * self.grating.period_nm() / mid)
-                        * self.grating.intensity_f64(u, mid)
-                        * g
-                }
+            #[cfg(feature = "relief")]
+            let tabulated = self.table().is_some();
+            #[cfg(not(feature = "relief"))]
+            let tabulated = false;
+            let f = if tabulated {
                 // η̃_0(λ)·(N·d/λ)·F_N·g at the middle of the range.
-                Some(_) => {
-                    self.efficiency_at(0, wo, wi, mid)
-                        * (mix.n * self.grating.period_nm() / mid)
-                        * self.grating.n_slit(u, mid)
-                        * g
-                }
+                self.efficiency_at(0, wo, wi, mid)
+                    * (mix.n * self.grating.period_nm() / mid)
+                    * self.grating.n_slit(u, mid)
+                    * g
+            } else {
+                rho * rho
+                    * (mix.n * self.grating.period_nm() / mid)
+                    * self.grating.intensity_f64(u, mid)
+                    * g
             };
             let w = f * (band.max_nm() - zero_lo);
             if w.is_finite() && w > 0.0 {
