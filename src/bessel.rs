@@ -1,5 +1,5 @@
 //! The Bessel function of the first kind J_n(x) for integer order, and sums of its squares: the
-//! order efficiencies of a sinusoidal profile (Stam's model, feature `stam`, and the scalar relief
+//! order efficiencies of a sinusoidal profile (Stam's model, feature `baselines`, and the scalar relief
 //! model of `relief`).
 
 use core::f64::consts::PI;
@@ -113,7 +113,7 @@ const DEBYE: [&[f64]; 8] = [
 /// assert!((j / (0.447307 * f64::from(n).powf(-1.0 / 3.0)) - 1.0).abs() < 1e-5);
 /// assert!(bessel_j(n, 1e10).abs() < 1e-5);
 /// ```
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 #[must_use]
 pub fn bessel_j(order: i32, x: f64) -> f64 {
     bessel_j_bounded(order, x, MAX_STEPS)
@@ -353,7 +353,7 @@ fn poly(c: &[f64], q: f64) -> f64 {
 }
 
 /// Σ_{m=lo}^{hi} J_m(x)²·weight(m) for x ≥ 0, in one backward recurrence.
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 pub(crate) fn bessel_squares(x: f64, lo: i64, hi: i64, weight: &mut dyn FnMut(i64) -> f64) -> f64 {
     if lo > hi {
         return 0.0;

@@ -1,7 +1,7 @@
 //! The interface every diffraction model of the crate implements, and the models: the paper's
 //! Agu-Hill grating ([`AguHill`]), the energy-normalised grating for path tracers
-//! ([`GratingBsdf`]) and the related work the paper argues against ([`Thorman`], and `Stam` with
-//! the feature `stam`).
+//! ([`GratingBsdf`]) and, with the feature `baselines`, the related work the paper argues
+//! against (`Thorman`, `Stam`).
 //!
 //! Three traits, each a capability of its own:
 //!
@@ -25,22 +25,24 @@ mod agu_hill;
 pub mod bsdf;
 pub mod grating_bsdf;
 mod hero_mis;
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 pub(crate) mod profile;
 mod response;
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 pub mod stam;
+#[cfg(feature = "baselines")]
 mod thorman;
 
 pub use agu_hill::AguHill;
 pub use bsdf::{Bsdf, BsdfFlags, BsdfSample, BsdfSample4};
 pub use grating_bsdf::{GratingBsdf, WavelengthSample};
 pub use hero_mis::HeroMis;
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 pub use profile::Profile;
 pub use response::{Envelope, GratingResponse, PeakSummary, SpectralResponse};
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 pub use stam::Stam;
+#[cfg(feature = "baselines")]
 pub use thorman::Thorman;
 
 /// Directions with cos θ below this count as below the horizon for every model of the crate:
@@ -69,7 +71,7 @@ pub const MIN_COS_THETA: f64 = 1e-100;
 ///
 /// What the value *is* belongs to the model, one meaning each:
 ///
-/// * radiometric models ([`GratingBsdf`], [`Thorman`], `Stam`): the BRDF in 1/sr, **cosine
+/// * radiometric models ([`GratingBsdf`], `Thorman`, `Stam`): the BRDF in 1/sr, **cosine
 ///   excluded** (pbrt's convention): reflected radiance is ∫ eval·L·cos θi dωi;
 /// * the paper's [`AguHill`]: its unitless intensity S(β)·F_N(α) (peak 1), which the paper
 ///   multiplies by the light with no cosine (its eq. 12).

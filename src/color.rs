@@ -1,4 +1,5 @@
-//! Colour: CIE XYZ, linear and encoded sRGB, gamut clipping, CIELAB and ΔE2000.
+//! Colour: CIE XYZ, linear and encoded sRGB, gamut clipping, and (feature `delta-e`) CIELAB and
+//! ΔE2000.
 //!
 //! # Types
 //!
@@ -7,9 +8,10 @@
 //! * [`LinearSrgb`]: linear-light sRGB. May be **out of gamut** (negative or above 1); nothing
 //!   clips it behind your back.
 //! * [`Srgb`]: encoded (non-linear, "gamma") sRGB, what image files and displays take.
-//! * [`Lab`]: CIE 1976 L\*a\*b\*, with the CIEDE2000 colour difference [`Lab::delta_e2000`], the
-//!   crate's unit of colour error.
-//! * [`WhitePoint`]: a validated reference white for CIELAB (finite, positive components).
+//! * `Lab` (feature `delta-e`): CIE 1976 L\*a\*b\*, with the CIEDE2000 colour difference
+//!   `Lab::delta_e2000`, the crate's unit of colour error.
+//! * `WhitePoint` (feature `delta-e`): a validated reference white for CIELAB (finite, positive
+//!   components).
 //! * [`Clip`]: the three gamut-clipping schemes of Hall (1989).
 //!
 //! # Pipeline
@@ -71,17 +73,20 @@
 //! No function here returns NaN for finite input. The linear maps ([`Xyz::to_linear_srgb`],
 //! [`LinearSrgb::to_xyz`], `+`, `*`, `scale`) are exact to rounding and give ±∞ only where the
 //! exact value exceeds f64::MAX (the plain overflow of the caller's own huge values). Everything
-//! else is finite for every finite input: [`srgb_decode`], [`Xyz::to_lab`] and
+//! else is finite for every finite input: [`srgb_decode`], `Xyz::to_lab` and
 //! [`LinearSrgb::luminance`] saturate at ±f64::MAX where the exact value lies beyond it,
-//! [`Lab::delta_e2000`] clamps its components to ±1e150, [`Xyz::chromaticity`] is `None` where the
+//! `Lab::delta_e2000` clamps its components to ±1e150, [`Xyz::chromaticity`] is `None` where the
 //! coordinates would overflow, and a CIELAB white with a zero, negative or non-finite component
-//! is rejected by [`WhitePoint::new`] with an error naming it.
+//! is rejected by `WhitePoint::new` with an error naming it.
 //!
 //! ```
-//! use diffraction::color::{srgb_decode, Lab, WhitePoint, Xyz};
+//! use diffraction::color::srgb_decode;
 //! assert_eq!(srgb_decode(1e300), f64::MAX);
+//! # #[cfg(feature = "delta-e")] {
+//! use diffraction::color::{Lab, WhitePoint, Xyz};
 //! assert!(Lab::new(50.0, 1e50, 0.0).delta_e2000(Lab::default()).is_finite());
 //! assert_eq!(WhitePoint::new(Xyz::default()).unwrap_err().parameter(), "white.x");
+//! # }
 //! ```
 //!
 //! # Reference
@@ -93,13 +98,15 @@
 //! [`srgb_decode`]).
 
 mod clip;
+#[cfg(feature = "delta-e")]
 mod lab;
 mod srgb;
-#[cfg(test)]
+#[cfg(all(test, feature = "delta-e"))]
 mod tests;
 mod xyz;
 
 pub use clip::Clip;
+#[cfg(feature = "delta-e")]
 pub use lab::{Lab, WhitePoint};
 pub use srgb::{srgb_decode, srgb_encode, LinearSrgb, Srgb};
 pub use xyz::Xyz;

@@ -5,6 +5,7 @@
 
 use core::ops::{Add, Mul, Sub};
 
+#[cfg(feature = "relief")]
 use crate::math;
 
 /// A complex number re + i·im.
@@ -16,6 +17,7 @@ pub(crate) struct Complex {
 
 impl Complex {
     /// 0.
+    #[cfg(feature = "relief")]
     pub(crate) const ZERO: Complex = Complex { re: 0.0, im: 0.0 };
 
     /// re + i·im.
@@ -25,7 +27,7 @@ impl Complex {
     }
 
     /// e^{iθ}.
-    #[cfg(feature = "alloc")]
+    #[cfg(all(feature = "relief", feature = "alloc"))]
     #[inline]
     pub(crate) fn cis(theta: f64) -> Complex {
         Complex::new(math::cos(theta), math::sin(theta))
@@ -45,6 +47,7 @@ impl Complex {
 
     /// The principal square root (Re ≥ 0, and Im of the same sign as Im z), without
     /// cancellation: the larger part comes from √((|z| + |Re z|)/2), the other from Im z over it.
+    #[cfg(feature = "relief")]
     pub(crate) fn sqrt(self) -> Complex {
         let r = math::sqrt(self.norm_sqr());
         if r == 0.0 {
@@ -86,7 +89,7 @@ impl Mul for Complex {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "relief"))]
 mod tests {
     use super::Complex;
 

@@ -71,7 +71,8 @@ const COS_PI_TAYLOR: [f64; 10] = [
     -1.3878952462213771e-07,
 ];
 
-/// (sin πt, cos πt) with exact reduction of t to [−½, ½].
+/// (sin πt, cos πt) with exact reduction of t to [−½, ½] (the profiles' Fourier coefficients).
+#[cfg(any(feature = "relief", feature = "baselines"))]
 pub(crate) fn sincospi(t: f64) -> (f64, f64) {
     let n = rint(t);
     let r = t - n;

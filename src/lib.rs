@@ -60,13 +60,14 @@
 //!   Tables can be cached (feature `serde`).
 //! * **Real time**: the same table, or the slit kernels ([`kernel`], `f32` and `f64`) evaluated at
 //!   a few wavelengths.
-//! * **How bright each order of a real grating is** (a relief on a metal, TE and TM):
-//!   [`relief::ScalarRelief`] (a sinusoid, lamellar, sawtooth, Fourier or sampled profile on a
-//!   [`relief::Metal`]: Al, Ag, Au, Cu, Cr or n + ik) gives the order efficiencies η_m by scalar
-//!   diffraction, never above the metal's reflectance, and
-//!   [`is_valid`](relief::ScalarRelief::is_valid) says whether a query lies in the region where
-//!   they were measured within 10 % of rigorous electromagnetics (`docs/validity.md`); outside
-//!   it use rigorous tables (`python_ref/efficiencies.py`). `examples/efficiencies` prints them.
+//! * **How bright each order of a real grating is** (a relief on a metal, TE and TM; feature
+//!   `relief`): `relief::ScalarRelief` (a sinusoid, lamellar, sawtooth, Fourier or sampled
+//!   profile on a `relief::Metal`: Al, Ag, Au, Cu, Cr or n + ik) gives the order efficiencies
+//!   η_m by scalar diffraction, never above the metal's reflectance, and `is_valid` says whether
+//!   a query lies in the region where they were measured within 10 % of rigorous
+//!   electromagnetics (`docs/validity.md`); outside it use rigorous tables
+//!   (`relief::EfficiencyTable`, `python_ref/efficiencies.py`; the four shipped ones, feature
+//!   `presets`: `relief::Preset`, `GratingBsdf::preset`). `examples/efficiencies` prints them.
 //! * **Your own model**: implement [`DiffractionBrdf`] (and [`SpectralResponse`] to get its
 //!   colour, [`Bsdf`] to sample it); `ARCHITECTURE.md` in the repository says how.
 //!
@@ -82,18 +83,20 @@
 //! * [`frame`]: the phase projection and grating-direction fields (constant, twisted, radial
 //!   tracks of a CD, checkerboards).
 //! * [`DiffractionBrdf`]: the value interface every model implements, `eval(wo, wi, λ)`; the
-//!   models [`AguHill`] (the paper's), [`GratingBsdf`] (energy-normalised, for path tracers),
-//!   [`Thorman`] (peak directions only, every order equally bright) and, with the feature
-//!   `stam`, `Stam` (Fourier optics for sinusoidal and binary profiles, in `stam`).
+//!   models [`AguHill`] (the paper's), [`GratingBsdf`] (energy-normalised, for path tracers)
+//!   and, with the feature `baselines`, `Thorman` (peak directions only, every order equally
+//!   bright) and `Stam` (Fourier optics for sinusoidal and binary profiles, in `stam`).
 //! * [`Bsdf`], [`BsdfSample`], [`BsdfSample4`], [`BsdfFlags`]: the samplable interface for path
 //!   tracers (pbrt-v4's BxDF shape), with [`GrooveSpread`] (the lobes along the grooves) and
 //!   [`grating_bsdf`] (the grating BSDF's parts: order efficiencies, sampling, albedo,
 //!   wavelength sampling, regularisation).
 //! * [`SampledWavelengths`], [`visible`], [`SampledSpectrum`], [`SpectralFilm`], [`HeroMis`]: a
 //!   spectral path's four wavelengths, their values, the film's XYZ and the MIS weights.
-//! * [`relief`]: relief gratings on real metals: [`relief::Metal`] (n + ik, Fresnel),
-//!   [`relief::Relief`] (profile shapes and their phase screens), [`relief::ScalarRelief`]
-//!   (order efficiencies by scalar diffraction, with their measured valid region).
+//! * `relief` (feature `relief`): relief gratings on real metals: `relief::Metal` (n + ik,
+//!   Fresnel), `relief::Relief` (profile shapes and their phase screens),
+//!   `relief::ScalarRelief` (order efficiencies by scalar diffraction, with their measured valid
+//!   region), `relief::EfficiencyTable` (tabulated efficiencies) and, feature `presets`,
+//!   `relief::Preset` (the shipped rigorous tables).
 //! * [`footprint`]: the interval of u a pixel sees, for footprint-filtered colour lookups.
 //! * [`SpectralResponse`], [`GratingResponse`], [`Envelope`], [`PeakSummary`]: what the colour
 //!   integrator needs of a model.
@@ -104,7 +107,8 @@
 //!   with stated cost and bound (`spectrum::bounds`).
 //! * [`ColorTable`], [`TableSource`]: a grating's colour tabulated once (the paper's, or the
 //!   radiometric BSDF's in physical units), O(1) lookups and footprint means.
-//! * [`color`]: XYZ, linear and encoded sRGB, Hall's clipping schemes, CIELAB and ΔE2000.
+//! * [`color`]: XYZ, linear and encoded sRGB, Hall's clipping schemes, and (feature
+//!   `delta-e`) CIELAB and ΔE2000.
 //!
 //! ## From a hit point to a pixel
 //!
@@ -140,8 +144,19 @@
 //! * `libm`: maths from the `libm` crate, for `no_std` (disable default features).
 //! * `serde`: `Serialize`/`Deserialize` for the parameter types, validated on the way in, and
 //!   (with `alloc`) for the colour tables, as caches with a format version.
-//! * `stam`: the `stam` module with Stam's model (no dependency; it works with `std` and with
-//!   `libm`).
+//! * `relief`: order efficiencies of relief gratings on metals (`relief`: the scalar model, the
+//!   metals, `EfficiencyTable`) and the grating BSDF's tabulated efficiencies
+//!   (`grating_bsdf::OrderEfficiency::Tabulated`, `OrderEfficiency::from_static`, `from_table`).
+//! * `presets` (implies `relief`): the four rigorous efficiency tables the crate ships
+//!   (`relief::Preset`, `OrderEfficiency::preset`, `GratingBsdf::preset`; 4.7k lines of static
+//!   data).
+//! * `baselines`: the related work the paper argues against, `Thorman` and Stam's model
+//!   (`Stam`, `Profile`, the `stam` module); works with `std` and with `libm`.
+//! * `stam`: the former name of `baselines`, kept as its alias for one release (deprecated).
+//! * `delta-e`: CIELAB and the CIEDE2000 colour difference (`color::Lab`, `color::WhitePoint`,
+//!   `Xyz::to_lab`, `color::delta_e2000`), the unit of colour error of the crate's tests.
+//!
+//! None of these four adds a dependency, and the default build compiles none of them.
 //!
 //! One of `std` and `libm` must be enabled.
 //!
@@ -161,6 +176,7 @@ compile_error!("diffraction needs either the `std` (default) or the `libm` featu
 extern crate alloc;
 
 mod band;
+#[cfg(any(feature = "relief", feature = "baselines"))]
 mod bessel;
 mod bxdf;
 pub mod cie;
@@ -168,9 +184,11 @@ mod cie_data;
 pub mod color;
 #[cfg(feature = "alloc")]
 mod color_table;
+#[cfg(any(feature = "relief", feature = "baselines"))]
 mod complex;
 // The presets' tables; their grating descriptions (profile, depth, metal, cover) are not read.
 // Measured efficiencies such as 0.3183 and 0.4342 are data, not 1/π or log10(e).
+#[cfg(feature = "presets")]
 #[allow(dead_code, clippy::approx_constant)]
 mod efficiency_presets_data;
 mod error;
@@ -186,12 +204,14 @@ mod illumination;
 pub mod kernel;
 mod math;
 // Measured data: Cr's k = 3.14 at 451 nm (Johnson & Christy 1974) is a measurement, not π.
+#[cfg(feature = "relief")]
 #[allow(clippy::approx_constant)]
 mod metals_data;
 mod orders;
 mod parse;
 mod quadrature;
 mod random;
+#[cfg(feature = "relief")]
 pub mod relief;
 mod sampled_spectrum;
 mod special;
@@ -200,15 +220,15 @@ pub mod visible;
 mod wavelengths;
 
 pub use band::Band;
-#[cfg(feature = "stam")]
+#[cfg(feature = "baselines")]
 pub use bxdf::stam;
 pub use bxdf::{
     bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, BsdfSample4, DiffractionBrdf,
-    Envelope, GratingBsdf, GratingResponse, HeroMis, PeakSummary, SpectralResponse, Thorman,
+    Envelope, GratingBsdf, GratingResponse, HeroMis, PeakSummary, SpectralResponse,
     WavelengthSample, MIN_COS_THETA,
 };
-#[cfg(feature = "stam")]
-pub use bxdf::{Profile, Stam};
+#[cfg(feature = "baselines")]
+pub use bxdf::{Profile, Stam, Thorman};
 #[cfg(feature = "alloc")]
 #[allow(deprecated)]
 pub use color_table::RadiometricTable;

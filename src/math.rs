@@ -17,6 +17,7 @@ mod imp {
     pub fn cos(x: f64) -> f64 {
         x.cos()
     }
+    #[cfg(any(feature = "relief", feature = "baselines", feature = "delta-e"))]
     #[inline]
     pub fn atan2(y: f64, x: f64) -> f64 {
         y.atan2(x)
@@ -41,6 +42,12 @@ mod imp {
     pub fn powf(x: f64, y: f64) -> f64 {
         x.powf(y)
     }
+    #[cfg(any(
+        feature = "alloc",
+        feature = "relief",
+        feature = "baselines",
+        feature = "delta-e"
+    ))]
     #[inline]
     pub fn cbrt(x: f64) -> f64 {
         x.cbrt()
@@ -77,6 +84,7 @@ mod imp {
     pub fn cos(x: f64) -> f64 {
         libm::cos(x)
     }
+    #[cfg(any(feature = "relief", feature = "baselines", feature = "delta-e"))]
     #[inline]
     pub fn atan2(y: f64, x: f64) -> f64 {
         libm::atan2(y, x)
@@ -101,6 +109,12 @@ mod imp {
     pub fn powf(x: f64, y: f64) -> f64 {
         libm::pow(x, y)
     }
+    #[cfg(any(
+        feature = "alloc",
+        feature = "relief",
+        feature = "baselines",
+        feature = "delta-e"
+    ))]
     #[inline]
     pub fn cbrt(x: f64) -> f64 {
         libm::cbrt(x)

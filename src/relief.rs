@@ -37,6 +37,8 @@ pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES, QUADRATURE_NODES};
-pub use table::{EfficiencyTable, Preset};
+pub use table::EfficiencyTable;
+#[cfg(feature = "presets")]
+pub use table::Preset;
 #[cfg(feature = "alloc")]
 pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE};

@@ -1,20 +1,21 @@
 //! Tabulated order efficiencies: η_m on a grid in (sin θi, λ), interpolated by the rule of
 //! `docs/efficiency_tables.md`, with the crate's rigorous presets as static tables.
 
-use core::fmt;
 use core::ops::RangeInclusive;
-use core::str::FromStr;
 
 #[cfg(feature = "alloc")]
 use alloc::vec::Vec;
 
 use super::scalar::Polarised;
-use crate::efficiency_presets_data as data;
 use crate::math;
-use crate::ParseError;
 
 #[cfg(feature = "alloc")]
 mod load;
+#[cfg(feature = "presets")]
+mod preset;
+
+#[cfg(feature = "presets")]
+pub use preset::Preset;
 
 #[cfg(feature = "alloc")]
 pub use load::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE};
@@ -42,6 +43,7 @@ const GRAZING_CORNER: f64 = 1e-6;
 /// for TE and for TM (and so for unpolarised light) at every query.
 ///
 /// ```
+/// # #[cfg(feature = "presets")] {
 /// use diffraction::relief::Preset;
 /// let cd = Preset::Cd.table();
 /// assert_eq!(cd.orders(), -8..=8);
@@ -49,6 +51,7 @@ const GRAZING_CORNER: f64 = 1e-6;
 /// assert!(first.te > 0.0 && first.tm > 0.0);
 /// // Order 3 at normal incidence: sin θ3 = 3·550/1600 > 1, evanescent.
 /// assert_eq!(cd.efficiency(3, 0.0, 550.0).te, 0.0);
+/// # }
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct EfficiencyTable {
@@ -60,6 +63,7 @@ pub struct EfficiencyTable {
 
 /// The nodes and values: static f32 data of the presets, or owned f64 data of user tables.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(not(feature = "presets"), allow(dead_code))]
 enum Storage {
     Static {
         sin_theta_i: &'static [f32],
@@ -233,8 +237,10 @@ impl EfficiencyTable {
     /// The grating period d, nm.
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// assert_eq!(Preset::Dvd.table().period_nm(), 740.0);
+    /// # }
     /// ```
     #[must_use]
     pub fn period_nm(&self) -> f64 {
@@ -244,8 +250,10 @@ impl EfficiencyTable {
     /// The stored orders, `order_min ..= order_max` (every other order has η = 0).
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// assert_eq!(Preset::Foil.table().orders(), -5..=5);
+    /// # }
     /// ```
     #[must_use]
     pub fn orders(&self) -> RangeInclusive<i32> {
@@ -256,8 +264,10 @@ impl EfficiencyTable {
     /// The number of stored orders (the length [`efficiencies`](Self::efficiencies) fills).
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// assert_eq!(Preset::Blazed600.table().order_count(), 19);
+    /// # }
     /// ```
     #[must_use]
     pub fn order_count(&self) -> usize {
@@ -273,6 +283,7 @@ impl EfficiencyTable {
     /// [`efficiencies`](Self::efficiencies) for all of them.
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// let foil = Preset::Foil.table();
     /// // Order −1 appears at s − λ/d = −1: just inside it propagates, just beyond it does not.
@@ -280,6 +291,7 @@ impl EfficiencyTable {
     /// assert_eq!(foil.efficiency(-1, s - 1e-9, 500.0).te, 0.0);
     /// assert!(foil.efficiency(-1, s + 1e-3, 500.0).te > 0.0);
     /// assert_eq!(foil.efficiency(0, f64::NAN, 500.0).te, 0.0);
+    /// # }
     /// ```
     #[must_use]
     pub fn efficiency(&self, order: i32, sin_theta_i: f64, lambda_nm: f64) -> Polarised {
@@ -306,12 +318,14 @@ impl EfficiencyTable {
     /// allocation: the hot path of a BSDF.
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::{Polarised, Preset};
     /// let cd = Preset::Cd.table();
     /// let mut out = [Polarised::default(); 17];
     /// let total = cd.efficiencies(0.3, 600.0, &mut out);
     /// assert!(total > 0.5 && total <= 1.0);
     /// assert_eq!(out[8 + 1], cd.efficiency(1, 0.3, 600.0)); // order 1
+    /// # }
     /// ```
     pub fn efficiencies(&self, sin_theta_i: f64, lambda_nm: f64, out: &mut [Polarised]) -> f64 {
         for o in out.iter_mut() {
@@ -391,10 +405,12 @@ impl EfficiencyTable {
     /// The table's sin θi nodes as f64 (the presets' f32 nodes widened exactly).
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// let s: Vec<f64> = Preset::Cd.table().sin_theta_i().collect();
     /// assert_eq!(s.len(), 25);
     /// assert_eq!(s[12], 0.0);
+    /// # }
     /// ```
     pub fn sin_theta_i(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
         self.axis(true)
@@ -403,9 +419,11 @@ impl EfficiencyTable {
     /// The table's wavelength nodes, nm, as f64.
     ///
     /// ```
+    /// # #[cfg(feature = "presets")] {
     /// use diffraction::relief::Preset;
     /// let l: Vec<f64> = Preset::Blazed600.table().lambda_nm().collect();
     /// assert_eq!((l[0], l[8]), (360.0, 830.0));
+    /// # }
     /// ```
     pub fn lambda_nm(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
         self.axis(false)
@@ -464,189 +482,3 @@ impl Iterator for Axis<'_> {
 }
 
 impl ExactSizeIterator for Axis<'_> {}
-
-// ---------------------------------------------------------------- the presets
-
-/// The crate's rigorous efficiency presets (`docs/efficiency_tables.md`, "The shipped
-/// presets"): tables solved offline by a rigorous electromagnetic solver, shipped as static
-/// data.
-///
-/// ```
-/// use diffraction::relief::Preset;
-/// let p: Preset = "blazed600".parse()?;
-/// assert_eq!(p, Preset::Blazed600);
-/// assert_eq!(p.to_string(), "blazed600");
-/// assert_eq!(Preset::ALL.len(), 4);
-/// assert!("bluray".parse::<Preset>().is_err());
-/// # Ok::<(), diffraction::ParseError>(())
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum Preset {
-    /// A pressed CD read through its polycarbonate: lamellar Al ridges, d = 1600 nm,
-    /// 110 nm high, duty 0.3125.
-    Cd,
-    /// A DVD read through its polycarbonate: lamellar Al ridges, d = 740 nm, 105 nm high,
-    /// duty 0.4324.
-    Dvd,
-    /// A ruled aluminium grating, 600 lines/mm, blazed for 500 nm in first-order Littrow.
-    Blazed600,
-    /// An embossed holographic foil: an aluminium sinusoid of 1000 lines/mm, 100 nm deep.
-    Foil,
-}
-
-static CD: EfficiencyTable = EfficiencyTable {
-    period_nm: data::CD_PERIOD_NM,
-    order_min: data::CD_ORDER_MIN,
-    order_count: data::CD_ORDER_COUNT,
-    storage: Storage::Static {
-        sin_theta_i: &data::CD_SIN_THETA_I,
-        lambda_nm: &data::CD_LAMBDA_NM,
-        te: &data::CD_TE,
-        tm: &data::CD_TM,
-    },
-};
-
-static DVD: EfficiencyTable = EfficiencyTable {
-    period_nm: data::DVD_PERIOD_NM,
-    order_min: data::DVD_ORDER_MIN,
-    order_count: data::DVD_ORDER_COUNT,
-    storage: Storage::Static {
-        sin_theta_i: &data::DVD_SIN_THETA_I,
-        lambda_nm: &data::DVD_LAMBDA_NM,
-        te: &data::DVD_TE,
-        tm: &data::DVD_TM,
-    },
-};
-
-static BLAZED600: EfficiencyTable = EfficiencyTable {
-    period_nm: data::BLAZED600_PERIOD_NM,
-    order_min: data::BLAZED600_ORDER_MIN,
-    order_count: data::BLAZED600_ORDER_COUNT,
-    storage: Storage::Static {
-        sin_theta_i: &data::BLAZED600_SIN_THETA_I,
-        lambda_nm: &data::BLAZED600_LAMBDA_NM,
-        te: &data::BLAZED600_TE,
-        tm: &data::BLAZED600_TM,
-    },
-};
-
-static FOIL: EfficiencyTable = EfficiencyTable {
-    period_nm: data::FOIL_PERIOD_NM,
-    order_min: data::FOIL_ORDER_MIN,
-    order_count: data::FOIL_ORDER_COUNT,
-    storage: Storage::Static {
-        sin_theta_i: &data::FOIL_SIN_THETA_I,
-        lambda_nm: &data::FOIL_LAMBDA_NM,
-        te: &data::FOIL_TE,
-        tm: &data::FOIL_TM,
-    },
-};
-
-/// The spellings [`Preset`]'s `FromStr` accepts.
-const PRESET_SPELLINGS: &str = "one of cd, dvd, blazed600, foil";
-
-impl Preset {
-    /// Every preset.
-    pub const ALL: [Preset; 4] = [Preset::Cd, Preset::Dvd, Preset::Blazed600, Preset::Foil];
-
-    /// The preset's static table (no allocation).
-    ///
-    /// ```
-    /// use diffraction::relief::Preset;
-    /// assert!(core::ptr::eq(Preset::Cd.table(), Preset::Cd.table()));
-    /// ```
-    #[must_use]
-    pub fn table(self) -> &'static EfficiencyTable {
-        match self {
-            Preset::Cd => &CD,
-            Preset::Dvd => &DVD,
-            Preset::Blazed600 => &BLAZED600,
-            Preset::Foil => &FOIL,
-        }
-    }
-
-    /// The name `FromStr` and `Display` use (`"cd"`, `"dvd"`, `"blazed600"`, `"foil"`, the
-    /// JSON files' names in `data/efficiencies/`).
-    ///
-    /// ```
-    /// use diffraction::relief::Preset;
-    /// assert_eq!(Preset::Foil.name(), "foil");
-    /// ```
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Preset::Cd => "cd",
-            Preset::Dvd => "dvd",
-            Preset::Blazed600 => "blazed600",
-            Preset::Foil => "foil",
-        }
-    }
-
-    /// What the preset models, in one sentence.
-    ///
-    /// ```
-    /// use diffraction::relief::Preset;
-    /// assert!(Preset::Cd.description().contains("1600 nm"));
-    /// ```
-    #[must_use]
-    pub fn description(self) -> &'static str {
-        match self {
-            Preset::Cd => {
-                "a pressed CD seen through its polycarbonate: lamellar aluminium ridges, \
-                 period 1600 nm, 500 nm wide, 110 nm high"
-            }
-            Preset::Dvd => {
-                "a DVD seen through its polycarbonate: lamellar aluminium ridges, \
-                 period 740 nm, 320 nm wide, 105 nm high"
-            }
-            Preset::Blazed600 => {
-                "a ruled aluminium grating of 600 lines/mm (period 1666.67 nm), blazed for \
-                 500 nm in first-order Littrow (blaze 8.627 degrees)"
-            }
-            Preset::Foil => {
-                "an embossed holographic foil: an aluminium sinusoid of 1000 lines/mm \
-                 (period 1000 nm), 100 nm peak-to-valley"
-            }
-        }
-    }
-
-    /// The grating period d, nm (the table's [`period_nm`](EfficiencyTable::period_nm)).
-    ///
-    /// ```
-    /// use diffraction::relief::Preset;
-    /// assert_eq!(Preset::Cd.period_nm(), 1600.0);
-    /// ```
-    #[must_use]
-    pub fn period_nm(self) -> f64 {
-        self.table().period_nm
-    }
-}
-
-impl fmt::Display for Preset {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Preset {
-    type Err = ParseError;
-
-    /// `cd`, `dvd`, `blazed600` or `foil` (lower case, the names of `data/efficiencies/`).
-    ///
-    /// ```
-    /// use diffraction::relief::Preset;
-    /// assert_eq!("dvd".parse::<Preset>()?, Preset::Dvd);
-    /// assert_eq!(
-    ///     "CD".parse::<Preset>().unwrap_err().to_string(),
-    ///     "unknown efficiency preset: expected one of cd, dvd, blazed600, foil"
-    /// );
-    /// # Ok::<(), diffraction::ParseError>(())
-    /// ```
-    fn from_str(s: &str) -> Result<Preset, ParseError> {
-        Preset::ALL
-            .into_iter()
-            .find(|p| p.name() == s)
-            .ok_or(ParseError::new("efficiency preset", PRESET_SPELLINGS))
-    }
-}

@@ -1,0 +1,193 @@
+//! The crate's rigorous presets (feature `presets`): the four tables of
+//! `src/efficiency_presets_data.rs` as static [`EfficiencyTable`]s.
+
+use core::fmt;
+use core::str::FromStr;
+
+use super::{EfficiencyTable, Storage};
+use crate::efficiency_presets_data as data;
+use crate::ParseError;
+
+/// The crate's rigorous efficiency presets (`docs/efficiency_tables.md`, "The shipped
+/// presets"): tables solved offline by a rigorous electromagnetic solver, shipped as static
+/// data.
+///
+/// ```
+/// use diffraction::relief::Preset;
+/// let p: Preset = "blazed600".parse()?;
+/// assert_eq!(p, Preset::Blazed600);
+/// assert_eq!(p.to_string(), "blazed600");
+/// assert_eq!(Preset::ALL.len(), 4);
+/// assert!("bluray".parse::<Preset>().is_err());
+/// # Ok::<(), diffraction::ParseError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Preset {
+    /// A pressed CD read through its polycarbonate: lamellar Al ridges, d = 1600 nm,
+    /// 110 nm high, duty 0.3125.
+    Cd,
+    /// A DVD read through its polycarbonate: lamellar Al ridges, d = 740 nm, 105 nm high,
+    /// duty 0.4324.
+    Dvd,
+    /// A ruled aluminium grating, 600 lines/mm, blazed for 500 nm in first-order Littrow.
+    Blazed600,
+    /// An embossed holographic foil: an aluminium sinusoid of 1000 lines/mm, 100 nm deep.
+    Foil,
+}
+
+static CD: EfficiencyTable = EfficiencyTable {
+    period_nm: data::CD_PERIOD_NM,
+    order_min: data::CD_ORDER_MIN,
+    order_count: data::CD_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::CD_SIN_THETA_I,
+        lambda_nm: &data::CD_LAMBDA_NM,
+        te: &data::CD_TE,
+        tm: &data::CD_TM,
+    },
+};
+
+static DVD: EfficiencyTable = EfficiencyTable {
+    period_nm: data::DVD_PERIOD_NM,
+    order_min: data::DVD_ORDER_MIN,
+    order_count: data::DVD_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::DVD_SIN_THETA_I,
+        lambda_nm: &data::DVD_LAMBDA_NM,
+        te: &data::DVD_TE,
+        tm: &data::DVD_TM,
+    },
+};
+
+static BLAZED600: EfficiencyTable = EfficiencyTable {
+    period_nm: data::BLAZED600_PERIOD_NM,
+    order_min: data::BLAZED600_ORDER_MIN,
+    order_count: data::BLAZED600_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::BLAZED600_SIN_THETA_I,
+        lambda_nm: &data::BLAZED600_LAMBDA_NM,
+        te: &data::BLAZED600_TE,
+        tm: &data::BLAZED600_TM,
+    },
+};
+
+static FOIL: EfficiencyTable = EfficiencyTable {
+    period_nm: data::FOIL_PERIOD_NM,
+    order_min: data::FOIL_ORDER_MIN,
+    order_count: data::FOIL_ORDER_COUNT,
+    storage: Storage::Static {
+        sin_theta_i: &data::FOIL_SIN_THETA_I,
+        lambda_nm: &data::FOIL_LAMBDA_NM,
+        te: &data::FOIL_TE,
+        tm: &data::FOIL_TM,
+    },
+};
+
+/// The spellings [`Preset`]'s `FromStr` accepts.
+const PRESET_SPELLINGS: &str = "one of cd, dvd, blazed600, foil";
+
+impl Preset {
+    /// Every preset.
+    pub const ALL: [Preset; 4] = [Preset::Cd, Preset::Dvd, Preset::Blazed600, Preset::Foil];
+
+    /// The preset's static table (no allocation).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert!(core::ptr::eq(Preset::Cd.table(), Preset::Cd.table()));
+    /// ```
+    #[must_use]
+    pub fn table(self) -> &'static EfficiencyTable {
+        match self {
+            Preset::Cd => &CD,
+            Preset::Dvd => &DVD,
+            Preset::Blazed600 => &BLAZED600,
+            Preset::Foil => &FOIL,
+        }
+    }
+
+    /// The name `FromStr` and `Display` use (`"cd"`, `"dvd"`, `"blazed600"`, `"foil"`, the
+    /// JSON files' names in `data/efficiencies/`).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Foil.name(), "foil");
+    /// ```
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Cd => "cd",
+            Preset::Dvd => "dvd",
+            Preset::Blazed600 => "blazed600",
+            Preset::Foil => "foil",
+        }
+    }
+
+    /// What the preset models, in one sentence.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert!(Preset::Cd.description().contains("1600 nm"));
+    /// ```
+    #[must_use]
+    pub fn description(self) -> &'static str {
+        match self {
+            Preset::Cd => {
+                "a pressed CD seen through its polycarbonate: lamellar aluminium ridges, \
+                 period 1600 nm, 500 nm wide, 110 nm high"
+            }
+            Preset::Dvd => {
+                "a DVD seen through its polycarbonate: lamellar aluminium ridges, \
+                 period 740 nm, 320 nm wide, 105 nm high"
+            }
+            Preset::Blazed600 => {
+                "a ruled aluminium grating of 600 lines/mm (period 1666.67 nm), blazed for \
+                 500 nm in first-order Littrow (blaze 8.627 degrees)"
+            }
+            Preset::Foil => {
+                "an embossed holographic foil: an aluminium sinusoid of 1000 lines/mm \
+                 (period 1000 nm), 100 nm peak-to-valley"
+            }
+        }
+    }
+
+    /// The grating period d, nm (the table's [`period_nm`](EfficiencyTable::period_nm)).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!(Preset::Cd.period_nm(), 1600.0);
+    /// ```
+    #[must_use]
+    pub fn period_nm(self) -> f64 {
+        self.table().period_nm
+    }
+}
+
+impl fmt::Display for Preset {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Preset {
+    type Err = ParseError;
+
+    /// `cd`, `dvd`, `blazed600` or `foil` (lower case, the names of `data/efficiencies/`).
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// assert_eq!("dvd".parse::<Preset>()?, Preset::Dvd);
+    /// assert_eq!(
+    ///     "CD".parse::<Preset>().unwrap_err().to_string(),
+    ///     "unknown efficiency preset: expected one of cd, dvd, blazed600, foil"
+    /// );
+    /// # Ok::<(), diffraction::ParseError>(())
+    /// ```
+    fn from_str(s: &str) -> Result<Preset, ParseError> {
+        Preset::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or(ParseError::new("efficiency preset", PRESET_SPELLINGS))
+    }
+}
