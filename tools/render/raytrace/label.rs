@@ -67,9 +67,7 @@ mod tests {
     #[test]
     fn the_shipped_label_is_the_generated_one() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/label.png");
-        let shipped = image::open(&path)
-            .expect("assets/label.png")
-            .to_rgb8();
+        let shipped = image::open(&path).expect("assets/label.png").to_rgb8();
         assert_eq!(
             shipped,
             make_label(),
