@@ -1,8 +1,8 @@
-//! The can label of Fig. 6 (`raytrace make-label`, shipped as `examples/assets/label.png`).
+//! The can label of Fig. 6 (`raytrace make-label`, shipped as `tools/render/assets/label.png`).
 
 use crate::font;
 
-/// The can label the project ships in `examples/assets/label.png`: a red soda-can wrap with a
+/// The can label the project ships in `tools/render/assets/label.png`: a red soda-can wrap with a
 /// white wave, the name in a bitmap font, and a few iridescent-looking stripes.
 pub fn make_label() -> image::RgbImage {
     let (w, h) = (512u32, 256u32);
@@ -67,13 +67,11 @@ mod tests {
     #[test]
     fn the_shipped_label_is_the_generated_one() {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/label.png");
-        let shipped = image::open(&path)
-            .expect("assets/label.png")
-            .to_rgb8();
+        let shipped = image::open(&path).expect("assets/label.png").to_rgb8();
         assert_eq!(
             shipped,
             make_label(),
-            "run `cargo run --example raytrace -- make-label`"
+            "run `cargo run -p diffraction-render --bin raytrace -- make-label`"
         );
     }
 }
