@@ -41,8 +41,8 @@
 //! * **The paper's pictures** (unitless intensity, the paper's eq. 12): [`AguHill`] with
 //!   [`Illumination`], colours by [`Spectral::xyz`](spectrum::Spectral::xyz) with a
 //!   [`Strategy`](spectrum::Strategy) (or the paper's own peak colours,
-//!   [`Spectral::paper_peaks`](spectrum::Spectral::paper_peaks)). The reference ray tracer
-//!   `examples/raytrace` does exactly this.
+//!   [`Spectral::paper_peaks`](spectrum::Spectral::paper_peaks)). The minimal example
+//!   `examples/whitted.rs` and the full reference ray tracer (`tools/render`) do exactly this.
 //! * **A spectral path tracer** (physical units): [`GratingBsdf`], a [`Bsdf`] with an exact
 //!   sampling density: `eval(wo, wi, λ)`, `sample`, `pdf`, and four wavelengths at once
 //!   ([`Bsdf::sample4`], `eval4`, `pdf4`) with [`SampledWavelengths`] (uniform or

@@ -1,5 +1,5 @@
 //! The geometry half of the GPU renderer, on the CPU: the reference tracer's camera samples,
-//! nearest hits, shadow rays and mirror recursion (`examples/common`, `whitted::visibility`,
+//! nearest hits, shadow rays and mirror recursion (`tools/render/common`, `whitted::visibility`,
 //! `whitted::sky`), recording what eq. 12 needs at every surface hit instead of shading it.
 //!
 //! A pixel's colour in the Whitted tracer is linear in its hits' local shades: a hit of a

@@ -1,7 +1,7 @@
-//! The paper's scenes (examples/scenes/*.toml: fig4a, fig4b, fig6, ...) with the library's WGSL
-//! shading: the geometry on the CPU by the reference tracer's own code (`examples/common`, the
+//! The paper's scenes (tools/render/scenes/*.toml: fig4a, fig4b, fig6, ...) with the library's WGSL
+//! shading: the geometry on the CPU by the reference tracer's own code (`tools/render/common`, the
 //! scene loader, the camera, ray casting, shadow rays and mirror recursion of
-//! `examples/raytrace`), a G-buffer of every hit ([`gbuffer`]), and eq. 12 with each grating's
+//! `tools/render/raytrace`), a G-buffer of every hit ([`gbuffer`]), and eq. 12 with each grating's
 //! colour table on the GPU in one compute pass ([`device`], `shade.wgsl`). Each picture is
 //! compared with the reference tracer's at the same size, samples and seed with the same
 //! colour rule (`raytrace --filter point`: the colour table's lookup at each sample's u), and
@@ -71,7 +71,7 @@ tracer (raytrace --filter point) by the mean CIEDE2000 over the picture
 USAGE:
     gpu [SCENE...] [OPTIONS]
 
-With no SCENE, renders every paper scene of examples/scenes into out/. SCENE is a shipped
+With no SCENE, renders every paper scene of tools/render/scenes into out/. SCENE is a shipped
 scene's name (fig4a, fig4b, fig6, ...) or a path to a .toml scene file; its gratings must be
 the paper's model with a spectral strategy (a colour table is built for each).
 

@@ -21,7 +21,7 @@
 //! colour costs over d = 400-10⁵ nm and N = 10-2³²), and the total is compared with
 //! [`BUDGET_S`] seconds of one core. The estimate is deterministic (the same run, the same
 //! number). Against measured CPU time it is 1.5-5.8 times that of the shipped scenes at their
-//! defaults; in the long sweep of `examples/raytrace/sweep_tests.rs`, which prints both, it was
+//! defaults; in the long sweep of `tools/render/raytrace/sweep_tests.rs`, which prints both, it was
 //! 0.9-3.6 times with ray-object tests at 10 ns (the lowest where they dominate), hence
 //! [`RAY_TEST_NS`].
 
@@ -284,7 +284,7 @@ impl Estimate {
         };
         Err(format!(
             "{scene}: an estimated {} s of work on one core, above the budget of {BUDGET_S} s \
-             (examples/common/budget.rs); most of it, {} s, is {}: reduce {}",
+             (tools/render/common/budget.rs); most of it, {} s, is {}: reduce {}",
             short(total),
             short(top.ns * 1e-9),
             top.what,

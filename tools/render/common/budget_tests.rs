@@ -84,7 +84,7 @@ fn a_run_above_the_budget_is_refused_with_its_largest_part() {
         est.check("big"),
         Err(
             "big: an estimated 601 s of work on one core, above the budget of 600 s \
-             (examples/common/budget.rs); most of it, 601 s, is 7 colour tables: reduce \
+             (tools/render/common/budget.rs); most of it, 601 s, is 7 colour tables: reduce \
              --filter none"
                 .into()
         )
@@ -144,7 +144,7 @@ fn objects_times_shadow_rays_times_bounces_is_refused() {
         e,
         format!(
             "hall: an estimated {} s of work on one core, above the budget of 600 s \
-             (examples/common/budget.rs); most of it, {} s, is {} ray-object tests: reduce \
+             (tools/render/common/budget.rs); most of it, {} s, is {} ray-object tests: reduce \
              --width/--height, --spp, --frames, --max-depth, the lights' samples or the number \
              of objects",
             budget::short(total * 1e-9),

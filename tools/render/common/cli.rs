@@ -50,7 +50,7 @@ WORK:
     Before anything is prepared or rendered, each scene's work is estimated (ray-object
     tests, shadow rays, colour evaluations, exposure scans, colour tables; --dry-run prints
     it) and a scene estimated above 600 s of one core is refused, naming the largest part and
-    the options or scene fields that reduce it (examples/common/budget.rs).
+    the options or scene fields that reduce it (tools/render/common/budget.rs).
 ";
 
 /// The options of a render that both renderers take.

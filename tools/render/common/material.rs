@@ -341,7 +341,7 @@ impl<'a> Loader<'a> {
     }
 }
 
-/// Whether `file` is the shipped can label (`examples/assets/label.png`), compared after
+/// Whether `file` is the shipped can label (`tools/render/assets/label.png`), compared after
 /// removing `.` and `..`.
 pub fn is_the_label(file: &Path) -> bool {
     let clean = |p: &Path| -> PathBuf {

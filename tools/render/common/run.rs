@@ -103,7 +103,7 @@ fn load<R: Renderer>(
         Err(e) if e.other_renderer && skip_others => return Ok(None),
         Err(e) if e.other_renderer => {
             return Err(format!(
-                "{e}: render it with `cargo run --release --example {} -- {arg}`",
+                "{e}: render it with `cargo run --release -p diffraction-render --bin {} -- {arg}`",
                 R::OTHER
             ))
         }
@@ -364,8 +364,8 @@ pub fn run<R: Renderer>(r: &R, opts: &Options) -> Result<(), String> {
             note(
                 opts,
                 &format!(
-                    "{name}: skipped, rendered by the example {} (cargo run --release \
-                     --example {} -- {name})",
+                    "{name}: skipped, rendered by the binary {} (cargo run --release \
+                     -p diffraction-render --bin {} -- {name})",
                     R::OTHER,
                     R::OTHER
                 ),

@@ -3,8 +3,8 @@
 //! A scene file has the tables `[render]`, `[camera]`, `[environment]` (or, for the path tracer,
 //! `[radiometry]`), an array `[[lights]]` and an array `[[objects]]`, each object with a
 //! `[objects.material]` (and, for gratings, a `[objects.material.field]`). See
-//! `examples/scenes/fig4a.toml` for a commented example, `examples/scenes/baselines/compare.toml`
-//! for the grating `model` key (Agu-Hill, Thorman, Stam) and `examples/scenes/cd_area_light.toml`
+//! `tools/render/scenes/fig4a.toml` for a commented example, `tools/render/scenes/baselines/compare.toml`
+//! for the grating `model` key (Agu-Hill, Thorman, Stam) and `tools/render/scenes/cd_area_light.toml`
 //! for physical units.
 //!
 //! Loading has two stages: serde checks the keys and types ([`crate::schema`]; unknown keys are

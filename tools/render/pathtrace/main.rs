@@ -4,9 +4,9 @@
 //! combined by MIS; and the Whitted-style renderer of the same scenes for comparison.
 //!
 //! ```text
-//! cargo run --release --example pathtrace                          # every such scene into out/
-//! cargo run --release --example pathtrace -- cd_area_light --spp 64 --out cd.png
-//! cargo run --release --example pathtrace -- cd_area_light --integrator whitted
+//! cargo run --release -p diffraction-render --bin pathtrace                          # every such scene into out/
+//! cargo run --release -p diffraction-render --bin pathtrace -- cd_area_light --spp 64 --out cd.png
+//! cargo run --release -p diffraction-render --bin pathtrace -- cd_area_light --integrator whitted
 //! ```
 //!
 //! The paper's scenes (fig4a … fig6, no `[radiometry]` table) render too when named
@@ -15,8 +15,8 @@
 //! what has no counterpart (the ambient coefficients, the per-grating exposure, the
 //! `diffraction` coefficient).
 //!
-//! Geometry, textures, scene files and output are in `examples/common`, shared with the paper's
-//! ray tracer (`examples/raytrace`).
+//! Geometry, textures, scene files and output are in `tools/render/common`, shared with the paper's
+//! ray tracer (`tools/render/raytrace`).
 
 #[path = "../common/budget.rs"]
 pub mod budget;
@@ -82,7 +82,7 @@ scene file. A scene without a [radiometry] table (the paper's fig4a ... fig6, th
 raytrace's) is mapped to physical units: the lights give the paper's irradiance at the
 camera's look_at point and fall off as 1/r^2, the ambient light is a uniform sky of its
 luminance, gratings of model agu-hill are the radiometric grating of the same d, w and N
-(the module paper of examples/pathtrace says all of it). Name it with --out to keep the
+(the module paper of tools/render/pathtrace says all of it). Name it with --out to keep the
 ray tracer's out/NAME.png.
 
 ";
@@ -92,7 +92,7 @@ const OWN_OPTIONS: &str = "\
                        light from the emitters, each area light by its light samples)
     --max-depth D      bounces: path length (path; 1 = direct light only) or mirror
                        recursion (whitted), 0-64
-    --filter NAME      none only (the default): footprint, the example raytrace's filter of
+    --filter NAME      none only (the default): footprint, the binary raytrace's filter of
                        the paper's colour over a pixel's interval of u, is refused with the
                        reason for each integrator
 ";
@@ -137,12 +137,12 @@ pub fn command(args: &[String]) -> Result<Command<Args>, String> {
                 Integrator::Path => "--filter footprint: not with the path integrator, which \
                     averages each pixel's radiance by its samples (raise --spp); the footprint \
                     filter averages the paper's diffraction colour over a pixel's interval of u, \
-                    in the example raytrace"
+                    in the binary raytrace"
                     .to_string(),
                 Integrator::Whitted => "--filter footprint: not with --integrator whitted of the \
                     path tracer: the radiometric grating's colour depends on the direction along \
                     the grooves as well as on u, so no colour table over u can average it; the \
-                    footprint filter is the example raytrace's, for the paper's model"
+                    footprint filter is the binary raytrace's, for the paper's model"
                     .to_string(),
             });
         }

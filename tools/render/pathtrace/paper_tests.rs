@@ -15,7 +15,7 @@ use crate::scene;
 use crate::whitted;
 use crate::Integrator;
 
-/// The paper's scenes shipped in examples/scenes.
+/// The paper's scenes shipped in tools/render/scenes.
 const PAPER_SCENES: [&str; 5] = ["fig4a", "fig4b", "fig5a", "fig5b", "fig6"];
 /// The Whitted value of a point light on a white Lambertian is a product of a few floats, exact
 /// to a few ulps in XYZ; the film's linear sRGB and the test's way back to Y (the crate's

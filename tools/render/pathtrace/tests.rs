@@ -262,7 +262,7 @@ period_nm = 1600.0
     );
 }
 
-/// The comparisons of the docs (`cargo test --release --example pathtrace -- --ignored
+/// The comparisons of the docs (`cargo test --release -p diffraction-render --bin pathtrace -- --ignored
 /// cd_area_light_comparison --nocapture`): (a) Whitted against (b) path-traced direct light of
 /// `cd_area_light` without the sky, mean ΔE2000 of the clipped pictures; (c) at equal time, the
 /// pixel variance of path tracing with and without the grating sampler in the MIS, over
@@ -447,7 +447,7 @@ fn light_samples_times_exact_colours_are_bounded() {
         Integrator::Whitted.estimate(&scene, 1).check("exact"),
         Err(format!(
             "exact: an estimated {} s of work on one core, above the budget of 600 s \
-             (examples/common/budget.rs); most of it, {} s, is {} colour evaluations (strategy \
+             (tools/render/common/budget.rs); most of it, {} s, is {} colour evaluations (strategy \
              exact of objects[0].material): reduce --width/--height, --spp, --frames, the \
              lights' samples, or a cheaper --strategy or material strategy",
             budget::short(total * 1e-9),
@@ -508,11 +508,11 @@ fn filter_footprint_is_refused_with_the_reason_on_every_integrator() {
     let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
     let path = "--filter footprint: not with the path integrator, which averages each pixel's \
                 radiance by its samples (raise --spp); the footprint filter averages the paper's \
-                diffraction colour over a pixel's interval of u, in the example raytrace";
+                diffraction colour over a pixel's interval of u, in the binary raytrace";
     let whitted = "--filter footprint: not with --integrator whitted of the path tracer: the \
                    radiometric grating's colour depends on the direction along the grooves as \
                    well as on u, so no colour table over u can average it; the footprint filter \
-                   is the example raytrace's, for the paper's model";
+                   is the binary raytrace's, for the paper's model";
     for (line, expected) in [
         ("cd_area_light --filter footprint", path),
         ("fig6 --filter footprint --integrator path", path),

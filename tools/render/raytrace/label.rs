@@ -1,8 +1,8 @@
-//! The can label of Fig. 6 (`raytrace make-label`, shipped as `examples/assets/label.png`).
+//! The can label of Fig. 6 (`raytrace make-label`, shipped as `tools/render/assets/label.png`).
 
 use crate::font;
 
-/// The can label the project ships in `examples/assets/label.png`: a red soda-can wrap with a
+/// The can label the project ships in `tools/render/assets/label.png`: a red soda-can wrap with a
 /// white wave, the name in a bitmap font, and a few iridescent-looking stripes.
 pub fn make_label() -> image::RgbImage {
     let (w, h) = (512u32, 256u32);
@@ -71,7 +71,7 @@ mod tests {
         assert_eq!(
             shipped,
             make_label(),
-            "run `cargo run --example raytrace -- make-label`"
+            "run `cargo run -p diffraction-render --bin raytrace -- make-label`"
         );
     }
 }

@@ -4,16 +4,16 @@
 //! `diffraction::Illumination`) and the crate's diffraction colours.
 //!
 //! ```text
-//! cargo run --release --example raytrace                       # every paper scene into out/
-//! cargo run --release --example raytrace -- fig6 --out cd.png --width 800 --height 600 --spp 16
-//! cargo run --release --example raytrace -- fig4b --frames 36 --out anim/
-//! cargo run --release --example raytrace -- --help
+//! cargo run --release -p diffraction-render --bin raytrace                       # every paper scene into out/
+//! cargo run --release -p diffraction-render --bin raytrace -- fig6 --out cd.png --width 800 --height 600 --spp 16
+//! cargo run --release -p diffraction-render --bin raytrace -- fig4b --frames 36 --out anim/
+//! cargo run --release -p diffraction-render --bin raytrace -- --help
 //! ```
 //!
 //! Only the diffraction shading and the colour pipeline come from the crate (`Grating`,
 //! `AguHill`, `Illumination`, `frame::{GratingField, Tile, ShadingFrame}`,
 //! `spectrum::Spectral`, `color::{Xyz, LinearSrgb, Clip}`); geometry, textures, scene files and
-//! output are in `examples/common`, shared with the path tracer (`examples/pathtrace`), which
+//! output are in `tools/render/common`, shared with the path tracer (`tools/render/pathtrace`), which
 //! renders the scenes in physical units.
 
 #[path = "../common/budget.rs"]
@@ -88,11 +88,11 @@ USAGE:
     raytrace [SCENE...] [OPTIONS]
     raytrace make-label [--out FILE]
 
-With no SCENE, renders every paper scene of examples/scenes into out/ (NAME.png and the linear
+With no SCENE, renders every paper scene of tools/render/scenes into out/ (NAME.png and the linear
 NAME.pfm). SCENE is a shipped scene's name (fig4a, fig4b, fig5a, fig5b, fig6) or a path to a
 .toml scene file. Scenes in physical units (a [radiometry] table, e.g. cd_area_light) and the
-path tracer (formerly --integrator path) are the example pathtrace:
-cargo run --release --example pathtrace -- cd_area_light
+path tracer (formerly --integrator path) are the binary pathtrace:
+cargo run --release -p diffraction-render --bin pathtrace -- cd_area_light
 
 ";
 
@@ -102,11 +102,11 @@ const OWN_OPTIONS: &str = "\
                        light's size, from a colour table per grating built at load) or point
                        (the table at each sample's u)
     --max-depth D      mirror recursion, 0-64
-    --integrator NAME  whitted, the only one here (path: see the example pathtrace)
+    --integrator NAME  whitted, the only one here (path: see the binary pathtrace)
 ";
 
 const MAKE_LABEL: &str = "
-make-label writes the can label (default examples/assets/label.png).
+make-label writes the can label (default tools/render/assets/label.png).
 ";
 
 /// The ray tracer's own arguments.
@@ -136,8 +136,8 @@ impl cli::Extra for Args {
                 "whitted" => {}
                 "path" => {
                     return Err(
-                        "--integrator path: the path tracer is the example pathtrace: \
-                                cargo run --release --example pathtrace -- SCENE"
+                        "--integrator path: the path tracer is the binary pathtrace: \
+                                cargo run --release -p diffraction-render --bin pathtrace -- SCENE"
                             .into(),
                     )
                 }

@@ -225,7 +225,7 @@ fn stam_model(
         format!("{path}.model"),
         format!(
             "model \"{name}\" needs the crate feature `stam`: build with `--features stam` \
-             (e.g. cargo run --release --features stam --example raytrace -- ...)"
+             (e.g. cargo run --release -p diffraction-render --features stam --bin raytrace -- ...)"
         ),
     ))
 }

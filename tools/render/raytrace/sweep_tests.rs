@@ -57,7 +57,7 @@ fn deep_stam_exposure_scans_are_bounded() {
         e,
         Err(format!(
             "stam: an estimated {} s of work on one core, above the budget of 600 s \
-             (examples/common/budget.rs); most of it, {} s, is 256 exposure scans of 4001 colours \
+             (tools/render/common/budget.rs); most of it, {} s, is 256 exposure scans of 4001 colours \
              each: reduce the number of distinct gratings or their models' parameters",
             budget::short((scans + away_ns(256)) * 1e-9),
             budget::short(scans * 1e-9)

@@ -270,7 +270,7 @@ fn every_paper_scene_loads_and_renders() {
     .unwrap_err();
     assert!(
         e.ends_with(
-            "is the path tracer's: render it with `cargo run --release --example pathtrace -- \
+            "is the path tracer's: render it with `cargo run --release -p diffraction-render --bin pathtrace -- \
              cd_area_light`"
         ),
         "{e}"
@@ -283,7 +283,7 @@ fn error_of(src: &str) -> String {
     parse(src).unwrap_err().to_string()
 }
 
-/// The comparison of the models (examples/scenes/baselines/compare.toml): with the `stam`
+/// The comparison of the models (tools/render/scenes/baselines/compare.toml): with the `stam`
 /// feature it loads, every plate has its model, and each bay's plate shows its spectrum; without
 /// it, the error names the feature.
 #[test]
@@ -486,8 +486,8 @@ fn the_path_tracer_options_name_the_other_example() {
     assert_eq!(
         crate::cli::parse::<crate::Args>(&args("cd_area_light --integrator path")),
         Err(
-            "--integrator path: the path tracer is the example pathtrace: cargo run --release \
-             --example pathtrace -- SCENE"
+            "--integrator path: the path tracer is the binary pathtrace: cargo run --release \
+             -p diffraction-render --bin pathtrace -- SCENE"
                 .into()
         )
     );
