@@ -12,7 +12,8 @@
 //! | [`TYPES_WGSL`] | the structs of [`GpuGrating`], [`GpuIllumination`], [`GpuTableHeader`], [`GpuTableBlock`], [`GpuTableNode`] | nothing |
 //! | [`COLOR_TABLE_WGSL`] | `diffraction_table_lookup(u) -> XYZ` | types, [`color_table_bindings`] |
 //! | [`SHADING_WGSL`] | `diffraction_shade` (eq. 12), `diffraction_shade_grating`, `diffraction_xyz_to_linear_srgb`, `diffraction_phase_u` | types, colour table |
-//! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
+//! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`, `diffraction_bsdf_sample`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
+//! | [`TABULATED_WGSL`] | `diffraction_bsdf_tabulated_f`, `_pdf`, `_sample`, `diffraction_eta`: a tabulated model from its packed table (`GpuEfficiencyTables`, feature `relief`) | types, kernels, BSDF, [`efficiency_table_bindings`] |
 //!
 //! [`shading_source`] is all of it with the table's and the BSDF's bindings at a group and
 //! binding of your choice. The kernels are the f32 twins of [`kernel::single_slit_cycles`] and
@@ -45,6 +46,11 @@
 use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
+
+#[cfg(feature = "relief")]
+mod tabulated;
+#[cfg(feature = "relief")]
+pub use tabulated::{pack_efficiency_table, GpuEfficiencyTables, EFFICIENCY_HEADER_WORDS};
 
 use crate::grating_bsdf::DEFENSIVE_ORDER_SHARE;
 use crate::special::atan;
@@ -84,13 +90,38 @@ pub fn color_table_bindings(group: u32, binding: u32) -> String {
     )
 }
 
-/// The radiometric [`GratingBsdf`]'s value f and sampling density pdf, from a [`GpuBsdf`];
-/// needs [`TYPES_WGSL`], [`KERNEL_WGSL`] and the binding of [`bsdf_bindings`].
+/// The radiometric [`GratingBsdf`]'s value f, sampling density pdf and sampler for the
+/// amplitude efficiencies, from a [`GpuBsdf`]; needs [`TYPES_WGSL`], [`KERNEL_WGSL`] and the
+/// binding of [`bsdf_bindings`].
 pub const BSDF_WGSL: &str = include_str!("gpu/bsdf.wgsl");
 
+/// The radiometric [`GratingBsdf`] with tabulated efficiencies (a preset's or any
+/// `EfficiencyTable`'s, packed by `GpuEfficiencyTables`): `diffraction_bsdf_tabulated_f`,
+/// `_pdf`, `_sample` and the table's interpolation `diffraction_eta`; needs [`TYPES_WGSL`],
+/// [`KERNEL_WGSL`], [`BSDF_WGSL`] and the binding of [`efficiency_table_bindings`].
+pub const TABULATED_WGSL: &str = include_str!("gpu/tabulated.wgsl");
+
+/// The declaration of the efficiency tables' buffer at `group`, `binding`: a read-only
+/// storage `array<f32>` of packed tables (`GpuEfficiencyTables`, feature `relief`).
+///
+/// ```
+/// let b = diffraction::gpu::efficiency_table_bindings(0, 4);
+/// assert!(b.contains("@binding(4) var<storage, read> diffraction_efficiency_tables"));
+/// ```
+#[must_use]
+pub fn efficiency_table_bindings(group: u32, binding: u32) -> String {
+    format!(
+        "@group({group}) @binding({binding}) var<storage, read> diffraction_efficiency_tables: \
+         array<f32>;\n"
+    )
+}
+
+
 /// Every source of this module with the colour table's bindings at `group`, `binding..=binding
-/// + 2` ([`color_table_bindings`]) and the BSDF's order data at `binding + 3`
-/// ([`bsdf_bindings`]): the kernels, the types, the lookup, eq. 12 and the BSDF.
+/// + 2` ([`color_table_bindings`]), the BSDF's order data at `binding + 3`
+/// ([`bsdf_bindings`]) and the efficiency tables at `binding + 4`
+/// ([`efficiency_table_bindings`]): the kernels, the types, the lookup, eq. 12 and the BSDF of
+/// both efficiency models.
 #[must_use]
 pub fn shading_source(group: u32, binding: u32) -> String {
     let mut s = String::new();
@@ -98,10 +129,12 @@ pub fn shading_source(group: u32, binding: u32) -> String {
         TYPES_WGSL,
         &color_table_bindings(group, binding),
         &bsdf_bindings(group, binding.saturating_add(3)),
+        &efficiency_table_bindings(group, binding.saturating_add(4)),
         KERNEL_WGSL,
         COLOR_TABLE_WGSL,
         SHADING_WGSL,
         BSDF_WGSL,
+        TABULATED_WGSL,
     ] {
         s.push_str(part);
         s.push('\n');
@@ -376,7 +409,8 @@ impl GpuColorTable {
 }
 
 /// The radiometric [`GratingBsdf`] for the GPU, WGSL `DiffractionBsdf` (48 bytes), read by
-/// `diffraction_bsdf_f` and `diffraction_bsdf_pdf` together with its 65 rows of order data in
+/// `diffraction_bsdf_f`, `diffraction_bsdf_pdf` and `diffraction_bsdf_sample` (the amplitude
+/// model) together with its 65 rows of order data in
 /// the shared storage buffer `diffraction_bsdf_orders` ([`bsdf_bindings`]), from row
 /// `first_row` on (so that many gratings share one buffer).
 ///
@@ -385,11 +419,16 @@ impl GpuColorTable {
 /// times the envelope bound U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²)) for |m| ≤ 64 and their prefix
 /// sums; beyond, the shader computes the amplitude reading's weights itself.
 ///
+/// A tabulated model (feature `relief`) is read by `diffraction_bsdf_tabulated_f`, `_pdf` and
+/// `_sample` ([`TABULATED_WGSL`]) from its packed table at word [`table`](Self::table) of
+/// `diffraction_efficiency_tables` (`GpuEfficiencyTables`); its lobe is the unit-integral
+/// (N·d/λ)·F_N·g (slit width 0, `scale` N·d) and it needs no order rows.
+///
 /// ```wgsl
 /// struct DiffractionBsdf {
 ///     period_nm: f32, slit_width_nm: f32, slits: u32, groove: u32,
 ///     groove_param: f32, scale: f32, atan_n: f32, rho: f32,
-///     first_row: u32, pad0: u32, pad1: u32, pad2: u32,
+///     first_row: u32, table: u32, pad0: u32, pad1: u32,
 /// }
 /// ```
 ///
@@ -407,7 +446,7 @@ impl GpuColorTable {
 pub struct GpuBsdf {
     /// d, nm.
     pub period_nm: f32,
-    /// w, nm.
+    /// w, nm (0 for a tabulated model: its lobe has no single-slit factor).
     pub slit_width_nm: f32,
     /// N (0 for N = ∞, then `groove` is 2).
     pub slits: u32,
@@ -416,7 +455,7 @@ pub struct GpuBsdf {
     pub groove: u32,
     /// L (nm) for a coherence length, σ for a Gaussian, 0 otherwise.
     pub groove_param: f32,
-    /// ρ²·N·d.
+    /// ρ²·N·d (N·d for a tabulated model).
     pub scale: f32,
     /// atan N.
     pub atan_n: f32,
@@ -424,9 +463,15 @@ pub struct GpuBsdf {
     pub rho: f32,
     /// The first of the grating's 65 rows in `diffraction_bsdf_orders`.
     pub first_row: u32,
+    /// A tabulated model's word offset in `diffraction_efficiency_tables` (0 unless set by
+    /// [`with_table`](Self::with_table)); [`NO_TABLE`] for the amplitude model.
+    pub table: u32,
     /// Padding to 48 bytes (0).
-    pub pad: [u32; 3],
+    pub pad: [u32; 2],
 }
+
+/// [`GpuBsdf::table`] of the amplitude model.
+pub const NO_TABLE: u32 = u32::MAX;
 
 /// The rows of order data per grating in `diffraction_bsdf_orders`: |m| = 0..=64.
 pub const BSDF_ORDER_ROWS: usize = 65;
@@ -475,17 +520,34 @@ impl GpuBsdf {
             _ => (2, 0.0),
         };
         let nd = slits as f64 * g.period_nm();
+        let tabulated = bsdf.order_efficiency().is_tabulated();
         GpuBsdf {
             period_nm: g.period_nm() as f32,
-            slit_width_nm: g.slit_width_nm() as f32,
+            slit_width_nm: if tabulated {
+                0.0
+            } else {
+                g.slit_width_nm() as f32
+            },
             slits,
             groove,
             groove_param: groove_param as f32,
-            scale: (rho * rho * nd) as f32,
+            scale: if tabulated { nd } else { rho * rho * nd } as f32,
             atan_n: atan(slits as f64) as f32,
             rho: rho as f32,
             first_row,
-            pad: [0; 3],
+            table: if tabulated { 0 } else { NO_TABLE },
+            pad: [0; 2],
+        }
+    }
+
+    /// The same model with its packed efficiency table at word `offset` of
+    /// `diffraction_efficiency_tables` (what [`GpuEfficiencyTables::push`] returned); for a
+    /// tabulated model.
+    #[must_use]
+    pub fn with_table(self, offset: u32) -> GpuBsdf {
+        GpuBsdf {
+            table: offset,
+            ..self
         }
     }
 
@@ -523,9 +585,9 @@ impl GpuBsdf {
                 self.atan_n.to_bits(),
                 self.rho.to_bits(),
                 self.first_row,
+                self.table,
                 self.pad[0],
                 self.pad[1],
-                self.pad[2],
             ],
             &mut out,
         );

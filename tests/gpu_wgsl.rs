@@ -11,9 +11,9 @@ mod gpu_cases;
 mod gpu_tolerance;
 
 use diffraction::gpu::{
-    bsdf_bindings, color_table_bindings, shading_source, GpuBsdf, GpuGrating, GpuIllumination,
-    GpuTableBlock, GpuTableHeader, GpuTableNode, BSDF_WGSL, COLOR_TABLE_WGSL, KERNEL_WGSL,
-    SHADING_WGSL, TYPES_WGSL,
+    bsdf_bindings, color_table_bindings, efficiency_table_bindings, shading_source, GpuBsdf,
+    GpuGrating, GpuIllumination, GpuTableBlock, GpuTableHeader, GpuTableNode, BSDF_WGSL,
+    COLOR_TABLE_WGSL, KERNEL_WGSL, SHADING_WGSL, TABULATED_WGSL, TYPES_WGSL,
 };
 use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
 use gpu_cases::{stiff_phases, ulps, Mix, SLITS};
@@ -49,6 +49,18 @@ fn every_module_validates() {
         "BSDF_WGSL",
         &[TYPES_WGSL, KERNEL_WGSL, &bsdf_bindings(0, 0), BSDF_WGSL].join("\n"),
     );
+    validate(
+        "TABULATED_WGSL",
+        &[
+            TYPES_WGSL,
+            KERNEL_WGSL,
+            &bsdf_bindings(0, 0),
+            BSDF_WGSL,
+            &efficiency_table_bindings(0, 1),
+            TABULATED_WGSL,
+        ]
+        .join("\n"),
+    );
     let all = validate("shading_source", &shading_source(1, 0));
     for f in [
         "diffraction_n_slit_cycles",
@@ -59,6 +71,11 @@ fn every_module_validates() {
         "diffraction_shade_grating",
         "diffraction_bsdf_f",
         "diffraction_bsdf_pdf",
+        "diffraction_bsdf_sample",
+        "diffraction_bsdf_tabulated_f",
+        "diffraction_bsdf_tabulated_pdf",
+        "diffraction_bsdf_tabulated_sample",
+        "diffraction_eta",
     ] {
         assert!(
             all.functions
@@ -153,9 +170,9 @@ fn structs_match_their_rust_twins() {
             ("atan_n", offset_of!(GpuBsdf, atan_n)),
             ("rho", offset_of!(GpuBsdf, rho)),
             ("first_row", offset_of!(GpuBsdf, first_row)),
+            ("table", offset_of!(GpuBsdf, table)),
             ("pad0", offset_of!(GpuBsdf, pad)),
             ("pad1", offset_of!(GpuBsdf, pad) + 4),
-            ("pad2", offset_of!(GpuBsdf, pad) + 8),
         ],
     );
     check(
@@ -190,6 +207,79 @@ fn the_bsdf_upload_matches_the_model() {
     assert!((rows[64][1] as f64 - sum).abs() < ORDER_ROW_SUM_F32 * sum);
     let ideal = GratingBsdf::new(Grating::infinite(1600.0, 800.0).unwrap());
     assert_eq!(GpuBsdf::new(&ideal, 0).groove, 2); // delta lobes: f = pdf = 0
+}
+
+/// The packed efficiency table (src/gpu/tabulated.rs): the header, the nodes, and per order and
+/// node q = η·cos θi/cos θm (η the table's value at the node) or −1 where the order does not
+/// propagate (cos² θm ≤ 10⁻⁶), for every preset; a second table follows the first at the
+/// offset `push` returns, and a tabulated `GpuBsdf` carries the unit lobe's constants.
+#[cfg(feature = "presets")]
+#[test]
+fn the_efficiency_tables_pack_as_documented() {
+    use diffraction::gpu::{pack_efficiency_table, GpuEfficiencyTables, NO_TABLE};
+    use diffraction::relief::Preset;
+    use diffraction::GratingBsdf;
+    let mut all = GpuEfficiencyTables::default();
+    let (mut grazing, mut values) = (0usize, 0usize);
+    for p in Preset::ALL {
+        let t = p.table();
+        let w = pack_efficiency_table(t);
+        let at = all.push(t) as usize;
+        assert_eq!(&all.words()[at..at + w.len()], &w[..]);
+        let sin: Vec<f64> = t.sin_theta_i().collect();
+        let lam: Vec<f64> = t.lambda_nm().collect();
+        let (n_s, n_l, k) = (sin.len(), lam.len(), t.order_count());
+        let v = 8 + n_s + n_l;
+        assert_eq!(
+            &w[..8],
+            &[
+                t.period_nm() as f32,
+                n_s as f32,
+                n_l as f32,
+                *t.orders().start() as f32,
+                k as f32,
+                v as f32,
+                0.0,
+                0.0
+            ]
+        );
+        assert_eq!(w.len(), v + 2 * k * n_l * n_s);
+        for (i, &s) in sin.iter().enumerate() {
+            assert_eq!(w[8 + i] as f64, s);
+        }
+        for (j, &l) in lam.iter().enumerate() {
+            assert_eq!(w[8 + n_s + j] as f64, l);
+        }
+        for (o, m) in t.orders().enumerate() {
+            for (j, &l) in lam.iter().enumerate() {
+                for (i, &s) in sin.iter().enumerate() {
+                    let at = v + 2 * ((o * n_l + j) * n_s + i);
+                    let sm = s + m as f64 * l / t.period_nm();
+                    let cm2 = 1.0 - sm * sm;
+                    if cm2 <= 1e-6 {
+                        assert_eq!((w[at], w[at + 1]), (-1.0, -1.0));
+                        grazing += 1;
+                        continue;
+                    }
+                    let e = t.efficiency(m, s, l);
+                    let g = (1.0 - s * s).sqrt() / cm2.sqrt();
+                    for (q, want) in [(w[at], e.te * g), (w[at + 1], e.tm * g)] {
+                        assert!(
+                            (q as f64 - want).abs() <= ORDER_ROW_F32 * want,
+                            "{p:?} m={m} s={s} λ={l}: {q} vs {want}"
+                        );
+                    }
+                    values += 1;
+                }
+            }
+        }
+    }
+    assert!(grazing > 100 && values > 1000, "{grazing} {values}");
+    let amplitude = GpuBsdf::new(&GratingBsdf::new(diffraction::Grating::new(1600.0, 800.0, 34).unwrap()), 0);
+    assert_eq!(amplitude.table, NO_TABLE);
+    let cd = GratingBsdf::preset(Preset::Cd, 34).unwrap();
+    let g = GpuBsdf::new(&cd, 0).with_table(77);
+    assert_eq!((g.table, g.slit_width_nm, g.scale), (77, 0.0, (34.0 * 1600.0) as f32));
 }
 
 /// The freedoms the WGSL spec leaves an implementation in the kernels, each pushed one way:

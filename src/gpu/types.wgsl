@@ -46,6 +46,8 @@ struct DiffractionTableNode {
 // 2 not glossy (an ideal groove or N = infinity: f = pdf = 0). first_row: the first of the
 // grating's 65 rows in `diffraction_bsdf_orders` (row k = (w_k, w_1 + ... + w_k, 0, 0): the
 // sampler's order weight of |m| = k, eta/rho^2 plus the defensive share, and its prefix sum).
+// table: a tabulated model's word offset in `diffraction_efficiency_tables` (0xffffffff for the
+// amplitude model; then slit_width_nm = 0 and scale = N*d).
 struct DiffractionBsdf {
     period_nm: f32,
     slit_width_nm: f32,
@@ -56,7 +58,7 @@ struct DiffractionBsdf {
     atan_n: f32,
     rho: f32,
     first_row: u32,
+    table: u32,
     pad0: u32,
     pad1: u32,
-    pad2: u32,
 }

@@ -1,0 +1,137 @@
+//! Tabulated order efficiencies for the GPU (feature `relief`): an [`EfficiencyTable`] packed
+//! into the words of one read-only storage buffer, `diffraction_efficiency_tables:
+//! array<f32>` ([`efficiency_table_bindings`](super::efficiency_table_bindings)), read by `TABULATED_WGSL` with the CPU's
+//! interpolation rule.
+//!
+//! **Layout** of one table at word `o` (every integer is exact in f32; the table's offset is
+//! [`GpuBsdf::table`](super::GpuBsdf::table)):
+//!
+//! | words | what |
+//! |---|---|
+//! | `o + 0` | d, nm |
+//! | `o + 1`, `o + 2` | n_s, n_λ: the node counts of sin θi and λ |
+//! | `o + 3`, `o + 4` | the first stored order and the number of orders K |
+//! | `o + 5` | V: the offset of the values from `o` (8 + n_s + n_λ) |
+//! | `o + 6`, `o + 7` | 0 (reserved for a further axis) |
+//! | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
+//! | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
+//!
+//! q = η·cos θi/cos θm at the node (what the CPU interpolates), or −1 where the order does not
+//! propagate there (cos² θm ≤ 10⁻⁶, the CPU's grazing corner: such a corner never enters the
+//! interpolation). The node values are the table's own query at the node
+//! ([`EfficiencyTable::efficiency`], where the cell's weights are exactly 0 and 1): the stored
+//! values to an f64 rounding, or, at a node whose stored sum over orders exceeds 1 (at most
+//! 1 + 10⁻⁶ on load), the values scaled to sum 1.
+
+use alloc::vec::Vec;
+
+use crate::relief::EfficiencyTable;
+
+/// The words of a table's header in `diffraction_efficiency_tables`.
+pub const EFFICIENCY_HEADER_WORDS: usize = 8;
+
+/// The CPU's grazing corner (`relief/table.rs`): cos² θm at or below this does not propagate.
+const GRAZING_CORNER: f64 = 1e-6;
+
+/// One table in the layout of the [module docs](self), as f32 words.
+///
+/// ```
+/// # #[cfg(feature = "presets")] {
+/// use diffraction::gpu::pack_efficiency_table;
+/// use diffraction::relief::Preset;
+/// let t = Preset::Cd.table();
+/// let words = pack_efficiency_table(t);
+/// let (n_s, n_l, k) = (t.sin_theta_i().len(), t.lambda_nm().len(), t.order_count());
+/// assert_eq!(words.len(), 8 + n_s + n_l + 2 * k * n_l * n_s);
+/// assert_eq!((words[0], words[3], words[4]), (1600.0, -8.0, 17.0));
+/// # }
+/// ```
+#[must_use]
+pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
+    let sin: Vec<f64> = table.sin_theta_i().collect();
+    let lam: Vec<f64> = table.lambda_nm().collect();
+    let (n_s, n_l, count) = (sin.len(), lam.len(), table.order_count());
+    let values = EFFICIENCY_HEADER_WORDS + n_s + n_l;
+    let mut w = Vec::with_capacity(values + 2 * count * n_l * n_s);
+    let d = table.period_nm();
+    w.extend_from_slice(&[
+        d as f32,
+        n_s as f32,
+        n_l as f32,
+        *table.orders().start() as f32,
+        count as f32,
+        values as f32,
+        0.0,
+        0.0,
+    ]);
+    w.extend(sin.iter().map(|&s| s as f32));
+    w.extend(lam.iter().map(|&l| l as f32));
+    for m in table.orders() {
+        let mf = f64::from(m);
+        for &l in &lam {
+            for &s in &sin {
+                // The CPU's corner test, with its operations (relief/table.rs, `Cell::order`).
+                let sm = s + mf * l / d;
+                let cm2 = 1.0 - sm * sm;
+                if cm2 > GRAZING_CORNER {
+                    let e = table.efficiency(m, s, l);
+                    let g = crate::math::sqrt(1.0 - s * s) / crate::math::sqrt(cm2);
+                    w.push((e.te * g) as f32);
+                    w.push((e.tm * g) as f32);
+                } else {
+                    w.extend_from_slice(&[-1.0, -1.0]);
+                }
+            }
+        }
+    }
+    w
+}
+
+/// Several packed tables in one storage buffer, each at the word offset [`push`](Self::push)
+/// returns (a [`GpuBsdf`](super::GpuBsdf)'s `table`).
+///
+/// ```
+/// # #[cfg(feature = "presets")] {
+/// use diffraction::gpu::{GpuBsdf, GpuEfficiencyTables};
+/// use diffraction::relief::Preset;
+/// use diffraction::GratingBsdf;
+/// let mut tables = GpuEfficiencyTables::default();
+/// let cd = GratingBsdf::preset(Preset::Cd, 34)?;
+/// let dvd = GratingBsdf::preset(Preset::Dvd, 34)?;
+/// let at_cd = tables.push(Preset::Cd.table());
+/// let at_dvd = tables.push(Preset::Dvd.table());
+/// let (g_cd, g_dvd) = (GpuBsdf::new(&cd, 0).with_table(at_cd), GpuBsdf::new(&dvd, 0).with_table(at_dvd));
+/// assert_eq!((g_cd.table, g_dvd.table), (0, at_dvd));
+/// assert_eq!(tables.to_bytes().len(), 4 * tables.words().len());
+/// # }
+/// # Ok::<(), diffraction::Error>(())
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GpuEfficiencyTables {
+    words: Vec<f32>,
+}
+
+impl GpuEfficiencyTables {
+    /// Appends `table` ([`pack_efficiency_table`]); returns its word offset.
+    pub fn push(&mut self, table: &EfficiencyTable) -> u32 {
+        let at = self.words.len() as u32;
+        self.words.extend(pack_efficiency_table(table));
+        at
+    }
+
+    /// The words.
+    #[must_use]
+    pub fn words(&self) -> &[f32] {
+        &self.words
+    }
+
+    /// The little-endian bytes to upload (4 per word).
+    #[must_use]
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(4 * self.words.len());
+        for w in &self.words {
+            out.extend_from_slice(&w.to_bits().to_le_bytes());
+        }
+        out
+    }
+}

@@ -1,0 +1,257 @@
+// diffraction: the radiometric `GratingBsdf` with tabulated order efficiencies (a preset or any
+// `EfficiencyTable`) in f32: f, pdf and the sampler, the twins of `eval`, `pdf` and `sample` of
+// a tabulated model. Needs KERNEL_WGSL, TYPES_WGSL, BSDF_WGSL (the lobe, the density and the
+// direction are the amplitude model's) and the global `diffraction_efficiency_tables:
+// array<f32>` (read-only storage, `efficiency_table_bindings` writes it) holding the packed
+// tables (`GpuEfficiencyTables`; layout in src/gpu/tabulated.rs and docs/gpu.md).
+// The table is the model's `table` word offset.
+
+// One query's interpolation cell (the CPU's `Cell`): s = sin(theta_i) and lambda clamped to
+// the grid, cos(theta_i), the corners' bilinear weights and the flat index j * n_s + i of
+// corner 0; ok = false at grazing incidence (every order 0).
+struct DiffractionEtaCell {
+    s: f32,
+    lambda_nm: f32,
+    cos_i: f32,
+    ok: bool,
+    w: vec4<f32>,
+    index: u32,
+    n_s: u32,
+    n_l: u32,
+}
+
+// The index i of the grid interval [x_i, x_i+1] holding x among the n nodes from word first:
+// the first node above x minus 1, clamped to [0, n - 2] (numpy's searchsorted, as the CPU).
+fn diffraction_eta_interval(first: u32, n: u32, x: f32) -> u32 {
+    var lo = 0u;
+    var hi = n;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if diffraction_efficiency_tables[first + mid] <= x {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    return min(max(lo, 1u) - 1u, n - 2u);
+}
+
+fn diffraction_eta_cell(t: u32, s_in: f32, lambda_in: f32) -> DiffractionEtaCell {
+    var c: DiffractionEtaCell;
+    let n_s = u32(diffraction_efficiency_tables[t + 1u]);
+    let n_l = u32(diffraction_efficiency_tables[t + 2u]);
+    let sn = t + 8u;
+    let ln = sn + n_s;
+    let s = clamp(s_in, diffraction_efficiency_tables[sn],
+                  diffraction_efficiency_tables[sn + n_s - 1u]);
+    let l = clamp(lambda_in, diffraction_efficiency_tables[ln],
+                  diffraction_efficiency_tables[ln + n_l - 1u]);
+    let i = diffraction_eta_interval(sn, n_s, s);
+    let j = diffraction_eta_interval(ln, n_l, l);
+    let s0 = diffraction_efficiency_tables[sn + i];
+    let s1 = diffraction_efficiency_tables[sn + i + 1u];
+    let l0 = diffraction_efficiency_tables[ln + j];
+    let l1 = diffraction_efficiency_tables[ln + j + 1u];
+    let tx = (s - s0) / (s1 - s0);
+    let ty = (l - l0) / (l1 - l0);
+    c.s = s;
+    c.lambda_nm = l;
+    c.cos_i = sqrt(max(1.0 - s * s, 0.0));
+    c.ok = c.cos_i > 0.0;
+    c.w = vec4<f32>((1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty);
+    c.index = j * n_s + i;
+    c.n_s = n_s;
+    c.n_l = n_l;
+    return c;
+}
+
+// Order m's (TE, TM) efficiencies at the cell before the normalisation: 0 where it is
+// evanescent at the query (|s + m*lambda/d| >= 1) or at every corner of positive weight;
+// otherwise the weighted mean of q = eta*cos(theta_i)/cos(theta_m) over the propagating
+// corners, times cos(theta_m)/cos(theta_i) at the query. m must be a stored order.
+fn diffraction_eta_raw(t: u32, c: DiffractionEtaCell, m: i32) -> vec2<f32> {
+    let d = diffraction_efficiency_tables[t];
+    let k = u32(m - i32(diffraction_efficiency_tables[t + 3u]));
+    let sm = c.s + f32(m) * c.lambda_nm / d;
+    if !c.ok || abs(sm) >= 1.0 {
+        return vec2<f32>(0.0);
+    }
+    let base = t + u32(diffraction_efficiency_tables[t + 5u]) + 2u * (k * c.n_l * c.n_s + c.index);
+    let offsets = vec4<u32>(0u, 2u, 2u * c.n_s, 2u * c.n_s + 2u);
+    var num = vec2<f32>(0.0);
+    var den = 0.0;
+    for (var corner = 0; corner < 4; corner++) {
+        let w = c.w[corner];
+        let at = base + offsets[corner];
+        let q = vec2<f32>(diffraction_efficiency_tables[at], diffraction_efficiency_tables[at + 1u]);
+        if w > 0.0 && q.x >= 0.0 {
+            num += w * q;
+            den += w;
+        }
+    }
+    if !(den > 0.0) {
+        return vec2<f32>(0.0);
+    }
+    return num * (sqrt(max(1.0 - sm * sm, 0.0)) / (den * c.cos_i));
+}
+
+// The normalisation's factors per polarisation: 1/sum where the sum over every stored order
+// at the cell exceeds 1, else 1.
+fn diffraction_eta_scale(t: u32, c: DiffractionEtaCell) -> vec2<f32> {
+    let first = i32(diffraction_efficiency_tables[t + 3u]);
+    let count = i32(diffraction_efficiency_tables[t + 4u]);
+    var sum = vec2<f32>(0.0);
+    for (var m = first; m < first + count; m++) {
+        sum += diffraction_eta_raw(t, c, m);
+    }
+    return select(vec2<f32>(1.0), 1.0 / sum, sum > vec2<f32>(1.0));
+}
+
+// The unpolarised eta_m = (TE + TM)/2 after the normalisation (factors k); 0 for orders the
+// table does not store.
+fn diffraction_eta_at(t: u32, c: DiffractionEtaCell, k: vec2<f32>, m: i32) -> f32 {
+    let first = i32(diffraction_efficiency_tables[t + 3u]);
+    let count = i32(diffraction_efficiency_tables[t + 4u]);
+    if m < first || m >= first + count {
+        return 0.0;
+    }
+    let e = diffraction_eta_raw(t, c, m) * k;
+    return 0.5 * (e.x + e.y);
+}
+
+// eta_m(sin(theta_i), lambda) of table t: the CPU's `EfficiencyTable::efficiency(m, s,
+// lambda).unpolarised()`.
+fn diffraction_eta(t: u32, m: i32, sin_theta_i: f32, lambda_nm: f32) -> f32 {
+    let c = diffraction_eta_cell(t, sin_theta_i, lambda_nm);
+    if !c.ok {
+        return 0.0;
+    }
+    let first = i32(diffraction_efficiency_tables[t + 3u]);
+    let count = i32(diffraction_efficiency_tables[t + 4u]);
+    if m < first || m >= first + count {
+        return 0.0;
+    }
+    return diffraction_eta_at(t, c, diffraction_eta_scale(t, c), m);
+}
+
+// f = eta~_m * (N*d/lambda) * F_N(d*u/lambda) * g(v) for the order m = round(x) owning u, with
+// eta~_m = min(eta_m(-wo.x, lambda), eta_m(-wi.x, lambda)) (reciprocal); 0 below the surface
+// and for delta lobes.
+fn diffraction_bsdf_tabulated_f(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>,
+                                lambda_nm: f32) -> f32 {
+    if b.groove >= 2u || wo.z <= 0.0 || wi.z <= 0.0 || lambda_nm <= 0.0 {
+        return 0.0;
+    }
+    let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
+    if !(abs(x) < 1.0e9) {
+        return 0.0;
+    }
+    let m = i32(round(x));
+    let e = diffraction_eta(b.table, m, -wo.x, lambda_nm);
+    if !(e > 0.0) {
+        return 0.0;
+    }
+    let k = min(e, diffraction_eta(b.table, m, -wi.x, lambda_nm));
+    return k * diffraction_bsdf_f(b, wo, wi, lambda_nm);
+}
+
+// The candidate orders clipped to the stored ones, (lo, hi); hi < lo when there are none.
+fn diffraction_bsdf_tabulated_candidates(b: DiffractionBsdf, wo_x: f32, lambda_nm: f32) -> vec2<i32> {
+    let c = diffraction_bsdf_candidates(b, wo_x, lambda_nm);
+    let first = i32(diffraction_efficiency_tables[b.table + 3u]);
+    let count = i32(diffraction_efficiency_tables[b.table + 4u]);
+    return vec2<i32>(max(c.x, first), min(c.y, first + count - 1));
+}
+
+// The sum of eta_m(-wo.x, lambda) over the candidates lo..=hi at the cell (factors k).
+fn diffraction_eta_total(t: u32, c: DiffractionEtaCell, k: vec2<f32>, lo: i32, hi: i32) -> f32 {
+    var total = 0.0;
+    for (var m = lo; m <= hi; m++) {
+        total += diffraction_eta_at(t, c, k, m);
+    }
+    return total;
+}
+
+// pdf = P(m) * q(r) * (d/lambda) * q_v(v) * cos(theta_i), P(m) = eta_m(-wo.x) over the
+// candidates' sum: the density of `diffraction_bsdf_tabulated_sample`.
+fn diffraction_bsdf_tabulated_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>,
+                                  lambda_nm: f32) -> f32 {
+    if b.groove >= 2u || wo.z <= 0.0 || wi.z <= 0.0 || lambda_nm <= 0.0 {
+        return 0.0;
+    }
+    let range = diffraction_bsdf_tabulated_candidates(b, wo.x, lambda_nm);
+    if range.y < range.x {
+        return 0.0;
+    }
+    let c = diffraction_eta_cell(b.table, -wo.x, lambda_nm);
+    if !c.ok {
+        return 0.0;
+    }
+    let k = diffraction_eta_scale(b.table, c);
+    let total = diffraction_eta_total(b.table, c, k, range.x, range.y);
+    let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
+    let m = i32(round(x));
+    if m < range.x || m > range.y {
+        return 0.0;
+    }
+    let w = diffraction_eta_at(b.table, c, k, m);
+    return diffraction_bsdf_density(b, w, total, x, wi.y + wo.y, wi.z, lambda_nm);
+}
+
+// `Bsdf::sample` of a tabulated model from xi in [0, 1)^3: the order by eta_m(-wo.x, lambda)
+// among the candidates (the first m of positive weight whose running sum exceeds xi.x times
+// the total, the last such m if none), then the amplitude model's direction; f and pdf from
+// the direction itself.
+fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_nm: f32,
+                                     xi: vec3<f32>) -> DiffractionBsdfSample {
+    var out: DiffractionBsdfSample;
+    if b.groove >= 2u || !(wo.z > 0.0) || !(lambda_nm > 0.0) {
+        return out;
+    }
+    let range = diffraction_bsdf_tabulated_candidates(b, wo.x, lambda_nm);
+    if range.y < range.x {
+        return out;
+    }
+    let c = diffraction_eta_cell(b.table, -wo.x, lambda_nm);
+    if !c.ok {
+        return out;
+    }
+    let k = diffraction_eta_scale(b.table, c);
+    let total = diffraction_eta_total(b.table, c, k, range.x, range.y);
+    if !(total > 0.0) {
+        return out;
+    }
+    let goal = xi.x * total;
+    var acc = 0.0;
+    var m = range.x;
+    var last = range.x;
+    var found = false;
+    for (var o = range.x; o <= range.y && !found; o++) {
+        let w = diffraction_eta_at(b.table, c, k, o);
+        if w > 0.0 {
+            last = o;
+            acc += w;
+            if goal < acc {
+                m = o;
+                found = true;
+            }
+        }
+    }
+    if !found {
+        m = last;
+    }
+    let wi = diffraction_bsdf_direction(b, wo, m, xi.y, xi.z, lambda_nm);
+    if !(wi.z > 0.0) {
+        return out;
+    }
+    let pdf = diffraction_bsdf_tabulated_pdf(b, wo, wi, lambda_nm);
+    if !(pdf > 0.0) {
+        return out;
+    }
+    out.wi = wi;
+    out.f = diffraction_bsdf_tabulated_f(b, wo, wi, lambda_nm);
+    out.pdf = pdf;
+    out.order = m;
+    out.valid = 1u;
+    return out;
+}
