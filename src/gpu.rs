@@ -116,10 +116,9 @@ pub fn efficiency_table_bindings(group: u32, binding: u32) -> String {
     )
 }
 
-
-/// Every source of this module with the colour table's bindings at `group`, `binding..=binding
-/// + 2` ([`color_table_bindings`]), the BSDF's order data at `binding + 3`
-/// ([`bsdf_bindings`]) and the efficiency tables at `binding + 4`
+/// Every source of this module with the colour table's bindings at `group`, bindings
+/// `binding` to `binding + 2` ([`color_table_bindings`]), the BSDF's order data at
+/// `binding + 3` ([`bsdf_bindings`]) and the efficiency tables at `binding + 4`
 /// ([`efficiency_table_bindings`]): the kernels, the types, the lookup, eq. 12 and the BSDF of
 /// both efficiency models.
 #[must_use]

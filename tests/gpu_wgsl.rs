@@ -275,11 +275,17 @@ fn the_efficiency_tables_pack_as_documented() {
         }
     }
     assert!(grazing > 100 && values > 1000, "{grazing} {values}");
-    let amplitude = GpuBsdf::new(&GratingBsdf::new(diffraction::Grating::new(1600.0, 800.0, 34).unwrap()), 0);
+    let amplitude = GpuBsdf::new(
+        &GratingBsdf::new(diffraction::Grating::new(1600.0, 800.0, 34).unwrap()),
+        0,
+    );
     assert_eq!(amplitude.table, NO_TABLE);
     let cd = GratingBsdf::preset(Preset::Cd, 34).unwrap();
     let g = GpuBsdf::new(&cd, 0).with_table(77);
-    assert_eq!((g.table, g.slit_width_nm, g.scale), (77, 0.0, (34.0 * 1600.0) as f32));
+    assert_eq!(
+        (g.table, g.slit_width_nm, g.scale),
+        (77, 0.0, (34.0 * 1600.0) as f32)
+    );
 }
 
 /// The freedoms the WGSL spec leaves an implementation in the kernels, each pushed one way:

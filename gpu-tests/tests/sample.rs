@@ -138,11 +138,7 @@ fn sample_matches_the_cpu_per_sample() {
             .map(|_| {
                 let wo = hemisphere_f32(&mut rng);
                 let l = (360.0 + 470.0 * rng.next()) as f32;
-                let xi = [
-                    unit_f32(&mut rng),
-                    unit_f32(&mut rng),
-                    unit_f32(&mut rng),
-                ];
+                let xi = [unit_f32(&mut rng), unit_f32(&mut rng), unit_f32(&mut rng)];
                 (wo, l, xi)
             })
             .collect();
@@ -273,16 +269,16 @@ fn sample_weights_average_to_the_albedo() {
     let mut rng = Mix(23);
     let models = models();
     for b in &models[1..5] {
-        for (wo, l) in [([0.0f32, 0.0, 1.0], 550.0f32), ([0.6, 0.1, 0.0], 420.0), ([-0.3, -0.5, 0.0], 700.0)] {
+        for (wo, l) in [
+            ([0.0f32, 0.0, 1.0], 550.0f32),
+            ([0.6, 0.1, 0.0], 420.0),
+            ([-0.3, -0.5, 0.0], 700.0),
+        ] {
             let mut wo = wo;
             wo[2] = (1.0 - wo[0] * wo[0] - wo[1] * wo[1]).sqrt();
             let cases: Vec<([f32; 3], f32, [f32; 3])> = (0..count)
                 .map(|_| {
-                    let xi = [
-                        unit_f32(&mut rng),
-                        unit_f32(&mut rng),
-                        unit_f32(&mut rng),
-                    ];
+                    let xi = [unit_f32(&mut rng), unit_f32(&mut rng), unit_f32(&mut rng)];
                     (wo, l, xi)
                 })
                 .collect();
@@ -313,7 +309,10 @@ fn sample_weights_average_to_the_albedo() {
                 secs * 1e3,
                 (mean - albedo).abs() / se
             );
-            assert!((mean - albedo).abs() <= tol, "{mean} vs {albedo} (tol {tol:e})");
+            assert!(
+                (mean - albedo).abs() <= tol,
+                "{mean} vs {albedo} (tol {tol:e})"
+            );
         }
     }
 }

@@ -147,7 +147,14 @@ fn diffraction_bsdf_tabulated_f(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>
         return 0.0;
     }
     let m = i32(round(x));
-    let e = diffraction_eta(b.table, m, -wo.x, lambda_nm);
+    return diffraction_bsdf_tabulated_lobe(b, diffraction_eta(b.table, m, -wo.x, lambda_nm), m, wo,
+                                           wi, lambda_nm);
+}
+
+// f from eta_m(-wo.x, lambda) = e of the order m owning u: min(e, eta_m(-wi.x, lambda)) times
+// the lobe.
+fn diffraction_bsdf_tabulated_lobe(b: DiffractionBsdf, e: f32, m: i32, wo: vec3<f32>,
+                                   wi: vec3<f32>, lambda_nm: f32) -> f32 {
     if !(e > 0.0) {
         return 0.0;
     }
@@ -189,6 +196,13 @@ fn diffraction_bsdf_tabulated_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f3
     }
     let k = diffraction_eta_scale(b.table, c);
     let total = diffraction_eta_total(b.table, c, k, range.x, range.y);
+    return diffraction_bsdf_tabulated_density(b, c, k, range, total, wo, wi, lambda_nm);
+}
+
+// The pdf from wo's cell c, its factors k, the candidates and their total.
+fn diffraction_bsdf_tabulated_density(b: DiffractionBsdf, c: DiffractionEtaCell, k: vec2<f32>,
+                                      range: vec2<i32>, total: f32, wo: vec3<f32>, wi: vec3<f32>,
+                                      lambda_nm: f32) -> f32 {
     let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
     let m = i32(round(x));
     if m < range.x || m > range.y {
@@ -201,7 +215,8 @@ fn diffraction_bsdf_tabulated_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f3
 // `Bsdf::sample` of a tabulated model from xi in [0, 1)^3: the order by eta_m(-wo.x, lambda)
 // among the candidates (the first m of positive weight whose running sum exceeds xi.x times
 // the total, the last such m if none), then the amplitude model's direction; f and pdf from
-// the direction itself.
+// the direction itself (the values of `diffraction_bsdf_tabulated_f` and `_pdf` there, with
+// wo's interpolation cell computed once).
 fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_nm: f32,
                                      xi: vec3<f32>) -> DiffractionBsdfSample {
     var out: DiffractionBsdfSample;
@@ -244,12 +259,17 @@ fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_n
     if !(wi.z > 0.0) {
         return out;
     }
-    let pdf = diffraction_bsdf_tabulated_pdf(b, wo, wi, lambda_nm);
+    let pdf = diffraction_bsdf_tabulated_density(b, c, k, range, total, wo, wi, lambda_nm);
     if !(pdf > 0.0) {
         return out;
     }
+    // The order owning u (m unless rounding moved wi across its period's end) and its eta at
+    // wo from the same cell: the value `diffraction_eta` gives.
+    let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
+    let owner = i32(round(x));
     out.wi = wi;
-    out.f = diffraction_bsdf_tabulated_f(b, wo, wi, lambda_nm);
+    out.f = diffraction_bsdf_tabulated_lobe(b, diffraction_eta_at(b.table, c, k, owner), owner, wo,
+                                            wi, lambda_nm);
     out.pdf = pdf;
     out.order = m;
     out.valid = 1u;

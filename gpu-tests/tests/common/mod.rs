@@ -240,7 +240,10 @@ pub fn direction_bound(g: &GpuBsdf, wo: DVec3, l: f64, m: i64, xi: [f64; 3]) -> 
         let r = ((2.0 * xi[1] - 1.0) * n.atan()).tan() / (2.0 * n);
         let r = r.clamp(-0.5, 0.5);
         let t = 2.0 * n * r;
-        (r, pi * (1.0 + t * t) / (2.0 * n) * 3.0 * U + r.abs() * 85.0 * U)
+        (
+            r,
+            pi * (1.0 + t * t) / (2.0 * n) * 3.0 * U + r.abs() * 85.0 * U,
+        )
     };
     let step = l / d;
     let du = step * ((m as f64 + r).abs() * 8.0 * U + dr);
@@ -259,7 +262,6 @@ pub fn direction_bound(g: &GpuBsdf, wo: DVec3, l: f64, m: i64, xi: [f64; 3]) -> 
     let dz = (dz2 / z).min(dz2.sqrt()) + U * z;
     [dx, dy, dz]
 }
-
 
 /// Whether a running sum of `weights` comes within `delta` of `target` (the order choice is
 /// decided within rounding there).
