@@ -11,6 +11,8 @@
 pub mod budget;
 #[path = "../../tools/render/common/camera.rs"]
 pub mod camera;
+#[path = "../examples/gpu/cd.rs"]
+pub mod cd;
 #[path = "../../tools/render/common/cli.rs"]
 pub mod cli;
 #[path = "../../tools/render/common/colour.rs"]
@@ -61,6 +63,60 @@ use run::Renderer;
 fn main() {
     fig6_on_the_gpu_matches_the_reference_tracer();
     println!("test fig6_on_the_gpu_matches_the_reference_tracer ... ok");
+    the_cd_preset_on_the_gpu_matches_the_cpu();
+    println!("test the_cd_preset_on_the_gpu_matches_the_cpu ... ok");
+}
+
+/// The example's `gpu cd` (the CD preset with the tabulated BSDF in WGSL: f at stratified
+/// wavelengths for a disk light, one BSDF sample toward the sky) against the same estimator on
+/// the CPU with the same random numbers, at 48×36 and 4 spp.
+fn the_cd_preset_on_the_gpu_matches_the_cpu() {
+    let st = cd::Settings {
+        width: 48,
+        height: 36,
+        spp: 4,
+        lambdas: 8,
+        out: None,
+        reference: true,
+    };
+    let r = match cd::render(&st) {
+        Ok(r) => r,
+        Err(e) if std::env::var_os("CI").is_none() => {
+            eprintln!("skipped: {e}");
+            return;
+        }
+        Err(e) => panic!("{e}"),
+    };
+    let d = r.difference.expect("compared");
+    eprintln!(
+        "cd 48x36: {} BSDF calls, GPU {:.1} ms, CPU {:.1} ms, mean ΔE2000 {:.2e}, max {:.3}",
+        r.calls,
+        r.gpu_s * 1e3,
+        r.cpu_s * 1e3,
+        d.mean,
+        d.max
+    );
+    let cpu = r.cpu.expect("rendered");
+    assert_ne!(r.gpu.pixels, cpu.pixels);
+    let bright = r
+        .gpu
+        .pixels
+        .iter()
+        .filter(|c| c.max_element() > 0.05)
+        .count();
+    assert!(bright > r.gpu.pixels.len() / 4, "{bright} bright pixels");
+    assert!(r.calls > 10_000, "{} BSDF calls", r.calls);
+    assert!(
+        d.mean <= gpu_tolerance::CD_MEAN_DELTA_E,
+        "mean ΔE2000 {:.2e} above {:.2e}",
+        d.mean,
+        gpu_tolerance::CD_MEAN_DELTA_E
+    );
+    assert!(
+        d.max <= gpu_tolerance::CD_MAX_DELTA_E,
+        "max ΔE2000 {}",
+        d.max
+    );
 }
 
 fn fig6_on_the_gpu_matches_the_reference_tracer() {

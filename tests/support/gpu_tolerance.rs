@@ -54,3 +54,13 @@ pub const ORDER_ROW_SUM_F32: f64 = 5e-7;
 /// bound on a narrow lobe's flank at N = 1000, 1e-4 and below elsewhere), so their mean is far
 /// smaller; this allows a systematic 1e-4.
 pub const SAMPLE_WEIGHT_F32: f64 = 1e-4;
+
+/// The mean ΔE2000 between the example's `gpu cd` (the CD preset's tabulated BSDF in WGSL) and
+/// the same estimator on the CPU with the same random numbers, at 48×36, 4 spp, 8 wavelengths
+/// (gpu-tests/tests/scenes.rs): the f32 shading's roundings only (and the rare sample whose
+/// order or validity is decided within rounding), measured 1.1e-4 on lavapipe (1.2e-4 at
+/// 320×240, 32 spp, 16 wavelengths); margin 10×.
+pub const CD_MEAN_DELTA_E: f64 = 1.1e-3;
+/// The largest ΔE2000 of one pixel there: measured 0.010 (at 320×240 the
+/// largest is 0.67, one pixel, not traced to its sample); margin 5×.
+pub const CD_MAX_DELTA_E: f64 = 0.05;

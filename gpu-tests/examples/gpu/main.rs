@@ -53,6 +53,7 @@ pub mod texture;
 #[path = "../../../tools/render/raytrace/whitted.rs"]
 pub mod whitted;
 
+pub mod cd;
 pub mod compare;
 pub mod device;
 pub mod gbuffer;
@@ -71,6 +72,8 @@ tracer (raytrace --filter point) by the mean CIEDE2000 over the picture
 USAGE:
     gpu [SCENE...] [OPTIONS]
 
+    gpu cd [OPTIONS]     the CD preset with the tabulated BSDF in WGSL (gpu cd --help)
+
 With no SCENE, renders every paper scene of tools/render/scenes into out/. SCENE is a shipped
 scene's name (fig4a, fig4b, fig6, ...) or a path to a .toml scene file; its gratings must be
 the paper's model with a spectral strategy (a colour table is built for each).
@@ -84,6 +87,15 @@ const OWN_OPTIONS: &str = "\
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("cd") {
+        return match cd::main(&args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}\n\nRun `gpu cd --help` for usage.");
+                ExitCode::from(2)
+            }
+        };
+    }
     let result = match cli::parse::<Args>(&args) {
         Err(e) => {
             eprintln!("error: {e}\n\nRun with --help for usage.");
