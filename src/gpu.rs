@@ -540,7 +540,7 @@ impl GpuBsdf {
     }
 
     /// The same model with its packed efficiency table at word `offset` of
-    /// `diffraction_efficiency_tables` (what [`GpuEfficiencyTables::push`] returned); for a
+    /// `diffraction_efficiency_tables` (what `GpuEfficiencyTables::push` returned); for a
     /// tabulated model.
     #[must_use]
     pub fn with_table(self, offset: u32) -> GpuBsdf {

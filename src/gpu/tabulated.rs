@@ -1,27 +1,9 @@
 //! Tabulated order efficiencies for the GPU (feature `relief`): an [`EfficiencyTable`] packed
 //! into the words of one read-only storage buffer, `diffraction_efficiency_tables:
-//! array<f32>` ([`efficiency_table_bindings`](super::efficiency_table_bindings)), read by `TABULATED_WGSL` with the CPU's
-//! interpolation rule.
+//! array<f32>` ([`efficiency_table_bindings`](super::efficiency_table_bindings)), read by
+//! `TABULATED_WGSL` with the CPU's interpolation rule.
 //!
-//! **Layout** of one table at word `o` (every integer is exact in f32; the table's offset is
-//! [`GpuBsdf::table`](super::GpuBsdf::table)):
-//!
-//! | words | what |
-//! |---|---|
-//! | `o + 0` | d, nm |
-//! | `o + 1`, `o + 2` | n_s, n_λ: the node counts of sin θi and λ |
-//! | `o + 3`, `o + 4` | the first stored order and the number of orders K |
-//! | `o + 5` | V: the offset of the values from `o` (8 + n_s + n_λ) |
-//! | `o + 6`, `o + 7` | 0 (reserved for a further axis) |
-//! | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
-//! | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
-//!
-//! q = η·cos θi/cos θm at the node (what the CPU interpolates), or −1 where the order does not
-//! propagate there (cos² θm ≤ 10⁻⁶, the CPU's grazing corner: such a corner never enters the
-//! interpolation). The node values are the table's own query at the node
-//! ([`EfficiencyTable::efficiency`], where the cell's weights are exactly 0 and 1): the stored
-//! values to an f64 rounding, or, at a node whose stored sum over orders exceeds 1 (at most
-//! 1 + 10⁻⁶ on load), the values scaled to sum 1.
+//! The layout is documented on [`GpuEfficiencyTables`].
 
 use alloc::vec::Vec;
 
@@ -33,7 +15,7 @@ pub const EFFICIENCY_HEADER_WORDS: usize = 8;
 /// The CPU's grazing corner (`relief/table.rs`): cos² θm at or below this does not propagate.
 const GRAZING_CORNER: f64 = 1e-6;
 
-/// One table in the layout of the [module docs](self), as f32 words.
+/// One table in the layout of [`GpuEfficiencyTables`], as f32 words.
 ///
 /// ```
 /// # #[cfg(feature = "presets")] {
@@ -89,6 +71,26 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
 
 /// Several packed tables in one storage buffer, each at the word offset [`push`](Self::push)
 /// returns (a [`GpuBsdf`](super::GpuBsdf)'s `table`).
+///
+/// **Layout** of one table at word `o` (every integer is exact in f32; the table's offset is
+/// [`GpuBsdf::table`](super::GpuBsdf::table)):
+///
+/// | words | what |
+/// |---|---|
+/// | `o + 0` | d, nm |
+/// | `o + 1`, `o + 2` | n_s, n_λ: the node counts of sin θi and λ |
+/// | `o + 3`, `o + 4` | the first stored order and the number of orders K |
+/// | `o + 5` | V: the offset of the values from `o` (8 + n_s + n_λ) |
+/// | `o + 6`, `o + 7` | 0 (reserved for a further axis) |
+/// | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
+/// | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
+///
+/// q = η·cos θi/cos θm at the node (what the CPU interpolates), or −1 where the order does not
+/// propagate there (cos² θm ≤ 10⁻⁶, the CPU's grazing corner: such a corner never enters the
+/// interpolation). The node values are the table's own query at the node
+/// ([`EfficiencyTable::efficiency`], where the cell's weights are exactly 0 and 1): the stored
+/// values to an f64 rounding, or, at a node whose stored sum over orders exceeds 1 (at most
+/// 1 + 10⁻⁶ on load), the values scaled to sum 1.
 ///
 /// ```
 /// # #[cfg(feature = "presets")] {
