@@ -51,7 +51,7 @@ pub const ORDER_ROW_SUM_F32: f64 = 5e-7;
 /// The mean sample weight's systematic f32 error allowed in the device furnace test
 /// (gpu-tests/tests/sample.rs), as a share of the weight bound, beside 5 standard errors: the
 /// per-sample weight errors are the phase's roundings, of either sign (worst 3.0e-3 of the
-/// bound on a narrow lobe's flank at N = 1000 and 5.1e-3 for the DVD preset at N = 300, 1e-4
+/// bound on a narrow lobe's flank at N = 1000 and 5.1e-3 for the DVD preset at N = 300, 7e-4
 /// and below for N ≤ 100), so their mean is far smaller; this allows a systematic 1e-4 (the
 /// furnace tests use N ≤ 1000 amplitude gratings and the CD at N = 34).
 pub const SAMPLE_WEIGHT_F32: f64 = 1e-4;
