@@ -229,6 +229,36 @@ fn small_n_matches_exact() {
     assert!(worst <= tol::ASYMPTOTIC_SMALL_N, "{worst:e} ({case})");
 }
 
+/// Below 5 slits with a spectral envelope (1/λ, as a radiometric model's) and slits far
+/// narrower than the period: against `Exact`, relative to the colour itself.
+#[test]
+fn small_n_with_an_envelope_matches_exact() {
+    let mut cases = Vec::new();
+    let s = Spectral::new(Illuminant::D65)
+        .with_envelope(diffraction::Envelope::new(1, 0.0).expect("valid envelope"));
+    for n in [1u32, 2, 4] {
+        for (d, duty) in [(100_000.0, 0.5), (1e6, 1e-9), (30_000.0, 0.37)] {
+            let g = Grating::new(d, d * duty, n).unwrap();
+            for u in u_grid(false).into_iter().step_by(4) {
+                let e = s.xyz(&g, u, Strategy::EXACT);
+                let a = s.xyz(&g, u, Strategy::ASYMPTOTIC);
+                cases.push(Case {
+                    d,
+                    w: d * duty,
+                    n,
+                    ill: Illuminant::D65,
+                    u,
+                    want: [e.x, e.y, e.z],
+                    got: [a.x, a.y, a.z],
+                });
+            }
+        }
+    }
+    let (worst, case) = worst_of_colour(&cases);
+    println!("exact N < 5 with an envelope: {worst:.2e} of the colour ({case})");
+    assert!(worst <= tol::ASYMPTOTIC_SMALL_N, "{worst:e} ({case})");
+}
+
 /// The directions of the accuracy report (64) and, with `extra`, 64 more from a Weyl sequence.
 fn u_grid(extra: bool) -> Vec<f64> {
     let mut v: Vec<f64> = (0..6).map(|k| 10f64.powf(-8.0 + k as f64)).collect();
