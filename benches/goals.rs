@@ -8,8 +8,10 @@
 //! * `goals/asymptotic_worst/*`: single directions where `Asymptotic` is slowest, against
 //!   `uniform:471` at the same u: the slowest of a scan of the report's 64 u for d ∈ {400, 740,
 //!   1600, 10⁴, 10⁵} nm and N ∈ {5, …, 10⁶} (coarse gratings with few slits: d = 100 µm,
-//!   N = 5 and 10), and the slowest of earlier scans (near the mirror direction with huge N).
-//! * `goals/table_build/*`: `ColorTable::new` at `DEFAULT_ACCURACY` for the gratings of the
+//!   N = 5 and 10), the slowest of the same scan for N = 2-4 (d = 30 and 100 µm, where
+//!   `Asymptotic` writes F_N as its cosines), and the slowest of earlier scans (near the mirror
+//!   direction with huge N).
+//! * `goals/table_build/*`: `ColorTable::new` at `ColorTable::DEFAULT_ACCURACY` for the gratings of the
 //!   goal (d ≤ 2 µm and a coarse one), against one `uniform:471` XYZ.
 //! * `goals/bsdf/*`: `sample` + `pdf` of `GratingBsdf` against `AguHill::eval`, batches of 1024
 //!   inputs near the peaks, N ∈ {1, 30, 1000, 10⁶}.
@@ -17,7 +19,7 @@
 //! `cargo bench --bench goals`
 
 use criterion::{black_box, BenchmarkId, Criterion, SamplingMode, Throughput};
-use diffraction::spectrum::{Illuminant, Spectral, Strategy, DEFAULT_ACCURACY};
+use diffraction::spectrum::{Illuminant, Spectral, Strategy};
 use diffraction::{AguHill, Bsdf, ColorTable, DiffractionBrdf, Grating, GratingBsdf};
 use glam::DVec2;
 use std::time::Duration;
@@ -77,6 +79,10 @@ fn bench_asymptotic_worst(c: &mut Criterion) {
         (100_000.0, 5, 0.669_886_363_636_363_7),
         (100_000.0, 5, 0.877_840_909_090_909_1),
         (100_000.0, 10, 0.586_704_545_454_545_4),
+        (100_000.0, 2, 1.418_522_727_272_727_2),
+        (100_000.0, 3, 1.335_340_909_090_909),
+        (100_000.0, 4, 0.836_25),
+        (30_000.0, 4, 1.792_840_909_090_909),
     ] {
         let grating = Grating::new(d, d / 2.0, n).expect("valid grating");
         for st in [Strategy::uniform(471).expect("valid"), Strategy::ASYMPTOTIC] {
@@ -102,7 +108,10 @@ fn bench_table_build(c: &mut Criterion) {
     ] {
         let grating = Grating::new(d, d / 2.0, n).expect("valid grating");
         g.bench_function(format!("d{d}_n{n}"), |b| {
-            b.iter(|| ColorTable::new(&s, black_box(&grating), DEFAULT_ACCURACY).expect("valid"))
+            b.iter(|| {
+                ColorTable::new(&s, black_box(&grating), ColorTable::DEFAULT_ACCURACY)
+                    .expect("valid")
+            })
         });
     }
     let cd = Grating::new(1600.0, 800.0, 1000).expect("valid grating");

@@ -11,7 +11,7 @@
 //! order 0's product rule, `order0`, from the same spectral weight and envelope), so a further
 //! smooth per-wavelength factor multiplies in there. At the extremes of d·|u| (the band inside
 //! order 0's central lobe, or more than `DENSE_ORDERS` orders) it is `Exact`, whose closed forms
-//! bound the work there.
+//! bound the work there. Below 5 slits it is `small_n`'s rule (F_N as its N cosines).
 
 use glam::DVec3;
 
@@ -104,14 +104,17 @@ impl Spectral {
             Slits::Finite(n) => n as f64,
             Slits::Infinite => return DVec3::ZERO,
         };
-        if n < bounds::ASYMPTOTIC_MIN_SLITS as f64 {
-            return self.exact(grating, u);
-        }
         let q = grating.period_nm() * u;
         if Self::order0_everywhere(grating, q) || Self::is_dense(q) {
             // The white, or a comb of more than `DENSE_ORDERS` orders: `Exact`'s closed forms
             // (bounded work, see `dense`).
             return self.exact(grating, u);
+        }
+        if n < bounds::ASYMPTOTIC_MIN_SLITS as f64 {
+            // A few slits: F_N as its cosines (`small_n`).
+            return self
+                .small_n(grating, q)
+                .unwrap_or_else(|| self.exact(grating, u));
         }
         if let Some(c) = self.smooth_band(grating, q, n, Limits::FAST) {
             // N·q up to about 47,000 nm (at most about 74 lobes over the band): the product

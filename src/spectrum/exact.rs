@@ -14,7 +14,7 @@
 
 use glam::DVec3;
 
-use super::lobes::Lobes;
+use super::lobes::{Lobes, Row};
 use super::smooth_band::Limits;
 use super::{Spectral, BAND};
 use crate::math::{ceil, floor};
@@ -138,18 +138,19 @@ pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
 /// cost does not depend on the number of lobes.
 fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3) {
     use crate::kernel::sinpi;
-    use crate::math::{cos, rint, sin};
+    use crate::math::rint;
     use core::f64::consts::PI;
     let terms = xs.len().min(8);
     let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
     let n = l.n;
     let omega = 2.0 * PI * n * h;
     let nc = n * c;
-    let phi = 2.0 * PI * (nc - rint(nc));
-    let (sp, cp) = (sin(phi), cos(phi));
-    // osc[k] = (2k + 1)·j_k(ω)·cos(φ + kπ/2).
+    let (sp, cp) = sincos_2pi(nc);
+    // osc[k] = (2k + 1)·j_k(ω)·cos(φ + kπ/2), φ = 2π·N·c.
     let cycle = [cp, -sp, -cp, sp];
-    let j = spherical_bessel(omega, (sin(omega), cos(omega)), terms);
+    let j = spherical_bessel(omega, sincos_2pi(n * h), terms);
+    // The piece lies inside one row of the tables: its interpolation coefficients once.
+    let row = Row::new(l.s.illuminant(), l.q / c);
     let mut osc = [0.0; 8];
     for (k, o) in osc.iter_mut().enumerate().take(terms) {
         *o = (2 * k + 1) as f64 * j[k] * cycle[k % 4];
@@ -158,7 +159,7 @@ fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3)
     for (&ti, &wi) in xs.iter().zip(ws.iter()) {
         let x = c + h * ti;
         let den = n * sinpi(x - rint(x));
-        let r = l.envelope_at(x) / (den * den);
+        let r = row.envelope_at(l, x) / (den * den);
         // Σ_k osc_k·P_k(t_i), Legendre polynomials by their recurrence.
         let (mut p_prev, mut p) = (1.0, ti);
         let mut o = osc[0] + osc[1] * ti;
@@ -172,6 +173,16 @@ fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3)
         sum += r * (wi * (1.0 - o));
     }
     *acc += sum * (0.5 * h);
+}
+
+/// (sin 2πt, cos 2πt), from sin and cos of π·(t − round(t)) by the polynomial `sinpi`.
+#[inline]
+fn sincos_2pi(t: f64) -> (f64, f64) {
+    use crate::kernel::sinpi;
+    use crate::math::rint;
+    let r = t - rint(t);
+    let (s, c) = (sinpi(r), sinpi(0.5 - r.abs()));
+    (2.0 * s * c, (c - s) * (c + s))
 }
 
 /// j_0(ω) … j_{terms−1}(ω) (terms ≤ 8, ω ≥ FILON_MIN_LOBES·π) from ω and (sin ω, cos ω): by

@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::rules::{gl3, gl4, gl8};
 use super::Spectral;
+use crate::cie::Illuminant;
 use crate::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
 use crate::math::{ceil, floor, rint};
 use crate::quadrature::GL8;
@@ -163,20 +164,28 @@ impl<'a> Lobes<'a> {
     }
 
     /// As `split_at_rows`, each piece by `graded_rule`.
-    fn split_at_rows_graded(&self, a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {
+    /// `f` is the full integrand (`integrand_at`): each piece lies in one row of the tables,
+    /// whose interpolation coefficients are taken once for it.
+    fn split_at_rows_graded(&self, a: f64, b: f64, acc: &mut DVec3, _f: &dyn Fn(f64) -> DVec3) {
+        let piece = |lo: f64, hi: f64, acc: &mut DVec3| {
+            let row = Row::new(self.s.illuminant(), self.q / (0.5 * (lo + hi)));
+            graded_rule(self.n * (hi - lo), lo, hi, acc, &|x| {
+                row.integrand_at(self, x)
+            });
+        };
         let mut lo = a;
         let mut j = ceil(self.q / a) - 1.0;
         let j_end = self.q / b;
         while j > j_end && lo < b {
             let x = (self.q / j).min(b);
             if x > lo {
-                graded_rule(self.n * (x - lo), lo, x, acc, f);
+                piece(lo, x, acc);
                 lo = x;
             }
             j -= 1.0;
         }
         if b > lo {
-            graded_rule(self.n * (b - lo), lo, b, acc, f);
+            piece(lo, b, acc);
         }
     }
 
@@ -197,6 +206,74 @@ impl<'a> Lobes<'a> {
         if b > lo {
             gl8(lo, b, acc, f);
         }
+    }
+}
+
+/// One row of the tables (between the 1 nm rows i and i + 1): E and the observer as
+/// value + slope·t, t the fraction of the row, as `cie::power_and_cmf` interpolates them.
+pub(super) struct Row {
+    start: f64,
+    e0: f64,
+    de: f64,
+    c0: DVec3,
+    dc: DVec3,
+}
+
+impl Row {
+    /// The row that holds λ (the last one at 830 nm).
+    #[inline]
+    pub(super) fn new(illuminant: Illuminant, lambda_nm: f64) -> Row {
+        use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+        let last = (LAST_NM - FIRST_NM) as usize - 1;
+        let s = (lambda_nm - FIRST_NM as f64).max(0.0);
+        let i = (s as usize).min(last);
+        let (e0, e1) = match illuminant {
+            Illuminant::E => (1.0, 1.0),
+            Illuminant::D65 => (D65[i], D65[i + 1]),
+            Illuminant::A => (ILLUMINANT_A[i], ILLUMINANT_A[i + 1]),
+        };
+        let (a, b) = (
+            DVec3::from_array(CIE1931_2DEG[i]),
+            DVec3::from_array(CIE1931_2DEG[i + 1]),
+        );
+        Row {
+            start: i as f64,
+            e0,
+            de: e1 - e0,
+            c0: a,
+            dc: b - a,
+        }
+    }
+
+    /// E·cmf·env·norm at λ in this row.
+    #[inline]
+    fn weight(&self, l: &Lobes<'_>, lambda: f64) -> DVec3 {
+        use crate::cie_data::FIRST_NM;
+        let t = (lambda - FIRST_NM as f64) - self.start;
+        let e = (self.e0 + t * self.de) * l.s.envelope_norm(lambda);
+        (self.c0 + self.dc * t) * e
+    }
+
+    /// `Lobes::integrand_at` at x for an x whose wavelength lies in this row.
+    #[inline]
+    fn integrand_at(&self, l: &Lobes<'_>, x: f64) -> DVec3 {
+        let lambda = l.q / x;
+        let (num, den) = intensity_ratio_flat(x, l.duty * x, l.n_int);
+        let r = num / den;
+        let i = (r * r).min(1.0);
+        self.weight(l, lambda) * (i * (lambda / x))
+    }
+
+    /// `Lobes::envelope_at` at x for an x whose wavelength lies in this row.
+    #[inline]
+    pub(super) fn envelope_at(&self, l: &Lobes<'_>, x: f64) -> DVec3 {
+        use crate::cie_data::FIRST_NM;
+        use crate::kernel::single_slit_cycles;
+        let lambda = l.q / x;
+        let t = (lambda - FIRST_NM as f64) - self.start;
+        let e = (self.e0 + t * self.de) * l.s.envelope_norm(lambda);
+        let c = self.c0 + self.dc * t;
+        c * (e * (single_slit_cycles(l.duty * x) * (lambda / x)))
     }
 }
 

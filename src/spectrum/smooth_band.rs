@@ -288,6 +288,43 @@ fn piece_sum<const K: usize, F: Fn(f64) -> f64>(
     (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
+/// The number of points the product rule takes on a piece of half width `half` nm whose
+/// largest local frequency is `frequency` radians per nm (4, 8, 16 or 32); `None` where 32 do
+/// not suffice under `limits`.
+pub(super) fn piece_points(limits: Limits, frequency: f64, half: f64) -> Option<usize> {
+    let wh = frequency * half;
+    if wh <= limits.l4 {
+        Some(4)
+    } else if wh <= limits.l8 {
+        Some(8)
+    } else if wh <= limits.l16 {
+        Some(16)
+    } else if wh <= limits.l32 {
+        Some(32)
+    } else {
+        None
+    }
+}
+
+/// Σᵢ K(λᵢ)·Ωᵢ on piece `p` with `points` points (4, 8, 16 or 32, from `piece_points`): ∫ W·K
+/// over the piece, to the interpolation of K.
+pub(super) fn piece_rule<F: Fn(f64) -> f64>(
+    illuminant: Illuminant,
+    p: usize,
+    points: usize,
+    k: &F,
+) -> DVec3 {
+    let sets = weights_of(illuminant);
+    let (lo, hi) = piece_bounds(p);
+    let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+    match points {
+        4 => order0::integrate(illuminant, p, p + 1, k),
+        8 => piece_sum(&T8, &sets.w8[p], mid, half, k),
+        16 => piece_sum(&T16, &sets.w16[p], mid, half, k),
+        _ => piece_sum(&T32, &sets.w32[p], mid, half, k),
+    }
+}
+
 /// Σ over the pieces from `first` on of Σᵢ K(λᵢ)·Ωᵢ for K of largest local frequency
 /// `frequency`(λ) radians per nm at λ and above; `None` where a piece would need more than 32
 /// points under `limits`.
@@ -298,33 +335,14 @@ fn integrate<F: Fn(f64) -> f64>(
     frequency: &dyn Fn(f64) -> f64,
     k: &F,
 ) -> Option<DVec3> {
-    let sets = weights_of(illuminant);
     let mut count = [0usize; PIECES];
     for (p, c) in count.iter_mut().enumerate().skip(first) {
         let (lo, hi) = piece_bounds(p);
-        let wh = frequency(lo) * 0.5 * (hi - lo);
-        *c = if wh <= limits.l4 {
-            4
-        } else if wh <= limits.l8 {
-            8
-        } else if wh <= limits.l16 {
-            16
-        } else if wh <= limits.l32 {
-            32
-        } else {
-            return None;
-        };
+        *c = piece_points(limits, frequency(lo), 0.5 * (hi - lo))?;
     }
     let mut acc = DVec3::ZERO;
     for (p, &c) in count.iter().enumerate().skip(first) {
-        let (lo, hi) = piece_bounds(p);
-        let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-        acc += match c {
-            4 => order0::integrate(illuminant, p, p + 1, k),
-            8 => piece_sum(&T8, &sets.w8[p], mid, half, k),
-            16 => piece_sum(&T16, &sets.w16[p], mid, half, k),
-            _ => piece_sum(&T32, &sets.w32[p], mid, half, k),
-        };
+        acc += piece_rule(illuminant, p, c, k);
     }
     Some(acc)
 }

@@ -10,9 +10,10 @@ use super::MAX_WAVELENGTHS;
 use crate::error::{Error, Requirement};
 use crate::ParseError;
 
-/// The default accuracy of [`Strategy::auto`] and [`GenericStrategy::auto`] (and of
-/// [`ColorTable`](crate::ColorTable)), relative to the accuracy unit
-/// ([`accuracy_unit`](super::bounds::accuracy_unit)): 10⁻³.
+/// The default accuracy of [`Strategy::auto`] and [`GenericStrategy::auto`], relative to the
+/// accuracy unit ([`accuracy_unit`](super::bounds::accuracy_unit)): 10⁻³. The colour table has
+/// its own, finer default ([`ColorTable::DEFAULT_ACCURACY`](crate::ColorTable::DEFAULT_ACCURACY),
+/// 10⁻⁴): a table built at 10⁻³ was measured up to 0.21 ΔE2000 from `Exact`.
 ///
 /// ```
 /// use diffraction::spectrum::{Strategy, DEFAULT_ACCURACY};
@@ -95,7 +96,7 @@ pub enum StrategyKind {
 /// | [`gauss_legendre(K)`](Self::gauss_legendre) | 8K evaluations | the same, with higher order between |
 /// | [`PEAK_SEARCH`](Self::PEAK_SEARCH) | O(visible orders) | [`PEAK_SEARCH_PER_SLIT`](super::bounds::PEAK_SEARCH_PER_SLIT)/N, plus [`PEAK_SEARCH_ORDER0`](super::bounds::PEAK_SEARCH_ORDER0) of order 0's own light where its lobe reaches the band |
 /// | [`PEAK_SEARCH_REFINED`](Self::PEAK_SEARCH_REFINED) | plus 8 lobes × 8 points per order | the same |
-/// | [`ASYMPTOTIC`](Self::ASYMPTOTIC) | O(visible orders), a few hundred evaluations | [`ASYMPTOTIC_ORDERS`](super::bounds::ASYMPTOTIC_ORDERS) for N ≥ [`ASYMPTOTIC_MIN_SLITS`](super::bounds::ASYMPTOTIC_MIN_SLITS), plus [`ASYMPTOTIC_ORDER0`](super::bounds::ASYMPTOTIC_ORDER0) of order 0's own light where its half period reaches the band (below that N it is `Exact`) |
+/// | [`ASYMPTOTIC`](Self::ASYMPTOTIC) | O(visible orders), a few hundred evaluations | [`ASYMPTOTIC_ORDERS`](super::bounds::ASYMPTOTIC_ORDERS) for N ≥ [`ASYMPTOTIC_MIN_SLITS`](super::bounds::ASYMPTOTIC_MIN_SLITS), plus [`ASYMPTOTIC_ORDER0`](super::bounds::ASYMPTOTIC_ORDER0) of order 0's own light where its half period reaches the band; below that N, F_N as its N cosines: [`ASYMPTOTIC_SMALL_N`](super::bounds::ASYMPTOTIC_SMALL_N) of the colour itself |
 /// | [`EXACT`](Self::EXACT) | see the module docs | [`EXACT`](super::bounds::EXACT) of the colour itself (of 10⁻³ of the unit for darker colours) |
 /// | [`auto(a)`](Self::auto) | the cheapest of the above whose bound meets `a` | a |
 ///
@@ -312,7 +313,8 @@ impl Strategy {
                 order0: bounds::ASYMPTOTIC_ORDER0,
                 of_colour: 0.0,
             }),
-            StrategyKind::Asymptotic | StrategyKind::Exact => Some(Bound::of_colour(bounds::EXACT)),
+            StrategyKind::Asymptotic => Some(Bound::of_colour(bounds::ASYMPTOTIC_SMALL_N)),
+            StrategyKind::Exact => Some(Bound::of_colour(bounds::EXACT)),
             StrategyKind::Auto { accuracy } => Some(Bound {
                 orders: accuracy,
                 order0: 0.0,
