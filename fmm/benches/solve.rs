@@ -4,10 +4,14 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use diffraction::relief::Metal;
-use diffraction_fmm::{Grating, Incidence, Profile, Solver};
+use diffraction_fmm::{Grating, Incidence, Method, Options, Profile, Solver};
 
 fn solves(c: &mut Criterion) {
-    let solver = Solver::default();
+    let solver = Solver::new(Options {
+        method: Method::Fmm,
+        ..Options::default()
+    })
+    .unwrap();
     let lamellar = Grating {
         period_nm: 740.0,
         profile: Profile::Lamellar {
