@@ -7,6 +7,10 @@ Lossless substrates also get the transmitted totals (order = "T").
 
 Regenerate: `/work/venv-rig/bin/python python_ref/cmethod_cases.py` (numpy + scipy only, about a
 minute) -> fmm/tests/data/cmethod_fixed.csv.
+
+`--time`: instead, times the solves of fmm/benches/solve.rs's `cmethod` group (foil at 41 and 81
+harmonics, blazed600 at 81; TE and TM; sin(theta) = 0.5, 550 nm), best of 5, for the ratio to
+`cargo bench -p diffraction-fmm --bench solve -- cmethod`.
 """
 
 from __future__ import annotations
@@ -44,7 +48,27 @@ CASES = [
 ]
 
 
+def timing() -> int:
+    nk = fmm.metal_index("Al", 550.0)
+    cases = [
+        ("foil_41", cmethod.Profile("sinusoid", 1000.0, 100.0), 41),
+        ("foil_81", cmethod.Profile("sinusoid", 1000.0, 100.0), 81),
+        ("blazed600_81", cmethod.Profile("triangle", 1e6 / 600.0, fmm.sawtooth_depth(1e6 / 600.0, BLAZE_600), BLAZE_600), 81),
+    ]
+    for name, prof, nh in cases:
+        best = float("inf")
+        for _ in range(5):
+            t = time.perf_counter()
+            for pol in ("TE", "TM"):
+                cmethod.solve(prof, 550.0, 0.5, 1.0, complex(nk) ** 2, pol, nh)
+            best = min(best, time.perf_counter() - t)
+        print(f"cmethod/{name}: {best * 1e3:.1f} ms (TE + TM, best of 5)")
+    return 0
+
+
 def main() -> int:
+    if "--time" in sys.argv[1:]:
+        return timing()
     rows = []
     t0 = time.time()
     for kind, d, h, blaze, sub, lam, s, counts in CASES:
