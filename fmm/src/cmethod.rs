@@ -96,7 +96,11 @@ fn decaying(g: &[c64], betas: &[f64], count: usize, sign: f64) -> Result<Vec<usi
     let mut rest: Vec<usize> = (0..g.len()).filter(|&i| free[i]).collect();
     rest.sort_by(|&i, &j| (sign * g[j].re).total_cmp(&(sign * g[i].re)));
     rest.truncate(count);
-    if rest.len() < count || rest.iter().any(|&i| !(sign * g[i].re > 0.0)) {
+    if rest.len() < count
+        || rest
+            .iter()
+            .any(|&i| (sign * g[i].re).is_nan() || sign * g[i].re <= 0.0)
+    {
         return Err(Error::Numerical(
             "the C method's evanescent modes could not be separated (too deep a profile?)",
         ));
@@ -189,7 +193,7 @@ pub(crate) fn solve_raw(
         .collect();
     let mut transmitted = [0.0f64; 2];
     let mut upper: Option<(c64, Vec<c64>, Mat<c64>)> = None;
-    for pol in 0..2usize {
+    for (pol, t_out) in transmitted.iter_mut().enumerate() {
         let one = c64::new(1.0, 0.0);
         let (p_up, p_dn) = if pol == 0 {
             (one, one)
@@ -288,7 +292,7 @@ pub(crate) fn solve_raw(
         }
         if lossless && !cover {
             let ratio = if pol == 0 { 1.0 } else { eps_c / eps_dn };
-            transmitted[pol] = prop_dn
+            *t_out = prop_dn
                 .iter()
                 .enumerate()
                 .map(|(c, &n)| x[(nh + c, 0)].norm_sqr() * beta_dn[n] / beta_up[i0])

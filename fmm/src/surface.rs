@@ -325,13 +325,15 @@ mod tests {
             .collect();
         let mut y = x.clone();
         fft(&mut y, false);
-        for k in 0..n {
-            let s: c64 = (0..n)
-                .map(|j| {
-                    x[j] * c64::from_polar(1.0, -core::f64::consts::TAU * (j * k) as f64 / n as f64)
+        for (k, yk) in y.iter().enumerate() {
+            let s: c64 = x
+                .iter()
+                .enumerate()
+                .map(|(j, xj)| {
+                    xj * c64::from_polar(1.0, -core::f64::consts::TAU * (j * k) as f64 / n as f64)
                 })
                 .sum();
-            assert!((s - y[k]).norm() < 1e-12);
+            assert!((s - yk).norm() < 1e-12);
         }
     }
 
