@@ -1,13 +1,18 @@
 //! One solve at a fixed truncation: lamellar (TE + TM, classical) and conical, at 41 and 81
-//! harmonics, and one staircased sinusoid.
+//! harmonics, one staircased sinusoid, and the C method on the foil and blazed600 gratings
+//! (compare with `python_ref/cmethod_cases.py --time`, the same solves in Python).
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use diffraction::relief::Metal;
-use diffraction_fmm::{Grating, Incidence, Profile, Solver};
+use diffraction_fmm::{Grating, Incidence, Method, Options, Profile, Solver};
 
 fn solves(c: &mut Criterion) {
-    let solver = Solver::default();
+    let solver = Solver::new(Options {
+        method: Method::Fmm,
+        ..Options::default()
+    })
+    .unwrap();
     let lamellar = Grating {
         period_nm: 740.0,
         profile: Profile::Lamellar {
@@ -37,6 +42,40 @@ fn solves(c: &mut Criterion) {
     }
     group.bench_function("sinusoid_classical_41_8_slabs", |b| {
         b.iter(|| solver.solve_at(&sinusoid, classical, 41).unwrap())
+    });
+    group.finish();
+
+    // The C method at equal truncation with python_ref/cmethod.py (TE and TM both): the foil
+    // preset's grating (Al sinusoid, 1000 l/mm, 100 nm) and blazed600 (Al sawtooth, 600 l/mm).
+    let c_method = Solver::new(Options {
+        method: Method::CMethod,
+        ..Options::default()
+    })
+    .unwrap();
+    let foil = Grating {
+        period_nm: 1000.0,
+        profile: Profile::Sinusoid { depth_nm: 100.0 },
+        metal: Metal::AL,
+        cover: None,
+    };
+    let blazed = Grating {
+        period_nm: 1e6 / 600.0,
+        profile: Profile::Sawtooth {
+            blaze: (500.0f64 / (2.0 * 1e6 / 600.0)).asin(),
+        },
+        metal: Metal::AL,
+        cover: None,
+    };
+    let at = Incidence::classical(0.5, 550.0).unwrap();
+    let mut group = c.benchmark_group("cmethod");
+    group.sample_size(10);
+    for nh in [41, 81] {
+        group.bench_function(format!("foil_{nh}"), |b| {
+            b.iter(|| c_method.solve_at(&foil, at, nh).unwrap())
+        });
+    }
+    group.bench_function("blazed600_81", |b| {
+        b.iter(|| c_method.solve_at(&blazed, at, 81).unwrap())
     });
     group.finish();
 }

@@ -1,7 +1,11 @@
 //! Rigorous reflection efficiencies of 1-D periodic relief gratings: the Fourier modal method
 //! (RCWA) with Li's factorisation rules, in the classical and the conical mount, with a stable
 //! reflection-matrix recursion, staircased smooth profiles, metals from
-//! [`diffraction::relief::Metal`], an optional thick dielectric cover, and convergence control.
+//! [`diffraction::relief::Metal`], an optional thick dielectric cover, and convergence control;
+//! and the C method (Chandezon) with Li's factorisation for continuous profiles (sinusoid,
+//! sawtooth, Fourier series, sampled) in the classical mount, where the staircase converges
+//! badly in TM on metals. [`Method::Auto`] (the default) picks the C method for those and the
+//! Fourier modal method otherwise.
 //!
 //! Conventions (those of the `diffraction` crate's design notes): x across the grooves (the
 //! grating vector), y along them, z the normal; the incident direction of travel has direction
@@ -26,10 +30,12 @@
 //! # Ok::<(), diffraction_fmm::Error>(())
 //! ```
 
+mod cmethod;
 mod error;
 mod grating;
 mod modal;
 mod solver;
+mod surface;
 
 pub use error::Error;
 pub use grating::{
@@ -38,7 +44,7 @@ pub use grating::{
     WAVELENGTH_RANGE_NM,
 };
 pub use solver::{
-    CoverPasses, Extrapolation, Options, Order, Solution, Solver, DEFAULT_MAX_HARMONICS,
+    CoverPasses, Extrapolation, Method, Options, Order, Solution, Solver, DEFAULT_MAX_HARMONICS,
     DEFAULT_TOLERANCE, GROWTH, MAX_HARMONICS, MIN_HARMONICS,
 };
 

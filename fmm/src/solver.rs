@@ -2,9 +2,11 @@
 
 use faer::{c64, Mat};
 
+use crate::cmethod;
 use crate::error::Error;
-use crate::grating::{Grating, Incidence, MAX_SLABS};
+use crate::grating::{Grating, Incidence, Profile, MAX_SLABS};
 use crate::modal::{self, Lattice, Pol, Stack};
+use crate::surface::Surface;
 
 /// Default convergence tolerance: absolute, per order and polarisation.
 pub const DEFAULT_TOLERANCE: f64 = 1e-3;
@@ -44,6 +46,20 @@ pub enum Extrapolation {
     Richardson,
 }
 
+/// Which rigorous method solves a grating.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// The C method for continuous profiles (sinusoid, sawtooth, Fourier, sampled) in the
+    /// classical mount; the Fourier modal method otherwise (lamellar, multilevel, flat, and
+    /// every profile in the conical mount or with `always_conical`).
+    Auto,
+    /// The Fourier modal method (a staircase of a continuous profile).
+    Fmm,
+    /// The C method (continuous profiles, classical mount only: other inputs are refused with
+    /// an error naming `beta` or `depth_nm`).
+    CMethod,
+}
+
 /// The solver's options.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -60,6 +76,8 @@ pub struct Options {
     /// Use the vector (conical) formulation even at β = 0 (twice the size, for checks; default
     /// false: the classical mount splits into TE and TM).
     pub always_conical: bool,
+    /// The method (default [`Method::Auto`]).
+    pub method: Method,
 }
 
 impl Default for Options {
@@ -71,6 +89,7 @@ impl Default for Options {
             extrapolation: Extrapolation::Richardson,
             cover_passes: CoverPasses::Multiple,
             always_conical: false,
+            method: Method::Auto,
         }
     }
 }
@@ -138,7 +157,7 @@ pub struct Solver {
     options: Options,
 }
 
-fn odd(n: f64) -> usize {
+pub(crate) fn odd(n: f64) -> usize {
     let n = n.ceil() as usize;
     if n % 2 == 1 {
         n
@@ -177,6 +196,34 @@ impl Solver {
     #[must_use]
     pub fn options(&self) -> &Options {
         &self.options
+    }
+
+    /// Whether this solve goes to the C method (see [`Method`]); an explicit
+    /// [`Method::CMethod`] on an input it cannot take is an error naming `beta` or `depth_nm`.
+    pub fn uses_cmethod(&self, g: &Grating, inc: &Incidence) -> Result<bool, Error> {
+        let continuous = Surface::of(g).is_some() && !matches!(g.profile, Profile::Flat);
+        let classical = inc.beta == 0.0 && !self.options.always_conical;
+        match self.options.method {
+            Method::Fmm => Ok(false),
+            Method::Auto => Ok(continuous && classical),
+            Method::CMethod => {
+                if !classical {
+                    return Err(Error::invalid(
+                        "beta",
+                        inc.beta,
+                        "0 for the C method (classical mount only; use Method::Fmm or Auto)",
+                    ));
+                }
+                if Surface::of(g).is_none() {
+                    return Err(Error::invalid(
+                        "depth_nm",
+                        g.depth_nm(),
+                        "on a continuous profile for the C method (sinusoid, sawtooth, Fourier, sampled, flat)",
+                    ));
+                }
+                Ok(true)
+            }
+        }
     }
 
     fn slabs_for(&self, g: &Grating, inc: &Incidence) -> usize {
@@ -219,6 +266,17 @@ impl Solver {
         }
         let nh = odd(harmonics as f64);
         self.check(g, &inc, nh)?;
+        if self.uses_cmethod(g, &inc)? {
+            let raw = cmethod::solve_raw(g, &inc, nh, &self.options)?;
+            return Ok(Solution {
+                orders: raw.orders,
+                harmonics: nh,
+                slabs: 0,
+                error: f64::NAN,
+                extrapolated: false,
+                transmitted: raw.transmitted,
+            });
+        }
         let slabs = self.slabs_for(g, &inc);
         let raw = solve_raw(g, &inc, nh, slabs, &self.options)?;
         Ok(Solution {
@@ -238,6 +296,13 @@ impl Solver {
         let cap = self.options.max_harmonics;
         self.check(g, &inc, cap)?;
         let n_c = g.cover.map_or(1.0, |c| c.index);
+        if self.uses_cmethod(g, &inc)? {
+            let nh = cmethod::first_harmonics(g, &inc);
+            if odd(nh as f64 * GROWTH) > cap {
+                return Err(Error::invalid("period_nm", g.period_nm, PERIOD_REQUIREMENT));
+            }
+            return cmethod::solve(g, &inc, &self.options);
+        }
         let slabs = self.slabs_for(g, &inc);
         let tol = self.options.tolerance;
         let nh =
@@ -317,7 +382,7 @@ impl Solver {
     }
 }
 
-fn max_change(a: &[Order], b: &[Order]) -> f64 {
+pub(crate) fn max_change(a: &[Order], b: &[Order]) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| (x.te - y.te).abs().max((x.tm - y.tm).abs()))
@@ -370,7 +435,7 @@ pub(crate) fn fresnel_real(n1: f64, n2: f64, s1: f64) -> (f64, f64) {
 
 /// Moves α off a Rayleigh line (an order grazing in the superstrate or a lossless substrate,
 /// where kz = 0 would divide) by a few 1e-9.
-fn off_rayleigh(alpha: f64, beta: f64, step: f64, media: &[f64]) -> f64 {
+pub(crate) fn off_rayleigh(alpha: f64, beta: f64, step: f64, media: &[f64]) -> f64 {
     let mut a = alpha;
     let m_max = (2.0 / step).ceil() as i64 + 2;
     for _ in 0..4 {
@@ -548,6 +613,17 @@ pub(crate) struct Channel {
     basis: Vec<(usize, f64)>,
 }
 
+impl Channel {
+    /// A classical-mount channel: harmonic index `order`, polarisation `pol` (0 = TE, 1 = TM).
+    pub(crate) fn scalar(order: usize, pol: usize) -> Channel {
+        Channel {
+            order,
+            pol,
+            basis: vec![(order, 1.0)],
+        }
+    }
+}
+
 fn channels(lat: &Lattice, n_c: f64, phi: f64) -> Vec<Channel> {
     let n = lat.harmonics();
     let b = lat.beta;
@@ -607,7 +683,7 @@ fn unit_flux(lat: &Lattice, v: &Mat<c64>, ch: &Channel) -> f64 {
 /// power matrix's column; with one, the Fresnel passes through its top surface (single pass, or
 /// the incoherent sum of all passes).
 #[allow(clippy::too_many_arguments)]
-fn through_cover(
+pub(crate) fn through_cover(
     chans: &[Channel],
     pm: &[Vec<f64>],
     c_in: usize,

@@ -3,7 +3,17 @@
 //! φ = 0 against the classical one, and reciprocity.
 
 use diffraction::relief::Metal;
-use diffraction_fmm::{Grating, Incidence, Options, Profile, Solver};
+use diffraction_fmm::{Grating, Incidence, Method, Options, Profile, Solver};
+
+/// The Fourier modal method (a staircase of the smooth profiles): these are its tests; the C
+/// method's are in tests/cmethod.rs.
+fn fmm() -> Solver {
+    Solver::new(Options {
+        method: Method::Fmm,
+        ..Options::default()
+    })
+    .unwrap()
+}
 
 /// Fresnel against the flat solve: both evaluate the same closed form, to rounding.
 const FRESNEL_TOLERANCE: f64 = 1e-12;
@@ -23,7 +33,7 @@ fn flat(metal: Metal) -> Grating {
 
 #[test]
 fn flat_metal_is_fresnel_classical_and_conical() {
-    let solver = Solver::default();
+    let solver = fmm();
     for metal in [Metal::AL, Metal::AG, Metal::custom(1.5, 0.0).unwrap()] {
         for theta in [0.0f64, 0.3, 0.8, 1.3] {
             for phi in [0.0, 0.6, 1.5] {
@@ -75,7 +85,7 @@ fn shallow_sinusoid_tends_to_the_scalar_bessel_limit() {
         metal: Metal::AG,
         cover: None,
     };
-    let sol = Solver::default()
+    let sol = fmm()
         .solve_at(&g, Incidence::new(0.0, 0.0, lambda).unwrap(), 101)
         .unwrap();
     let r = Metal::AG.reflectance(lambda, 1.0).0;
@@ -105,7 +115,7 @@ fn dielectric(profile: Profile) -> Grating {
 
 #[test]
 fn energy_is_conserved_on_lossless_media() {
-    let solver = Solver::default();
+    let solver = fmm();
     let mut worst: f64 = 0.0;
     for profile in [
         Profile::Lamellar {
@@ -140,9 +150,10 @@ fn energy_is_conserved_on_lossless_media() {
 
 #[test]
 fn conical_formulation_at_phi_zero_is_the_classical_one() {
-    let classical = Solver::default();
+    let classical = fmm();
     let conical = Solver::new(Options {
         always_conical: true,
+        method: Method::Fmm,
         ..Options::default()
     })
     .unwrap();
@@ -188,7 +199,7 @@ fn conical_formulation_at_phi_zero_is_the_classical_one() {
 #[test]
 fn efficiencies_are_reciprocal() {
     let lambda = 550.0;
-    let solver = Solver::default();
+    let solver = fmm();
     let mut worst: f64 = 0.0;
     for (metal, tm) in [(Metal::custom(1.5, 0.0).unwrap(), true), (Metal::AL, false)] {
         let g = Grating {

@@ -4,7 +4,7 @@
 
 mod support;
 
-use diffraction_fmm::{Error, Extrapolation, Incidence, Options, Solver};
+use diffraction_fmm::{Error, Extrapolation, Incidence, Method, Options, Solver};
 use support::{rigorous_cases, Case, REFERENCE_TOLERANCE};
 
 /// The same method at the same truncation: the only difference is nannos's ε sampled on 2¹⁴
@@ -114,7 +114,11 @@ fn converged_lamellar_sample() {
 /// or sawtooth case).
 #[test]
 fn staircase_sample_against_the_c_method() {
-    let solver = Solver::default();
+    let solver = Solver::new(Options {
+        method: Method::Fmm,
+        ..Options::default()
+    })
+    .unwrap();
     let cases: Vec<Case> = rigorous_cases()
         .into_iter()
         .filter(|c| c.first().profile != "lamellar")
