@@ -162,5 +162,45 @@ fn objects_times_shadow_rays_times_bounces_is_refused() {
         )
     );
     assert!(!out.exists());
+    // `--budget` above the estimate accepts it (a dry run: nothing is rendered or written).
+    let raised = crate::cli::Options {
+        budget: Some(crate::cli::MAX_BUDGET_S),
+        dry_run: true,
+        ..args.clone()
+    };
+    assert!(total * 1e-9 < crate::cli::MAX_BUDGET_S as f64);
+    assert_eq!(crate::run::run(&Flat, &raised), Ok(()));
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--budget` takes whole seconds in [1, 10⁷]; the refusal names the budget given.
+#[test]
+fn the_budget_flag_is_checked_and_used() {
+    let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
+    let parse = |s: &str| crate::cli::parse::<crate::Args>(&args(s));
+    for v in ["0", "10000001", "1.5", "-3"] {
+        assert_eq!(
+            parse(&format!("fig4a --budget {v}")),
+            Err(format!(
+                "--budget: expected an integer in [1, 10000000], got \"{v}\""
+            ))
+        );
+    }
+    let Ok(crate::cli::Command::Render(o, _)) = parse("fig4a --budget 300") else {
+        panic!("--budget 300")
+    };
+    assert_eq!(o.budget, Some(300));
+    let mut est = Estimate::default();
+    est.add("1000 camera samples".into(), 2e11, "--spp");
+    assert_eq!(est.check("s", 300.0), Ok(()));
+    assert_eq!(
+        est.check("s", 100.0),
+        Err(
+            "s: an estimated 200 s of work on one core, above the budget of 100 s (--budget; \
+             tools/render/common/budget.rs); most of it, 200 s, is 1000 camera samples: reduce \
+             --spp"
+                .into()
+        )
+    );
 }

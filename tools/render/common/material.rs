@@ -391,8 +391,18 @@ impl<'a> Loader<'a> {
             None => (GratingField::constant(0.0), base_color),
             Some(field) => build_field(field, &f("field"), base_color)?,
         };
-        // Debug prints every parameter exactly (shortest round-trip floats).
-        self.gratings.insert(format!("{model:?} {strategy:?}"));
+        // Debug prints every parameter exactly (shortest round-trip floats). A tabulated
+        // model's Debug would print its whole table: its parameters (the preset's name or the
+        // table's file as written) stand for it.
+        let key = match g.efficiency.as_deref() {
+            Some(e) if e != "amplitude" => {
+                let mut raw = g.clone();
+                (raw.table, raw.field, raw.color) = (None, None, None);
+                format!("{raw:?} {period:?} {strategy:?}")
+            }
+            _ => format!("{model:?} {strategy:?}"),
+        };
+        self.gratings.insert(key);
         if self.gratings.len() > limits::MAX_GRATINGS {
             return Err(FieldError::new(
                 path,
