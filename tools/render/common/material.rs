@@ -315,7 +315,26 @@ impl<'a> Loader<'a> {
         base_color: DVec3,
     ) -> Check<(GratingMaterial<P::Grating>, f64)> {
         let f = |name: &str| format!("{path}.{name}");
-        // A table file (the model checks that it takes `efficiency`).
+        let name = g.model.as_deref().unwrap_or("agu-hill");
+        let Some((_, takes)) = MODELS.iter().find(|(m, _)| *m == name) else {
+            let names: Vec<String> = MODELS.iter().map(|(m, _)| format!("\"{m}\"")).collect();
+            return Err(FieldError::new(
+                f("model"),
+                format!("expected one of {}, got \"{name}\"", names.join(", ")),
+            ));
+        };
+        for (key, is_set) in g.parameters() {
+            if is_set && !takes.contains(&key) {
+                return Err(FieldError::new(
+                    f(key),
+                    format!(
+                        "not used by model \"{name}\" (it takes {})",
+                        takes.join(", ")
+                    ),
+                ));
+            }
+        }
+        // A table file (the model takes `efficiency`: checked above).
         let table = match g.efficiency.as_deref() {
             Some(name) if name.ends_with(".json") => Some(self.table(name, &f("efficiency"))?),
             _ => None,
@@ -356,25 +375,6 @@ impl<'a> Loader<'a> {
             g.diffraction.unwrap_or(1.0),
             limits::COEFFICIENT,
         )?;
-        let name = g.model.as_deref().unwrap_or("agu-hill");
-        let Some((_, takes)) = MODELS.iter().find(|(m, _)| *m == name) else {
-            let names: Vec<String> = MODELS.iter().map(|(m, _)| format!("\"{m}\"")).collect();
-            return Err(FieldError::new(
-                f("model"),
-                format!("expected one of {}, got \"{name}\"", names.join(", ")),
-            ));
-        };
-        for (key, is_set) in g.parameters() {
-            if is_set && !takes.contains(&key) {
-                return Err(FieldError::new(
-                    f(key),
-                    format!(
-                        "not used by model \"{name}\" (it takes {})",
-                        takes.join(", ")
-                    ),
-                ));
-            }
-        }
         let model = match table {
             Some(table) => {
                 let mut with = g.clone();

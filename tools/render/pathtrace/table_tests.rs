@@ -140,5 +140,16 @@ fn a_hostile_table_file_is_refused_naming_the_field() {
         let e = load(&dir, &scene_src(file, "")).unwrap_err();
         assert_eq!(e, format!("{at} {expected}"), "{file}");
     }
+    // A model that takes no `efficiency` is refused by that rule, before any file is read.
+    let paper = scene_src("tables/missing.json", "")
+        .replace("model = \"radiometric\"", "model = \"agu-hill\"");
+    assert_eq!(
+        load(&dir, &paper).unwrap_err(),
+        format!(
+            "{}: line 12, field objects[0].material.efficiency: not used by model \"agu-hill\" \
+             (it takes slit_width_nm, slits)",
+            dir.join("t.toml").display()
+        )
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
