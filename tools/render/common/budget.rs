@@ -6,37 +6,41 @@
 //! counts, per scene:
 //!
 //! - **ray-object tests** (every ray is tested against every object: there is no acceleration
-//!   structure): camera samples × (rays per sample × objects + hits per sample × shadow rays
-//!   per hit × objects);
+//!   structure): camera samples × (rays + shadow rays per sample) × objects;
 //! - **colour evaluations** (a grating's spectral colour toward one light or light sample) and,
 //!   for the path tracer, **BSDF evaluations** per path vertex;
 //! - **load-time work**: each distinct grating's exposure scan (4001 colours) and, with
 //!   `--filter`, each colour table's build.
 //!
-//! The rays, hits and grating hits per camera sample come from a [`Pilot`]: the scene's own
-//! rays through a grid of pixel centres (at most [`PILOT_TESTS`] ray-object tests, so the
-//! estimate itself is cheap), following mirrors for the Whitted renderers. Each count is
-//! weighted by its cost on one core of the development machine (2-core x86-64 shared with
-//! other builds: the constants below are upper bounds of what was measured there, with the
-//! colour costs over d = 400-10⁵ nm and N = 10-2³²), and the total is compared with
-//! [`BUDGET_S`] seconds of one core. The estimate is deterministic (the same run, the same
-//! number). Against measured CPU time it is 1.5-5.8 times that of the shipped scenes at their
-//! defaults; in the long sweep of `tools/render/raytrace/sweep_tests.rs`, which prints both, it was
-//! 0.9-3.6 times with ray-object tests at 10 ns (the lowest where they dominate), hence
-//! [`RAY_TEST_NS`].
+//! The rays, hits, shadow rays, grating hits and the lights that light them (in front and not
+//! occluded: the renderers compute no colour for another) per camera sample come from a
+//! [`Pilot`]: the scene's own rays through a grid of pixel centres (at most [`PILOT_TESTS`]
+//! ray-object tests, so the estimate itself is cheap), following mirrors for the Whitted
+//! renderers. Each count is weighted by its cost on one core of the development machine (2-core
+//! x86-64 shared with other builds: the constants below are from what was measured there, most
+//! of them upper bounds, with the colour costs over d = 400-10⁵ nm and N = 10-2³²), and the
+//! total is compared with
+//! [`BUDGET_S`] seconds of one core (or `--budget`'s). The estimate is deterministic (the same
+//! run, the same number). The path integrator's counts come from its own paths instead
+//! (`pathtrace/path.rs`'s `pilot`: Russian roulette and the sky end most of them at the first
+//! vertex). Against measured CPU time it is 0.96-2.9 times that of every shipped scene on both
+//! renderers and of the two reproducers of `tools/render/tests/data` (docs/work_budget.md, made
+//! by `tools/render/calibrate.sh`; the tests check every row stays within 5×).
 
 use diffraction::spectrum::{GenericStrategyKind, Spectral, StrategyKind};
 use diffraction::{Grating, Slits};
 
 use crate::camera::{Camera, CameraRays};
 use crate::colour::Colour;
-use crate::geometry::{nearest, Ray};
+use crate::geometry::{nearest, occluded, Ray, SHADOW_REACH};
 use crate::scene::{Physics, Scene};
 
-/// The budget of one scene's run: seconds of work on one core (ten minutes; five on the two
-/// cores of the development machine). Every shipped scene at its defaults takes under 1 % of
-/// it; a run refused by it would take minutes.
-pub const BUDGET_S: f64 = 600.0;
+/// The budget of one scene's run by default: seconds of work on one core (two minutes, a minute
+/// of wall time on the two cores of the development machine; `--budget` sets another). Every
+/// shipped scene at its defaults takes under 4 % of it (`cd_preset` by `--integrator whitted`,
+/// which its file says to run smaller); the estimate is within 5× of the measured CPU time
+/// (docs/work_budget.md), so a refused run would take at least 24 s of one core.
+pub const BUDGET_S: f64 = 120.0;
 
 /// One ray-object test, ns (measured 7 ns in a scene of 200 objects and 8-9 ns in scenes of
 /// 10⁴, most tests misses; half again for a margin).
@@ -46,16 +50,20 @@ pub const SAMPLE_NS: f64 = 100.0;
 /// One surface hit beyond its ray-object tests: the material (a wood texture's noise), the
 /// shading frame, the illumination model or the BSDF's lobes, ns (fitted: the shipped scenes
 /// take 0.2-0.4 µs per hit).
-pub const HIT_NS: f64 = 500.0;
+pub const HIT_NS: f64 = 300.0;
 /// One shadow ray or light sample beyond its ray-object tests: sampling the light and shading
 /// toward it, ns (fitted: `cd_area_light`'s Whitted renderer takes 120 ns).
-pub const SHADOW_NS: f64 = 150.0;
+pub const SHADOW_NS: f64 = 100.0;
 /// One evaluation of the grating BSDF by the path tracer at a vertex (sample, f4 and pdf4:
 /// measured 516 ns), ns.
 pub const BSDF_NS: f64 = 600.0;
-/// One colour table build at accuracy 10⁻³ (measured 10-120 ms; 0.2 s in a scene of 256
-/// gratings), ns.
-pub const TABLE_NS: f64 = 5e8;
+/// One evaluation of a grating BSDF with tabulated efficiencies (a preset or a table file) by
+/// the path tracer at a vertex (`cd_preset`: 6.7 µs, the table read for every order at four
+/// wavelengths), ns.
+pub const BSDF_TABLE_NS: f64 = 8e3;
+/// One colour table build at accuracy 10⁻³, ns (measured 4-8 ms a table in scenes of 16 and
+/// 256 gratings over d = 400 nm-99 µm and N = 10-10⁹; twice that for a margin).
+pub const TABLE_NS: f64 = 1.5e7;
 /// One diffraction colour from a colour table over a pixel footprint (`--filter`): the four
 /// offset rays' hits and the table's mean, ns.
 pub const FOOTPRINT_NS: f64 = 1e3;
@@ -100,13 +108,20 @@ pub fn colour_ns(spectral: &Spectral, integrand: Integrand, colour: Colour) -> f
                 // The paper's peak colours.
                 return 1e3 + 1.3 * d;
             };
+            // A wavelength of Stam's model, of Thorman's (measured 350 and 140 ns an interval
+            // of 8 wavelengths in `compare`; about twice that).
+            let per_lambda = if stam { 100.0 } else { 40.0 };
             match generic.kind() {
-                // Stam's sine profile of depth 10⁴ nm: up to 1.5 ms.
-                GenericStrategyKind::PeakSearch if stam => 2e6,
-                // Thorman's lobes of width 0.005 at d = 10⁵ nm: 1.2 ms.
-                GenericStrategyKind::PeakSearch => 2e5 + 15.0 * d,
-                GenericStrategyKind::Uniform { samples } => 200.0 * samples as f64,
-                GenericStrategyKind::GaussLegendre { intervals } => 1600.0 * intervals as f64,
+                // Stam's profiles in `compare` (d = 3200 nm, depth 120-150 nm): 180-460 µs; the
+                // sine of depth 10⁴ nm: up to 1.5 ms.
+                GenericStrategyKind::PeakSearch if stam => 7e5,
+                // Thorman's lobes in `compare` (width 0.0062, d = 3200 nm): 75 µs; of width
+                // 0.005 at d = 10⁵ nm: 1.2 ms.
+                GenericStrategyKind::PeakSearch => 3e4 + 12.0 * d,
+                GenericStrategyKind::Uniform { samples } => per_lambda * samples as f64,
+                GenericStrategyKind::GaussLegendre { intervals } => {
+                    8.0 * per_lambda * intervals as f64
+                }
                 // The windows rule (and Auto, at its dearest).
                 _ if stam => 2e6 + 60.0 * d,
                 _ => 2e5 + 15.0 * d,
@@ -165,10 +180,21 @@ pub struct Pilot {
     pub hits: f64,
     /// Hits per camera sample on a grating (not a plain square of a checkerboard).
     pub grating_hits: f64,
+    /// Shadow rays per camera sample: at every hit, the samples of each light in front of the
+    /// surface (the renderers test no light behind it).
+    pub shadow_rays: f64,
+    /// Lights per camera sample that light a grating hit: in front of it and its centre not
+    /// occluded (the renderers compute a colour for no other).
+    pub lit: f64,
+    /// The same, each light counted by its samples (a Whitted integrator of area lights
+    /// computes a colour per visible light sample).
+    pub lit_samples: f64,
 }
 
-/// The pilot of `scene` seen from `camera`: at most [`PILOT_TESTS`] ray-object tests; mirror
-/// reflections are followed up to `render.max_depth` when `mirrors`.
+/// The pilot of `scene` seen from `camera`: at most [`PILOT_TESTS`] ray-object tests for the
+/// rays and as many for the occlusion of the lights' centres seen from grating hits (past
+/// them, a light in front of a grating hit counts as visible); mirror reflections are
+/// followed up to `render.max_depth` when `mirrors`.
 pub fn pilot<P: Physics>(scene: &Scene<P>, camera: &Camera, mirrors: bool) -> Pilot {
     let s = &scene.settings;
     let objects = scene.objects.len().max(1) as f64;
@@ -180,6 +206,8 @@ pub fn pilot<P: Physics>(scene: &Scene<P>, camera: &Camera, mirrors: bool) -> Pi
     let rows = ((n / aspect).sqrt().round() as u32).clamp(1, s.height);
     let rays = CameraRays::new(camera, s.width, s.height);
     let (mut traced, mut hits, mut gratings) = (0u64, 0u64, 0u64);
+    let (mut shadow, mut lit, mut lit_samples) = (0u64, 0u64, 0u64);
+    let mut occlusion_tests = 0.0;
     for j in 0..rows {
         for i in 0..cols {
             let x = (i as f64 + 0.5) / cols as f64 * s.width as f64;
@@ -192,15 +220,35 @@ pub fn pilot<P: Physics>(scene: &Scene<P>, camera: &Camera, mirrors: bool) -> Pi
                 };
                 hits += 1;
                 let m = &scene.materials[scene.objects[hit.object].material];
-                if m.grating.as_ref().is_some_and(|g| !g.is_plain_at(hit.p)) {
-                    gratings += 1;
+                let on_grating = m.grating.as_ref().is_some_and(|g| !g.is_plain_at(hit.p));
+                gratings += on_grating as u64;
+                let origin = hit.spawn_point();
+                for light in &scene.lights {
+                    let to = light.position - hit.point;
+                    if hit.normal.dot(to) <= 0.0 {
+                        continue;
+                    }
+                    let samples = light.samples.max(1) as u64;
+                    shadow += samples;
+                    if !on_grating {
+                        continue;
+                    }
+                    let visible = occlusion_tests >= PILOT_TESTS || {
+                        occlusion_tests += objects;
+                        let dist = to.length();
+                        !occluded(&scene.objects, &Ray::new(origin, to), dist * SHADOW_REACH)
+                    };
+                    if visible {
+                        lit += 1;
+                        lit_samples += samples;
+                    }
                 }
                 if !(mirrors && m.mirror > 0.0 && bounce < s.max_depth) {
                     break;
                 }
                 let d = ray.dir;
                 let n = hit.normal;
-                ray = Ray::new(hit.spawn_point(), d - n * (2.0 * d.dot(n)));
+                ray = Ray::new(origin, d - n * (2.0 * d.dot(n)));
             }
         }
     }
@@ -209,6 +257,9 @@ pub fn pilot<P: Physics>(scene: &Scene<P>, camera: &Camera, mirrors: bool) -> Pi
         rays: traced as f64 * per,
         hits: hits as f64 * per,
         grating_hits: gratings as f64 * per,
+        shadow_rays: shadow as f64 * per,
+        lit: lit as f64 * per,
+        lit_samples: lit_samples as f64 * per,
     }
 }
 
@@ -273,19 +324,21 @@ impl Estimate {
         self.parts.iter().map(|p| p.ns).sum::<f64>() * 1e-9
     }
 
-    /// `Err` above [`BUDGET_S`], naming the estimate, its largest part and what reduces it.
-    pub fn check(&self, scene: &str) -> Result<(), String> {
+    /// `Err` above `budget` (seconds of one core, [`BUDGET_S`] by default), naming the estimate,
+    /// the budget, its largest part and what reduces it.
+    pub fn check(&self, scene: &str, budget: f64) -> Result<(), String> {
         let total = self.seconds();
-        if total <= BUDGET_S {
+        if total <= budget {
             return Ok(());
         }
         let Some(top) = self.parts.iter().max_by(|a, b| a.ns.total_cmp(&b.ns)) else {
             return Ok(());
         };
         Err(format!(
-            "{scene}: an estimated {} s of work on one core, above the budget of {BUDGET_S} s \
-             (tools/render/common/budget.rs); most of it, {} s, is {}: reduce {}",
+            "{scene}: an estimated {} s of work on one core, above the budget of {} s \
+             (--budget; tools/render/common/budget.rs); most of it, {} s, is {}: reduce {}",
             short(total),
+            short(budget),
             short(top.ns * 1e-9),
             top.what,
             top.reduce
@@ -293,13 +346,13 @@ impl Estimate {
     }
 }
 
-/// The rays of a renderer: `samples` camera samples, each with the pilot's rays tested against
-/// every object and, at each hit, `shadow_rays` (the lights' samples) tested against every
-/// object.
-pub fn tracing(est: &mut Estimate, samples: f64, pilot: &Pilot, objects: usize, shadow_rays: f64) {
+/// The rays of a renderer: `samples` camera samples, each with the pilot's rays and shadow
+/// rays, all tested against every object.
+pub fn tracing(est: &mut Estimate, samples: f64, pilot: &Pilot, objects: usize) {
     let o = objects as f64;
     let hits = samples * pilot.hits;
-    let tests = samples * pilot.rays * o + hits * shadow_rays * o;
+    let shadow_rays = samples * pilot.shadow_rays;
+    let tests = samples * pilot.rays * o + shadow_rays * o;
     est.add(
         format!("{} camera samples", count(samples)),
         samples * SAMPLE_NS,
@@ -311,8 +364,8 @@ pub fn tracing(est: &mut Estimate, samples: f64, pilot: &Pilot, objects: usize, 
         "--width/--height, --spp, --frames or --max-depth",
     );
     est.add(
-        format!("{} shadow rays", count(hits * shadow_rays)),
-        hits * shadow_rays * SHADOW_NS,
+        format!("{} shadow rays", count(shadow_rays)),
+        shadow_rays * SHADOW_NS,
         "--width/--height, --spp, --frames, --max-depth or the lights' samples",
     );
     est.add(

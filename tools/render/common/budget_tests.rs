@@ -34,7 +34,10 @@ fn the_pilot_counts_what_the_rays_meet() {
         Pilot {
             rays: 65.0,
             hits: 65.0,
-            grating_hits: 0.0
+            grating_hits: 0.0,
+            shadow_rays: 0.0,
+            lit: 0.0,
+            lit_samples: 0.0
         }
     );
     // Not following mirrors: one ray and one hit.
@@ -44,7 +47,10 @@ fn the_pilot_counts_what_the_rays_meet() {
         Pilot {
             rays: 1.0,
             hits: 1.0,
-            grating_hits: 0.0
+            grating_hits: 0.0,
+            shadow_rays: 0.0,
+            lit: 0.0,
+            lit_samples: 0.0
         }
     );
     // Looking away from everything: nothing is hit.
@@ -55,7 +61,10 @@ fn the_pilot_counts_what_the_rays_meet() {
         Pilot {
             rays: 1.0,
             hits: 0.0,
-            grating_hits: 0.0
+            grating_hits: 0.0,
+            shadow_rays: 0.0,
+            lit: 0.0,
+            lit_samples: 0.0
         }
     );
     // A grating filling the view, half of it plain squares of a checkerboard of cells much
@@ -74,17 +83,17 @@ fn the_pilot_counts_what_the_rays_meet() {
 fn a_run_above_the_budget_is_refused_with_its_largest_part() {
     let mut est = Estimate::default();
     est.add("1000 camera samples".into(), 1e8, "--spp");
-    assert_eq!(est.check("small"), Ok(()));
+    assert_eq!(est.check("small", budget::BUDGET_S), Ok(()));
     est.add(
         "7 colour tables".into(),
         (BUDGET_S + 1.0) * 1e9,
         "--filter none",
     );
     assert_eq!(
-        est.check("big"),
+        est.check("big", budget::BUDGET_S),
         Err(
-            "big: an estimated 601 s of work on one core, above the budget of 600 s \
-             (tools/render/common/budget.rs); most of it, 601 s, is 7 colour tables: reduce \
+            "big: an estimated 121 s of work on one core, above the budget of 120 s \
+             (--budget; tools/render/common/budget.rs); most of it, 121 s, is 7 colour tables: reduce \
              --filter none"
                 .into()
         )
@@ -143,8 +152,8 @@ fn objects_times_shadow_rays_times_bounces_is_refused() {
     assert_eq!(
         e,
         format!(
-            "hall: an estimated {} s of work on one core, above the budget of 600 s \
-             (tools/render/common/budget.rs); most of it, {} s, is {} ray-object tests: reduce \
+            "hall: an estimated {} s of work on one core, above the budget of 120 s \
+             (--budget; tools/render/common/budget.rs); most of it, {} s, is {} ray-object tests: reduce \
              --width/--height, --spp, --frames, --max-depth, the lights' samples or the number \
              of objects",
             budget::short(total * 1e-9),
@@ -153,5 +162,45 @@ fn objects_times_shadow_rays_times_bounces_is_refused() {
         )
     );
     assert!(!out.exists());
+    // `--budget` above the estimate accepts it (a dry run: nothing is rendered or written).
+    let raised = crate::cli::Options {
+        budget: Some(crate::cli::MAX_BUDGET_S),
+        dry_run: true,
+        ..args.clone()
+    };
+    assert!(total * 1e-9 < crate::cli::MAX_BUDGET_S as f64);
+    assert_eq!(crate::run::run(&Flat, &raised), Ok(()));
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--budget` takes whole seconds in [1, 10⁷]; the refusal names the budget given.
+#[test]
+fn the_budget_flag_is_checked_and_used() {
+    let args = |s: &str| -> Vec<String> { s.split_whitespace().map(String::from).collect() };
+    let parse = |s: &str| crate::cli::parse::<crate::Args>(&args(s));
+    for v in ["0", "10000001", "1.5", "-3"] {
+        assert_eq!(
+            parse(&format!("fig4a --budget {v}")),
+            Err(format!(
+                "--budget: expected an integer in [1, 10000000], got \"{v}\""
+            ))
+        );
+    }
+    let Ok(crate::cli::Command::Render(o, _)) = parse("fig4a --budget 300") else {
+        panic!("--budget 300")
+    };
+    assert_eq!(o.budget, Some(300));
+    let mut est = Estimate::default();
+    est.add("1000 camera samples".into(), 2e11, "--spp");
+    assert_eq!(est.check("s", 300.0), Ok(()));
+    assert_eq!(
+        est.check("s", 100.0),
+        Err(
+            "s: an estimated 200 s of work on one core, above the budget of 100 s (--budget; \
+             tools/render/common/budget.rs); most of it, 200 s, is 1000 camera samples: reduce \
+             --spp"
+                .into()
+        )
+    );
 }

@@ -30,6 +30,8 @@ OPTIONS:
                        intensity and constant (default file out/NAME-clipping.png)
     --dry-run          load the scenes, check the outputs and estimate the work (printed),
                        but prepare, render and write nothing
+    --budget S         the work budget of a scene, seconds of one core (1-10000000; default
+                       120, a minute on two cores): a scene estimated above it is refused
     --quiet            no progress bar and no messages
     -h, --help         this text
 ";
@@ -49,9 +51,14 @@ OUTPUTS:
 WORK:
     Before anything is prepared or rendered, each scene's work is estimated (ray-object
     tests, shadow rays, colour evaluations, exposure scans, colour tables; --dry-run prints
-    it) and a scene estimated above 600 s of one core is refused, naming the largest part and
-    the options or scene fields that reduce it (tools/render/common/budget.rs).
+    it) and a scene estimated above the budget (120 s of one core, a minute on two; --budget
+    sets it) is refused, naming the largest part and the options or scene fields that reduce
+    it (tools/render/common/budget.rs). The estimate is within 5x of the CPU time measured for
+    every shipped scene (docs/work_budget.md).
 ";
+
+/// The largest `--budget`, seconds of one core (about four months).
+pub const MAX_BUDGET_S: u64 = 10_000_000;
 
 /// The options of a render that both renderers take.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -84,6 +91,8 @@ pub struct Options {
     pub quiet: bool,
     /// `--dry-run`: check and estimate only.
     pub dry_run: bool,
+    /// `--budget`: the work budget, seconds of one core (default [`crate::budget::BUDGET_S`]).
+    pub budget: Option<u64>,
 }
 
 /// A renderer's own arguments.
@@ -159,6 +168,7 @@ pub fn parse<X: Extra>(args: &[String]) -> Result<Command<X>, String> {
             "--spp" => opts.spp = Some(int(flag, &value()?, 1, MAX_SPP)?),
             "--frames" => opts.frames = Some(int(flag, &value()?, 1, MAX_FRAMES)?),
             "--seed" => opts.seed = Some(int(flag, &value()?, 0, u64::MAX)?),
+            "--budget" => opts.budget = Some(int(flag, &value()?, 1, MAX_BUDGET_S)?),
             "--max-depth" => opts.max_depth = Some(int(flag, &value()?, 0, MAX_DEPTH)?),
             "--strategy" => {
                 let v = value()?;

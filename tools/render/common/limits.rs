@@ -44,6 +44,10 @@ pub const MAX_OBJECTS: usize = 10_000;
 pub const MAX_GRATINGS: usize = 256;
 /// Largest scene file, bytes (4 MiB: about 20 000 commented objects).
 pub const MAX_SCENE_BYTES: u64 = 4 << 20;
+/// Largest efficiency table file a grating's `efficiency` reads, bytes (the shipped presets'
+/// JSON are 31-124 kB; the library's reader keeps its memory within the table's bounds
+/// whatever the file). Its type and size are checked before it is opened.
+pub const MAX_TABLE_BYTES: u64 = 16 << 20;
 /// Largest number of texels of all of a scene's image textures together (4096 × 4096),
 /// checked from each PNG's header before it is decoded.
 pub const MAX_TEXTURE_PIXELS: u64 = 1 << 24;

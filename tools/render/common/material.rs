@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use diffraction::frame::{GratingField, Tile};
-use diffraction::relief::Preset;
+use diffraction::relief::{EfficiencyTable, Preset};
 use diffraction::Illumination;
 use glam::DVec3;
 
@@ -114,9 +114,10 @@ pub struct Loader<'a> {
     /// The scene's name, for the inputs' descriptions.
     pub scene: &'a str,
     images: HashMap<PathBuf, Arc<ImageTexture>>,
+    tables: HashMap<PathBuf, Arc<EfficiencyTable>>,
     texels: u64,
     gratings: std::collections::HashSet<String>,
-    /// The texture files read (inputs of the run, never written over).
+    /// The texture and table files read (inputs of the run, never written over).
     pub inputs: Vec<Input>,
 }
 
@@ -128,6 +129,7 @@ impl<'a> Loader<'a> {
             base,
             scene,
             images: HashMap::new(),
+            tables: HashMap::new(),
             texels: 0,
             gratings: Default::default(),
             inputs: Vec::new(),
@@ -247,6 +249,62 @@ impl<'a> Loader<'a> {
         Ok(t)
     }
 
+    /// The efficiency table of file `name` (relative to the scene file), for the field at
+    /// `path`: a regular file of at most [`limits::MAX_TABLE_BYTES`] (its type and size checked
+    /// before it is opened, so a FIFO or a device is refused without blocking, and read
+    /// through a `take`), UTF-8, the JSON of docs/efficiency_tables.md read by the library's
+    /// bounded reader. One file is read once however many materials name it.
+    fn table(&mut self, name: &str, path: &str) -> Check<Arc<EfficiencyTable>> {
+        use std::io::Read;
+        let file = self.base.join(name);
+        let key = file.canonicalize().unwrap_or_else(|_| file.clone());
+        if let Some(t) = self.tables.get(&key) {
+            return Ok(t.clone());
+        }
+        let err = |msg: String| FieldError::new(path, msg);
+        let cannot = |e: std::io::Error| err(format!("the table {name:?} cannot be read: {e}"));
+        let meta = std::fs::metadata(&file).map_err(cannot)?;
+        let not_regular = || {
+            err(format!(
+                "the table {name:?} is not a regular file (a directory, a device or a FIFO)"
+            ))
+        };
+        if !meta.is_file() {
+            return Err(not_regular());
+        }
+        let max = limits::MAX_TABLE_BYTES;
+        let too_big = |size: u64| {
+            err(format!(
+                "the table {name:?} has {size} bytes, more than the {max} read"
+            ))
+        };
+        if meta.len() > max {
+            return Err(too_big(meta.len()));
+        }
+        let f = std::fs::File::open(&file).map_err(cannot)?;
+        if !f.metadata().map_err(cannot)?.is_file() {
+            return Err(not_regular());
+        }
+        let mut bytes = Vec::new();
+        f.take(max + 1).read_to_end(&mut bytes).map_err(cannot)?;
+        if bytes.len() as u64 > max {
+            return Err(too_big(bytes.len() as u64));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let at = e.utf8_error().valid_up_to();
+            err(format!("the table {name:?} is not UTF-8 (at byte {at})"))
+        })?;
+        let table = serde_json::from_str::<EfficiencyTable>(&text)
+            .map_err(|e| err(format!("the table {name:?}: {e}")))?;
+        let t = Arc::new(table);
+        self.tables.insert(key, t.clone());
+        self.inputs.push(Input::new(
+            format!("an efficiency table of {}", self.scene),
+            &file,
+        ));
+        Ok(t)
+    }
+
     /// The grating of a grating material: its period, the model (`model`, default
     /// "agu-hill", built by the renderer's [`Physics`]), the strategy and the field; and the
     /// material's k_diffraction.
@@ -257,6 +315,30 @@ impl<'a> Loader<'a> {
         base_color: DVec3,
     ) -> Check<(GratingMaterial<P::Grating>, f64)> {
         let f = |name: &str| format!("{path}.{name}");
+        let name = g.model.as_deref().unwrap_or("agu-hill");
+        let Some((_, takes)) = MODELS.iter().find(|(m, _)| *m == name) else {
+            let names: Vec<String> = MODELS.iter().map(|(m, _)| format!("\"{m}\"")).collect();
+            return Err(FieldError::new(
+                f("model"),
+                format!("expected one of {}, got \"{name}\"", names.join(", ")),
+            ));
+        };
+        for (key, is_set) in g.parameters() {
+            if is_set && !takes.contains(&key) {
+                return Err(FieldError::new(
+                    f(key),
+                    format!(
+                        "not used by model \"{name}\" (it takes {})",
+                        takes.join(", ")
+                    ),
+                ));
+            }
+        }
+        // A table file (the model takes `efficiency`: checked above).
+        let table = match g.efficiency.as_deref() {
+            Some(name) if name.ends_with(".json") => Some(self.table(name, &f("efficiency"))?),
+            _ => None,
+        };
         let period = match (g.period_nm, g.lines_per_mm) {
             (Some(_), Some(_)) => {
                 return Err(FieldError::new(
@@ -266,6 +348,8 @@ impl<'a> Loader<'a> {
             }
             (Some(d), None) => check(&f("period_nm"), d, limits::PERIOD_NM)?,
             (None, Some(l)) => 1.0e6 / check(&f("lines_per_mm"), l, limits::LINES_PER_MM)?,
+            // A table's period.
+            (None, None) if table.is_some() => table.as_ref().map_or(0.0, |t| t.period_nm()),
             (None, None) => match g.efficiency.as_deref().map(str::parse::<Preset>) {
                 // A preset's table fixes the period.
                 Some(Ok(preset)) => preset.period_nm(),
@@ -291,26 +375,14 @@ impl<'a> Loader<'a> {
             g.diffraction.unwrap_or(1.0),
             limits::COEFFICIENT,
         )?;
-        let name = g.model.as_deref().unwrap_or("agu-hill");
-        let Some((_, takes)) = MODELS.iter().find(|(m, _)| *m == name) else {
-            let names: Vec<String> = MODELS.iter().map(|(m, _)| format!("\"{m}\"")).collect();
-            return Err(FieldError::new(
-                f("model"),
-                format!("expected one of {}, got \"{name}\"", names.join(", ")),
-            ));
-        };
-        for (key, is_set) in g.parameters() {
-            if is_set && !takes.contains(&key) {
-                return Err(FieldError::new(
-                    f(key),
-                    format!(
-                        "not used by model \"{name}\" (it takes {})",
-                        takes.join(", ")
-                    ),
-                ));
+        let model = match table {
+            Some(table) => {
+                let mut with = g.clone();
+                with.table = Some(table);
+                P::grating(name, &with, period, path)?
             }
-        }
-        let model = P::grating(name, g, period, path)?;
+            None => P::grating(name, g, period, path)?,
+        };
         let (strategy, follows_default) = match &g.strategy {
             Some(s) => (parse_strategy(&f("strategy"), s)?, false),
             None => (self.strategy, true),
@@ -319,8 +391,18 @@ impl<'a> Loader<'a> {
             None => (GratingField::constant(0.0), base_color),
             Some(field) => build_field(field, &f("field"), base_color)?,
         };
-        // Debug prints every parameter exactly (shortest round-trip floats).
-        self.gratings.insert(format!("{model:?} {strategy:?}"));
+        // Debug prints every parameter exactly (shortest round-trip floats). A tabulated
+        // model's Debug would print its whole table: its parameters (the preset's name or the
+        // table's file as written) stand for it.
+        let key = match g.efficiency.as_deref() {
+            Some(e) if e != "amplitude" => {
+                let mut raw = g.clone();
+                (raw.table, raw.field, raw.color) = (None, None, None);
+                format!("{raw:?} {period:?} {strategy:?}")
+            }
+            _ => format!("{model:?} {strategy:?}"),
+        };
+        self.gratings.insert(key);
         if self.gratings.len() > limits::MAX_GRATINGS {
             return Err(FieldError::new(
                 path,

@@ -92,7 +92,7 @@ pub fn scene_path(arg: &str) -> Result<PathBuf, String> {
 
 /// Loads a scene for renderer `R` and applies the command line's overrides; `Ok(None)` for a
 /// scene that is the other renderer's when `skip_others` (every shipped scene is rendered).
-fn load<R: Renderer>(
+pub fn load<R: Renderer>(
     arg: &str,
     opts: &Options,
     skip_others: bool,
@@ -387,7 +387,8 @@ pub fn run<R: Renderer>(r: &R, opts: &Options) -> Result<(), String> {
         limits::work(s.width, s.height, s.spp, frames)
             .map_err(|e| format!("{}: {e}", scene.name))?;
         let estimate = r.estimate(&scene, frames);
-        estimate.check(&scene.name)?;
+        let budget = opts.budget.map_or(crate::budget::BUDGET_S, |b| b as f64);
+        estimate.check(&scene.name, budget)?;
         if opts.dry_run {
             println!(
                 "{}: estimated work {} s of one core ({})",

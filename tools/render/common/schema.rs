@@ -205,7 +205,7 @@ pub enum RawKind {
 
 /// A grating: its geometry, the model (`model`, default "agu-hill") and the model's
 /// parameters (checked against the model in the second stage).
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawGrating {
     /// The diffuse colour under the grating (default 0.7 grey).
@@ -238,10 +238,16 @@ pub struct RawGrating {
     pub reflectance: Option<f64>,
     /// The radiometric grating's Gaussian spread along the grooves.
     pub groove_sigma: Option<f64>,
-    /// The radiometric grating's order efficiencies: "amplitude" (default) or a rigorous
-    /// preset of `diffraction::relief::Preset` ("cd", "dvd", "blazed600", "foil"), whose
-    /// period is then the default `period_nm`.
+    /// The radiometric grating's order efficiencies: "amplitude" (default), a rigorous preset
+    /// of `diffraction::relief::Preset` ("cd", "dvd", "blazed600", "foil"), or the path of a
+    /// JSON efficiency table (a name ending in `.json`, relative to the scene file: the format
+    /// of docs/efficiency_tables.md, as `diffraction-fmm`'s `grating-table` writes it; at most
+    /// `limits::MAX_TABLE_BYTES`, a regular file). A preset's or a table's period is then the
+    /// default `period_nm`.
     pub efficiency: Option<String>,
+    /// The table `efficiency` names, read by the loader (not a key of the file).
+    #[serde(skip)]
+    pub table: Option<std::sync::Arc<diffraction::relief::EfficiencyTable>>,
 }
 
 /// The grating models a scene names (`model`) and the parameters each takes; which of them a
@@ -284,7 +290,7 @@ impl RawGrating {
 }
 
 /// The grating direction across the surface.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum RawField {
     /// `type = "constant"`: one grating direction.
@@ -317,7 +323,7 @@ pub enum RawField {
 }
 
 /// One kind of square of a checkerboard.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Clone, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum RawTile {
     /// No grating (an empty struct variant: a unit variant would accept any key).

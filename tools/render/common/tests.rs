@@ -49,9 +49,8 @@ impl Renderer for Flat {
         let s = &scene.settings;
         let samples = s.width as f64 * s.height as f64 * s.spp as f64 * frames as f64;
         let pilot = budget::pilot(scene, &scene.camera, true);
-        let shadow_rays = scene.lights.iter().map(|l| l.samples as f64).sum();
         let mut est = Estimate::default();
-        budget::tracing(&mut est, samples, &pilot, scene.objects.len(), shadow_rays);
+        budget::tracing(&mut est, samples, &pilot, scene.objects.len());
         est
     }
 

@@ -58,7 +58,12 @@ mod surface;
 mod whitted;
 
 #[cfg(test)]
+#[path = "../common/calibration_tests.rs"]
+mod calibration_tests;
+#[cfg(test)]
 mod paper_tests;
+#[cfg(test)]
+mod table_tests;
 #[cfg(test)]
 mod tests;
 
@@ -207,28 +212,36 @@ impl run::Renderer for Integrator {
         let objects = scene.objects.len();
         match self {
             Integrator::Path => {
-                // Every path that hits goes on to max_depth vertices (Russian roulette and the
-                // sky end most sooner), each on a grating as often as the camera rays are.
-                let pilot = budget::pilot(scene, &scene.camera, false);
-                let per_sample = pilot.hits * s.max_depth.max(1) as f64;
-                let traced = budget::Pilot {
-                    rays: 1.0 + per_sample,
-                    hits: per_sample,
-                    grating_hits: 0.0,
+                // The integrator's own paths through a grid of pixel centres: their rays,
+                // vertices, shadow rays and grating vertices per camera sample.
+                let options = PathOptions {
+                    grating_sampler: true,
+                    max_depth: s.max_depth,
                 };
-                budget::tracing(&mut est, samples, &traced, objects, 1.0);
-                let on_gratings = samples * per_sample * pilot.grating_hits / pilot.hits.max(1e-9);
+                let p = path::pilot(scene, &scene.camera, options);
+                let traced = budget::Pilot {
+                    rays: p.rays,
+                    hits: p.vertices,
+                    grating_hits: p.grating_vertices,
+                    shadow_rays: p.shadow_rays,
+                    lit: 0.0,
+                    lit_samples: 0.0,
+                };
+                budget::tracing(&mut est, samples, &traced, objects);
+                let on_gratings = samples * p.grating_vertices;
+                let (bsdf_ns, what) = dearest_bsdf(scene);
                 est.add(
-                    format!("{} grating BSDF evaluations", budget::count(on_gratings)),
-                    on_gratings * budget::BSDF_NS,
+                    format!(
+                        "{} grating BSDF evaluations ({what})",
+                        budget::count(on_gratings)
+                    ),
+                    on_gratings * bsdf_ns,
                     "--width/--height, --spp, --frames or --max-depth",
                 );
             }
             Integrator::Whitted => {
                 let pilot = budget::pilot(scene, &scene.camera, true);
-                let light_samples: f64 =
-                    scene.units.emitters.iter().map(|e| e.samples as f64).sum();
-                budget::tracing(&mut est, samples, &pilot, objects, light_samples);
+                budget::tracing(&mut est, samples, &pilot, objects);
                 let dearest = scene
                     .materials
                     .iter()
@@ -247,7 +260,7 @@ impl run::Renderer for Integrator {
                         )
                     })
                     .fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a });
-                let colours = samples * pilot.grating_hits * light_samples;
+                let colours = samples * pilot.lit_samples;
                 est.add(
                     format!(
                         "{} colour evaluations ({})",
@@ -297,6 +310,26 @@ impl run::Renderer for Integrator {
             Integrator::Whitted => "whitted",
         }
     }
+}
+
+/// The cost of one vertex on the dearest grating of `scene` (a tabulated one's BSDF reads its
+/// efficiency table), ns, and which it is.
+fn dearest_bsdf(scene: &Scene<Radiometric>) -> (f64, String) {
+    scene
+        .materials
+        .iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.grating.as_ref().map(|g| (i, g)))
+        .map(|(i, g)| {
+            let tabulated = g.model.order_efficiency().is_tabulated();
+            let ns = match tabulated {
+                true => budget::BSDF_TABLE_NS,
+                false => budget::BSDF_NS,
+            };
+            let kind = if tabulated { "tabulated" } else { "amplitude" };
+            (ns, format!("{kind} efficiencies of objects[{i}].material"))
+        })
+        .fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a })
 }
 
 fn main() -> ExitCode {

@@ -28,6 +28,7 @@ use diffraction::color::Xyz;
 use diffraction::{Band, SampledWavelengths};
 use glam::{DVec2, DVec3};
 
+use crate::budget;
 use crate::camera::{self, Camera, CameraRays};
 use crate::geometry::{nearest, occluded, Ray, SHADOW_REACH};
 use crate::output::Image;
@@ -136,9 +137,41 @@ fn emitted(r: &Radiometry, e: &Emitter, l: &SampledWavelengths) -> [f64; 4] {
 pub fn li(
     scene: &Scene<Radiometric>,
     camera_ray: &Ray,
+    lambdas: SampledWavelengths,
+    rng: &mut Rng,
+    options: PathOptions,
+) -> [f64; 4] {
+    li_counted(
+        scene,
+        camera_ray,
+        lambdas,
+        rng,
+        options,
+        &mut Counts::default(),
+    )
+}
+
+/// What one path did, for the work estimate's pilot ([`pilot`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Counts {
+    /// Rays tested against every object (the camera ray and one per bounce).
+    pub rays: u64,
+    /// Vertices shaded (a surface, its light sample and its BSDF sample).
+    pub vertices: u64,
+    /// Shadow rays (each tested against every object).
+    pub shadow_rays: u64,
+    /// Vertices on a grating (its BSDF evaluated and sampled).
+    pub grating_vertices: u64,
+}
+
+/// [`li`], counting its work into `counts`.
+pub fn li_counted(
+    scene: &Scene<Radiometric>,
+    camera_ray: &Ray,
     mut lambdas: SampledWavelengths,
     rng: &mut Rng,
     options: PathOptions,
+    counts: &mut Counts,
 ) -> [f64; 4] {
     let r = &scene.units;
     let mut l = [0.0; 4];
@@ -153,6 +186,7 @@ pub fn li(
     let n_lights = r.emitters.len();
     let mut depth = 0u32;
     loop {
+        counts.rays += 1;
         let hit = nearest(&scene.objects, &ray, f64::INFINITY);
         let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
         if let Some((i, _)) = nearest_emitter(r, &ray, t_hit) {
@@ -188,6 +222,8 @@ pub fn li(
             break;
         }
         let surface = Surface::at(scene, &hit);
+        counts.vertices += 1;
+        counts.grating_vertices += surface.grating.is_some() as u64;
         let wo = surface.frame.to_local(-ray.dir);
         let origin = hit.spawn_point();
 
@@ -206,6 +242,7 @@ pub fn li(
             };
             if let Some((dir, dist, pdf)) = sampled {
                 let wi = surface.frame.to_local(dir);
+                counts.shadow_rays += (wi.z > 0.0 && wo.z > 0.0) as u64;
                 if wi.z > 0.0
                     && wo.z > 0.0
                     && !occluded(&scene.objects, &Ray::new(origin, dir), dist * SHADOW_REACH)
@@ -282,4 +319,61 @@ pub fn li(
     }
     // Guard the film against a non-finite value from a degenerate configuration.
     l.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 })
+}
+
+/// The seed of the pilot's paths (any fixed value: the estimate is deterministic).
+const PILOT_SEED: u64 = 0x9110;
+
+/// What a path does per camera sample, from the integrator's own paths through a grid of
+/// pixel centres (fixed seeds, so the same scene gives the same numbers; at most
+/// [`budget::PILOT_TESTS`] ray-object tests): its rays, vertices, shadow rays and grating
+/// vertices, Russian roulette and the sky included. The estimate of `--integrator path`
+/// multiplies them by the camera samples ([`crate::Integrator::estimate`]).
+pub fn pilot(scene: &Scene<Radiometric>, camera: &Camera, options: PathOptions) -> Counts64 {
+    let s = &scene.settings;
+    let objects = scene.objects.len().max(1) as f64;
+    let per_path = 2.0 * (1.0 + options.max_depth as f64);
+    let n = (budget::PILOT_TESTS / (objects * per_path)).clamp(16.0, 1024.0);
+    let aspect = s.width as f64 / s.height as f64;
+    let cols = ((n * aspect).sqrt().round() as u32).clamp(1, s.width);
+    let rows = ((n / aspect).sqrt().round() as u32).clamp(1, s.height);
+    let rays = CameraRays::new(camera, s.width, s.height);
+    let mut counts = Counts::default();
+    let paths = cols as u64 * rows as u64;
+    for k in 0..paths {
+        let (i, j) = (k % cols as u64, k / cols as u64);
+        let x = (i as f64 + 0.5) / cols as f64 * s.width as f64;
+        let y = (j as f64 + 0.5) / rows as f64 * s.height as f64;
+        let mut rng = Rng::new(PILOT_SEED ^ k);
+        let u = (k as f64 + 0.5) / paths as f64;
+        let lambdas = SampledWavelengths::sample_uniform(u, Band::VISIBLE);
+        li_counted(
+            scene,
+            &rays.ray(x, y),
+            lambdas,
+            &mut rng,
+            options,
+            &mut counts,
+        );
+    }
+    let per = 1.0 / paths as f64;
+    Counts64 {
+        rays: counts.rays as f64 * per,
+        vertices: counts.vertices as f64 * per,
+        shadow_rays: counts.shadow_rays as f64 * per,
+        grating_vertices: counts.grating_vertices as f64 * per,
+    }
+}
+
+/// [`Counts`] per camera sample (means over the pilot's paths).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Counts64 {
+    /// Rays tested against every object.
+    pub rays: f64,
+    /// Vertices shaded.
+    pub vertices: f64,
+    /// Shadow rays.
+    pub shadow_rays: f64,
+    /// Vertices on a grating.
+    pub grating_vertices: f64,
 }

@@ -281,6 +281,26 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
     };
     match g.efficiency.as_deref() {
         None | Some("amplitude") => Ok(bsdf),
+        // A table file, read by the loader.
+        Some(name) if name.ends_with(".json") => {
+            let Some(table) = g.table.clone() else {
+                return Err(FieldError::new(f("efficiency"), "the table was not read"));
+            };
+            if table.period_nm() != period {
+                return Err(FieldError::new(
+                    f("period_nm"),
+                    format!(
+                        "the table {name:?} is tabulated for a period of {} nm, got {period} \
+                         (leave period_nm out to take the table's)",
+                        table.period_nm()
+                    ),
+                ));
+            }
+            let efficiency =
+                OrderEfficiency::from_table(table).map_err(|e| model_error(g, path, e))?;
+            bsdf.with_efficiency(efficiency)
+                .map_err(|e| model_error(g, path, e))
+        }
         Some(name) => {
             let preset: Preset = name.parse().map_err(|e: diffraction::ParseError| {
                 FieldError::new(f("efficiency"), format!("{e} or amplitude, got \"{name}\""))

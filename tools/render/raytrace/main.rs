@@ -58,6 +58,9 @@ mod whitted;
 #[path = "../common/budget_tests.rs"]
 mod budget_tests;
 #[cfg(test)]
+#[path = "../common/calibration_tests.rs"]
+mod calibration_tests;
+#[cfg(test)]
 #[path = "../common/tests.rs"]
 mod common_tests;
 #[cfg(test)]
@@ -187,9 +190,8 @@ impl run::Renderer for Raytracer {
         let s = &scene.settings;
         let samples = s.width as f64 * s.height as f64 * s.spp as f64 * frames as f64;
         let pilot = budget::pilot(scene, &scene.camera, true);
-        let shadow_rays: f64 = scene.lights.iter().map(|l| l.samples as f64).sum();
         let mut est = Estimate::default();
-        budget::tracing(&mut est, samples, &pilot, scene.objects.len(), shadow_rays);
+        budget::tracing(&mut est, samples, &pilot, scene.objects.len());
         let gratings = scene.materials.iter().enumerate();
         let gratings = gratings.filter_map(|(i, m)| m.grating.as_ref().map(|g| (i, g)));
         let tabled = |g: &material::GratingMaterial<model::Model>| {
@@ -222,7 +224,7 @@ impl run::Renderer for Raytracer {
             n * scans,
             "the number of distinct gratings or their models' parameters",
         );
-        let colours = samples * pilot.grating_hits * scene.lights.len() as f64;
+        let colours = samples * pilot.lit;
         est.add(
             format!(
                 "{} colour evaluations ({})",

@@ -38,7 +38,7 @@ fn away_ns(objects: usize) -> f64 {
     192.0 * budget::SAMPLE_NS + 192.0 * objects as f64 * budget::RAY_TEST_NS
 }
 
-/// 256 Stam gratings of depth 10⁴ nm: 256 exposure scans of about 8 s each. One is accepted.
+/// 256 Stam gratings of depth 10⁴ nm: 256 exposure scans, estimated 2.8 s each (up to 6 s measured). One is accepted.
 #[cfg(feature = "stam")]
 #[test]
 fn deep_stam_exposure_scans_are_bounded() {
@@ -48,7 +48,7 @@ fn deep_stam_exposure_scans_are_bounded() {
             38888 + i
         )
     };
-    let scans = 256.0 * 4001.0 * 2e6;
+    let scans = 256.0 * 4001.0 * 7e5;
     let e = crate::run::run(
         &Raytracer::default(),
         &opts(&write("stam", &looking_away(256, &stam))),
@@ -56,17 +56,17 @@ fn deep_stam_exposure_scans_are_bounded() {
     assert_eq!(
         e,
         Err(format!(
-            "stam: an estimated {} s of work on one core, above the budget of 600 s \
-             (tools/render/common/budget.rs); most of it, {} s, is 256 exposure scans of 4001 colours \
+            "stam: an estimated {} s of work on one core, above the budget of 120 s \
+             (--budget; tools/render/common/budget.rs); most of it, {} s, is 256 exposure scans of 4001 colours \
              each: reduce the number of distinct gratings or their models' parameters",
             budget::short((scans + away_ns(256)) * 1e-9),
             budget::short(scans * 1e-9)
         ))
     );
     let one = Raytracer::default().estimate(&parse(&looking_away(1, &stam)), 1);
-    let expected = (4001.0 * 2e6 + away_ns(1)) * 1e-9;
+    let expected = (4001.0 * 7e5 + away_ns(1)) * 1e-9;
     assert!((one.seconds() / expected - 1.0).abs() < 1e-12, "{one:?}");
-    assert_eq!(one.check("one"), Ok(()));
+    assert_eq!(one.check("one", budget::BUDGET_S), Ok(()));
 }
 
 fn write(name: &str, src: &str) -> std::path::PathBuf {
@@ -85,7 +85,7 @@ fn opts(file: &Path) -> crate::cli::Options {
     }
 }
 
-/// 256 distinct gratings with `--filter footprint`: 256 table builds, counted (128 s) and
+/// 256 distinct gratings with `--filter footprint`: 256 table builds, counted (3.8 s) and
 /// within the budget; with the paper's filter off, none.
 #[test]
 fn colour_tables_are_counted() {
@@ -105,7 +105,7 @@ fn colour_tables_are_counted() {
         tables(&with),
         Some(("256 colour tables".into(), 256.0 * budget::TABLE_NS))
     );
-    assert_eq!(with.check("tables"), Ok(()));
+    assert_eq!(with.check("tables", budget::BUDGET_S), Ok(()));
     // The whole: 256 exposure scans (one per distinct grating) and the camera rays, which see
     // nothing.
     let scans: f64 = scene
@@ -134,7 +134,7 @@ fn the_quick_sweep_refuses_or_renders() {
         let base = parse(&scene_of(objects, samples, depth, "peaks", 16));
         for (strategy, width) in variants() {
             let est = Raytracer::default().estimate(&variant(&base, strategy, width), 1);
-            match est.check("case") {
+            match est.check("case", budget::BUDGET_S) {
                 Err(e) => {
                     refused += 1;
                     assert!(est.seconds() > budget::BUDGET_S, "{e}");
@@ -255,4 +255,69 @@ fn cpu_seconds() -> f64 {
             .unwrap_or(0.0)
     };
     (tick(11) + tick(12)) / TICKS
+}
+
+/// The ray tracer's rows of `tools/render/budget_calibration.csv`: each estimate within 5× of
+/// its measured CPU time (the measurement is the file's; nothing is timed here).
+#[test]
+fn the_estimates_stay_within_five_times_the_measured_time() {
+    let checked = crate::calibration_tests::check(
+        "raytrace",
+        |args| match crate::cli::parse::<crate::Args>(args).unwrap() {
+            crate::cli::Command::Render(o, a) => (Raytracer { filter: a.filter }, o),
+            crate::cli::Command::Help => panic!("{args:?}"),
+        },
+        // The baselines' scene needs the feature `stam`.
+        |row| !cfg!(feature = "stam") && row.args.iter().any(|a| a.ends_with("compare.toml")),
+    );
+    assert_eq!(checked.len(), if cfg!(feature = "stam") { 12 } else { 11 });
+}
+
+/// The reproducer `work_limits_multiply` (tools/render/tests/data): 2³² camera samples (4096 ×
+/// 4096 pixels × 256), four lights of 1024 samples, 64 bounces between two grating mirrors of
+/// d = 10⁵ nm with the `exact` colour, each value within its limit. Refused before any scan or
+/// pixel, the estimate in closed form: every ray bounces 64 times, every hit is on a grating
+/// and sees the four lights; nothing is written.
+#[test]
+fn work_limits_that_multiply_are_refused_with_the_estimate() {
+    let src = include_str!("../tests/data/work_limits_multiply.toml");
+    let dir = crate::common_tests::scratch("work_limits_multiply");
+    let file = dir.join("work_limits_multiply.toml");
+    std::fs::write(&file, src).unwrap();
+    let e = crate::run::run(&Raytracer::default(), &opts(&file)).unwrap_err();
+    let samples = 2f64.powi(32);
+    let hits = samples * 65.0;
+    let shadow = hits * 4096.0;
+    let tests = (samples * 65.0 + shadow) * 2.0;
+    let scene = parse(src);
+    let scan =
+        crate::model::exposure_strategy(scene.materials[0].grating.as_ref().unwrap().strategy);
+    let integrand = scene.materials[0]
+        .grating
+        .as_ref()
+        .unwrap()
+        .model
+        .integrand();
+    let colours = hits * 4.0;
+    let colour_ns = 3e5 + 45.0 * 1e5;
+    let total = samples * budget::SAMPLE_NS
+        + hits * budget::HIT_NS
+        + shadow * budget::SHADOW_NS
+        + tests * budget::RAY_TEST_NS
+        + 4001.0 * budget::colour_ns(&scene.spectral, integrand, scan)
+        + colours * colour_ns;
+    assert_eq!(
+        e,
+        format!(
+            "work_limits_multiply: an estimated {} s of work on one core, above the budget of \
+             120 s (--budget; tools/render/common/budget.rs); most of it, {} s, is {} colour \
+             evaluations (strategy exact of objects[0].material): reduce --width/--height, \
+             --spp, --frames, the number of lights, or a cheaper --strategy or material strategy",
+            budget::short(total * 1e-9),
+            budget::short(colours * colour_ns * 1e-9),
+            budget::count(colours)
+        )
+    );
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,0 +1,155 @@
+//! A grating's `efficiency` naming a JSON efficiency table (docs/efficiency_tables.md), relative
+//! to the scene file: read with bounded work and memory, its period the default, and every
+//! refusal naming the scene file, the line, the field and the cause.
+
+use std::path::{Path, PathBuf};
+
+use crate::radiometry::Radiometric;
+use crate::run::Renderer;
+use crate::scene;
+use crate::Integrator;
+
+/// A valid table of three orders over two wavelengths and two incidences (d = 1000 nm), as
+/// the library's JSON tests write it.
+const TABLE: &str = r#"{"format": "diffraction-efficiency-table", "version": 1, "name": "t",
+"description": "", "grating": {"profile": "sinusoid", "period_nm": 1000.0, "depth_nm": 100.0,
+"duty": null, "blaze_deg": null, "metal": "Al", "cover": "none"}, "symmetric": true,
+"sin_theta_i": [0.0, 0.5], "lambda_nm": [500.0, 600.0], "order_min": -1, "order_max": 1,
+"te": [[[0.1, 0.2], [0.1, 0.3]], [[0.5, 0.5], [0.5, 0.5]], [[0.1, 0.0], [0.1, 0.0]]],
+"tm": [[[0.1, 0.2], [0.1, 0.3]], [[0.5, 0.5], [0.5, 0.5]], [[0.1, 0.0], [0.1, 0.0]]],
+"solver": {"method": "x"}, "validation": {}, "command": "", "sha256": "0"}"#;
+
+/// A scene whose one grating (line 12) has `efficiency = "{efficiency}"` and `extra` after it.
+fn scene_src(efficiency: &str, extra: &str) -> String {
+    format!(
+        "[radiometry]\nexposure = 1.0\n[camera]\nposition = [0.0, 1.0, 0.0]\n\
+         look_at = [0.0, 0.0, 0.3]\n[[objects]]\nshape = \"quad\"\n[objects.material]\n\
+         type = \"grating\"\nmodel = \"radiometric\"\ndiffuse = 0.0\n\
+         efficiency = \"{efficiency}\"\n{extra}"
+    )
+}
+
+/// A fresh directory with `tables/` in it.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("pathtrace-table-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("tables")).unwrap();
+    dir
+}
+
+fn load(dir: &Path, src: &str) -> Result<scene::Scene<Radiometric>, String> {
+    let file = dir.join("t.toml");
+    std::fs::write(&file, src).unwrap();
+    scene::load::<Radiometric>(&file).map_err(|e| e.to_string())
+}
+
+#[test]
+fn a_table_file_is_the_gratings_efficiencies_and_period() {
+    let dir = scratch("ok");
+    std::fs::write(dir.join("tables/t.json"), TABLE).unwrap();
+    let mut scene = load(&dir, &scene_src("tables/t.json", "")).unwrap();
+    let g = scene.materials[0].grating.as_ref().unwrap();
+    assert_eq!(g.model.grating().period_nm(), 1000.0);
+    assert!(g.model.order_efficiency().is_tabulated());
+    // The table is an input of the run (never written over).
+    let table = dir.join("tables/t.json");
+    let table = table.canonicalize().unwrap();
+    assert!(
+        scene.inputs.iter().any(|i| i.path == table),
+        "{:?}",
+        scene.inputs
+    );
+    // The same period given is taken; another is refused, naming both.
+    assert!(load(&dir, &scene_src("tables/t.json", "period_nm = 1000.0\n")).is_ok());
+    assert_eq!(
+        load(&dir, &scene_src("tables/t.json", "period_nm = 1600.0\n")).unwrap_err(),
+        format!(
+            "{}: line 13, field objects[0].material.period_nm: the table \"tables/t.json\" is \
+             tabulated for a period of 1000 nm, got 1600 (leave period_nm out to take the \
+             table's)",
+            dir.join("t.toml").display()
+        )
+    );
+    // Both integrators render it, finite.
+    scene.settings.width = 8;
+    scene.settings.height = 6;
+    scene.settings.spp = 2;
+    for integrator in [Integrator::Path, Integrator::Whitted] {
+        let img = integrator.render(&scene, &scene.camera, None);
+        assert!(img.pixels.iter().all(|p| p.is_finite()), "{integrator:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_hostile_table_file_is_refused_naming_the_field() {
+    let dir = scratch("hostile");
+    std::fs::create_dir_all(dir.join("tables/dir.json")).unwrap();
+    std::fs::write(dir.join("tables/bad.json"), "{\"format\": ").unwrap();
+    std::fs::write(dir.join("tables/latin1.json"), b"{\"name\": \"\xe9\"}").unwrap();
+    std::fs::write(
+        dir.join("tables/v2.json"),
+        TABLE.replace("\"version\": 1", "\"version\": 2"),
+    )
+    .unwrap();
+    let big = std::fs::File::create(dir.join("tables/big.json")).unwrap();
+    big.set_len(crate::limits::MAX_TABLE_BYTES + 1).unwrap();
+    let fifo = dir.join("tables/fifo.json");
+    let has_fifo = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success());
+    let at = format!(
+        "{}: line 12, field objects[0].material.efficiency: the table",
+        dir.join("t.toml").display()
+    );
+    let mut cases = vec![
+        (
+            "tables/missing.json",
+            "\"tables/missing.json\" cannot be read: No such file or directory (os error 2)"
+                .to_string(),
+        ),
+        (
+            "tables/dir.json",
+            "\"tables/dir.json\" is not a regular file (a directory, a device or a FIFO)".into(),
+        ),
+        (
+            "tables/big.json",
+            "\"tables/big.json\" has 16777217 bytes, more than the 16777216 read".into(),
+        ),
+        (
+            "tables/latin1.json",
+            "\"tables/latin1.json\" is not UTF-8 (at byte 10)".into(),
+        ),
+        (
+            "tables/bad.json",
+            "\"tables/bad.json\": format: EOF while parsing a value at line 1 column 11".into(),
+        ),
+        (
+            "tables/v2.json",
+            "\"tables/v2.json\": version: expected 1, got 2 at line 7 column 74".into(),
+        ),
+    ];
+    if has_fifo {
+        cases.push((
+            "tables/fifo.json",
+            "\"tables/fifo.json\" is not a regular file (a directory, a device or a FIFO)".into(),
+        ));
+    }
+    for (file, expected) in cases {
+        let e = load(&dir, &scene_src(file, "")).unwrap_err();
+        assert_eq!(e, format!("{at} {expected}"), "{file}");
+    }
+    // A model that takes no `efficiency` is refused by that rule, before any file is read.
+    let paper = scene_src("tables/missing.json", "")
+        .replace("model = \"radiometric\"", "model = \"agu-hill\"");
+    assert_eq!(
+        load(&dir, &paper).unwrap_err(),
+        format!(
+            "{}: line 12, field objects[0].material.efficiency: not used by model \"agu-hill\" \
+             (it takes slit_width_nm, slits)",
+            dir.join("t.toml").display()
+        )
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
