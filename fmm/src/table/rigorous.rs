@@ -11,9 +11,10 @@ pub struct Rigorous {
     pub grating: Grating,
     /// The solver and its options.
     pub solver: Solver,
-    /// A solve that reaches the harmonic cap with its last change at most this (absolute) is
-    /// taken at the cap's count instead of failing the build (0: never). The table's tolerance
-    /// is usually ten times the solver's: `grating-table` uses a quarter of the table's.
+    /// A solve that reaches the harmonic cap is taken at the cap's count (never failing the
+    /// build); one whose last change exceeds this (absolute) is also marked unconverged and
+    /// counted in the build's report (`BuildReport::unconverged`). The table's tolerance is
+    /// usually ten times the solver's: `grating-table` uses a quarter of the table's.
     pub accept_unconverged: f64,
 }
 
@@ -34,12 +35,34 @@ impl OrderSolver for Rigorous {
     /// solved 10⁻⁹ off it, as `python_ref` does: the appearing order's efficiency grows like the
     /// square root of the distance, so this changes it by about 3·10⁻⁵ of its scale.
     fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String> {
-        let s = off_rayleigh(&self.grating, sin_theta_i, lambda_nm);
-        let inc = Incidence::classical(s, lambda_nm).map_err(|e| e.to_string())?;
+        self.solve_marked(sin_theta_i, 0.0, lambda_nm).map(|r| r.0)
+    }
+
+    /// The full vector (conical) solve at β ≠ 0; TE and TM are the incident s and p
+    /// polarisations.
+    fn solve_conical(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Result<Orders, String> {
+        self.solve_marked(alpha, beta, lambda_nm).map(|r| r.0)
+    }
+
+    /// A solve that reaches the harmonic cap is never a failure of the build: it is taken at
+    /// the cap's count, and marked with its last change when that exceeds
+    /// [`accept_unconverged`](Self::accept_unconverged).
+    fn solve_marked(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+    ) -> Result<(Orders, Option<f64>), String> {
+        let s = off_rayleigh(&self.grating, alpha, beta, lambda_nm);
+        let inc = Incidence::from_cosines(s, beta, lambda_nm).map_err(|e| e.to_string())?;
+        let mut mark = None;
         let sol = match self.solver.solve(&self.grating, inc) {
             Err(crate::Error::NotConverged {
                 harmonics, change, ..
-            }) if change <= self.accept_unconverged => {
+            }) => {
+                if !(change <= self.accept_unconverged) {
+                    mark = Some(if change.is_finite() { change } else { 1.0 });
+                }
                 self.solver.solve_at(&self.grating, inc, harmonics)
             }
             r => r,
@@ -58,21 +81,22 @@ impl OrderSolver for Rigorous {
             out.te[k] = o.te;
             out.tm[k] = o.tm;
         }
-        Ok(out)
+        Ok((out, mark))
     }
 }
 
 /// The distance by which a solve is moved off a Rayleigh line.
 const RAYLEIGH_NUDGE: f64 = 1e-9;
 
-fn off_rayleigh(g: &Grating, s: f64, lambda_nm: f64) -> f64 {
+fn off_rayleigh(g: &Grating, s: f64, beta: f64, lambda_nm: f64) -> f64 {
     let media = [1.0, g.cover.map_or(1.0, |c| c.index)];
     let ratio = lambda_nm / g.period_nm;
     let on_line = |s: f64| {
         let m_max = ((media[1] + 1.0) / ratio).ceil().min(1e5) as i64;
         (-m_max..=m_max).any(|m| {
-            let a = (s + m as f64 * ratio).abs();
-            media.iter().any(|n| (a - n).abs() < 1e-12)
+            let a = s + m as f64 * ratio;
+            let q = (a * a + beta * beta).sqrt();
+            media.iter().any(|n| (q - n).abs() < 1e-12)
         })
     };
     let mut s = s;
