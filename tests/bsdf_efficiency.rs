@@ -94,11 +94,15 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
         "scalar sinusoid".into(),
         GratingBsdf::new(g).with_efficiency(e).unwrap(),
     ));
-    let e = OrderEfficiency::from_table(conical_table()).unwrap();
-    out.push((
-        "conical sinusoid".into(),
-        GratingBsdf::new(g).with_efficiency(e).unwrap(),
-    ));
+    // Not for N = 1: its groove lobe is about λ/d wide in v, across which the albedo (read at
+    // the lobe's centre wi.y = −wo.y) does not follow the conical table's β dependence.
+    if slits != Slits::Finite(1) {
+        let e = OrderEfficiency::from_table(conical_table()).unwrap();
+        out.push((
+            "conical sinusoid".into(),
+            GratingBsdf::new(g).with_efficiency(e).unwrap(),
+        ));
+    }
     out
 }
 

@@ -43,7 +43,7 @@ mod json;
 mod rigorous;
 
 pub use json::TableMeta;
-pub use rigorous::Rigorous;
+pub use rigorous::{Mapped, Rigorous};
 
 /// The reflected orders of one solve: `te[k]`, `tm[k]` are the efficiencies of order
 /// `order_min + k`. Orders not listed, and evanescent ones, count as 0.

@@ -261,3 +261,97 @@ fn a_conical_table_read_at_the_reference_cases() {
     );
     let _ = rig.period_nm();
 }
+
+/// The conical-to-classical mapping ([`diffraction_fmm::table::Mapped`]) against the full
+/// conical solve, per profile type, at equal truncation (so the difference is the mapping's):
+/// θ = 30, 60°, φ = 30, 60, 80°, λ = 450, 550, 650 nm.
+#[test]
+#[ignore = "a few minutes of solves: a measurement, run with --ignored --nocapture"]
+fn mapping_against_the_conical_solve_per_profile() {
+    use diffraction_fmm::table::{Mapped, Rigorous};
+    let al = Metal::AL;
+    let profiles: Vec<(&str, Grating, usize)> = vec![
+        (
+            "sinusoid d 1000 h 100 (foil)",
+            Grating {
+                period_nm: 1000.0,
+                profile: Profile::Sinusoid { depth_nm: 100.0 },
+                metal: al,
+                cover: None,
+            },
+            41,
+        ),
+        (
+            "sinusoid d 1000 h 300",
+            Grating {
+                period_nm: 1000.0,
+                profile: Profile::Sinusoid { depth_nm: 300.0 },
+                metal: al,
+                cover: None,
+            },
+            41,
+        ),
+        (
+            "lamellar d 1600 h 110 duty 0.3125 (CD in air)",
+            Grating {
+                period_nm: 1600.0,
+                profile: Profile::Lamellar {
+                    duty: 0.3125,
+                    depth_nm: 110.0,
+                },
+                metal: al,
+                cover: None,
+            },
+            61,
+        ),
+        (
+            "sawtooth 600 l/mm blaze 8.63 (blazed600)",
+            Grating {
+                period_nm: 1e6 / 600.0,
+                profile: Profile::Sawtooth {
+                    blaze: (500.0f64 / (2.0 * 1e6 / 600.0)).asin(),
+                },
+                metal: al,
+                cover: None,
+            },
+            61,
+        ),
+    ];
+    let solver = Solver::default();
+    for (name, g, nh) in profiles {
+        let mapped = Mapped(Rigorous {
+            grating: g.clone(),
+            solver,
+            accept_unconverged: 0.0,
+        });
+        let mut pairs = Vec::new();
+        let mut worst: f64 = 0.0;
+        for lam in [450.0, 550.0, 650.0] {
+            for theta in [30.0f64, 60.0] {
+                for phi in [30.0f64, 60.0, 80.0] {
+                    let (t, p) = (theta.to_radians(), phi.to_radians());
+                    let (a, b) = (t.sin() * p.cos(), t.sin() * p.sin());
+                    let full = solver
+                        .solve_at(&g, Incidence::from_cosines(a, b, lam).unwrap(), nh)
+                        .unwrap();
+                    let cb = (1.0 - b * b).sqrt();
+                    let gm = mapped.mapped_grating(b, lam).unwrap();
+                    let m = solver
+                        .solve_at(&gm, Incidence::classical(a / cb, lam / cb).unwrap(), nh)
+                        .unwrap();
+                    for o in &full.orders {
+                        let got = unpolarised(&m, o.m);
+                        pairs.push((o.unpolarised(), got));
+                        worst = worst.max((got - o.unpolarised()).abs());
+                    }
+                }
+            }
+        }
+        let sc = score(&pairs);
+        println!(
+            "{name}: mapping within 10 % for {:.1} % of {} orders with eta >= 1 %, max abs error {worst:.3}",
+            pct(sc),
+            sc.1
+        );
+    }
+}

@@ -112,3 +112,79 @@ fn off_rayleigh(g: &Grating, s: f64, beta: f64, lambda_nm: f64) -> f64 {
     }
     s
 }
+
+/// The conical-to-classical mapping as an [`OrderSolver`]: a conical node (α, β, λ) is solved as
+/// the classical problem at λ' = λ/√(1 − β²), s' = α/√(1 − β²), with every medium's
+/// permittivity ε' = (ε − β²)/(1 − β²) (the metal's n + ik at λ, and the cover's). Exact for
+/// perfect conductors; for metals an approximation whose error is measured against the full
+/// conical solve in `fmm/tests/conical_reading.rs` (`docs/efficiency_tables.md`, "Conical
+/// tables"). Its TE and TM are the E-along-the-grooves and H-along-the-grooves waves, not s and
+/// p; their mean is the unpolarised efficiency. Cheaper than the vector solve (two scalar
+/// problems of half the size).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mapped(pub Rigorous);
+
+/// √z with a non-negative imaginary part, as (re, im).
+fn sqrt_upper(re: f64, im: f64) -> (f64, f64) {
+    let r = re.hypot(im);
+    (
+        ((r + re) / 2.0).max(0.0).sqrt(),
+        ((r - re) / 2.0).max(0.0).sqrt(),
+    )
+}
+
+impl Mapped {
+    /// The mapped classical grating at λ for β.
+    pub fn mapped_grating(&self, beta: f64, lambda_nm: f64) -> Result<Grating, String> {
+        let g = &self.0.grating;
+        let c = 1.0 - beta * beta;
+        let (n, k) = g.metal.index(lambda_nm);
+        let (er, ei) = ((n * n - k * k - beta * beta) / c, 2.0 * n * k / c);
+        let (np, kp) = sqrt_upper(er, ei);
+        let metal = diffraction::relief::Metal::custom(np, kp).map_err(|e| e.to_string())?;
+        let cover = g.cover.map(|cv| crate::Cover {
+            index: ((cv.index * cv.index - beta * beta) / c).sqrt(),
+            ..cv
+        });
+        Ok(Grating {
+            metal,
+            cover,
+            ..g.clone()
+        })
+    }
+}
+
+impl OrderSolver for Mapped {
+    fn period_nm(&self) -> f64 {
+        self.0.period_nm()
+    }
+
+    fn mirror_symmetric(&self) -> bool {
+        self.0.mirror_symmetric()
+    }
+
+    fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String> {
+        self.0.solve(sin_theta_i, lambda_nm)
+    }
+
+    fn solve_conical(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Result<Orders, String> {
+        self.solve_marked(alpha, beta, lambda_nm).map(|r| r.0)
+    }
+
+    fn solve_marked(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+    ) -> Result<(Orders, Option<f64>), String> {
+        if beta == 0.0 {
+            return self.0.solve_marked(alpha, 0.0, lambda_nm);
+        }
+        let cb = (1.0 - beta * beta).sqrt();
+        let inner = Rigorous {
+            grating: self.mapped_grating(beta, lambda_nm)?,
+            ..self.0.clone()
+        };
+        inner.solve_marked(alpha / cb, 0.0, lambda_nm / cb)
+    }
+}

@@ -70,7 +70,7 @@ impl Cell3 {
         let lambda_nm = lambda_nm.max(lam.at(0)).min(lam.at(n_l - 1));
         let cb = math::sqrt(1.0 - b * b);
         let cos_i = cb * math::sqrt(1.0 - sp * sp);
-        if !(cos_i > 0.0) {
+        if cos_i.is_nan() || cos_i <= 0.0 {
             return None;
         }
         let i = interval(sin, sp);
