@@ -60,7 +60,7 @@ impl OrderSolver for Rigorous {
             Err(crate::Error::NotConverged {
                 harmonics, change, ..
             }) => {
-                if !(change <= self.accept_unconverged) {
+                if change.is_nan() || change > self.accept_unconverged {
                     mark = Some(if change.is_finite() { change } else { 1.0 });
                 }
                 self.solver.solve_at(&self.grating, inc, harmonics)
