@@ -225,7 +225,7 @@ fn a_conical_table_read_at_the_reference_cases() {
         initial_lambda_step_nm: 55.0,
         validation_points: 16,
         threads: 2,
-        max_solves: 1500,
+        max_solves: 5000,
         ..TableSpec::default()
     };
     let t0 = std::time::Instant::now();
