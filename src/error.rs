@@ -109,6 +109,19 @@ pub enum Requirement {
         /// The diffraction order.
         order: i32,
     },
+    /// Zero where the given order is evanescent at a node of a conical table, whose order m
+    /// leaves with α_m = s·√(1 − β²) + m·λ/d and β (the value is the nonzero one found).
+    ZeroWhereEvanescentConical {
+        /// The diffraction order.
+        order: i32,
+    },
+    /// A whole number of `[beta][lambda][sin_theta_i]` slices of a conical table, one per order.
+    ConicalSlices {
+        /// The length of one slice.
+        slice: usize,
+        /// The most slices accepted.
+        max_slices: usize,
+    },
     /// The same at every wavelength (a groove spread other than a coherence length, whose
     /// width λ/L changes with λ): the value is the rejected length.
     IndependentOfWavelength,
@@ -181,6 +194,15 @@ impl fmt::Display for Error {
             ),
             Error::InvalidParameter {
                 name,
+                value: len,
+                requirement: Requirement::ConicalSlices { slice, max_slices },
+            } => write!(
+                f,
+                "invalid {name}: has {len} values, must have a multiple of {slice} \
+                 (one [abs_beta][lambda][sin_theta_i] slice per order), 1 to {max_slices} slices"
+            ),
+            Error::InvalidParameter {
+                name,
                 requirement: Requirement::NotTabulated,
                 ..
             } => write!(
@@ -221,9 +243,15 @@ impl fmt::Display for Error {
                         f,
                         "be 0: order {order} is evanescent there (|sin_theta_i + m lambda/d| >= 1)"
                     ),
+                    Requirement::ZeroWhereEvanescentConical { order } => write!(
+                        f,
+                        "be 0: order {order} is evanescent there \
+                         ((sin_theta_i sqrt(1 - beta^2) + m lambda/d)^2 + beta^2 >= 1)"
+                    ),
                     // Printed by the arms above.
                     Requirement::Count { .. }
                     | Requirement::Slices { .. }
+                    | Requirement::ConicalSlices { .. }
                     | Requirement::NotTabulated => Ok(()),
                     Requirement::IndependentOfWavelength => {
                         write!(f, "be the same at every wavelength")

@@ -37,8 +37,8 @@ pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES, QUADRATURE_NODES};
-pub use table::EfficiencyTable;
 #[cfg(feature = "presets")]
 pub use table::Preset;
+pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};
 #[cfg(feature = "alloc")]
 pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE};

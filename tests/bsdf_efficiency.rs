@@ -48,6 +48,40 @@ fn scalar_table() -> Arc<EfficiencyTable> {
     Arc::new(table)
 }
 
+/// A conical table (s′ × |β| × λ = 41 × 6 × 24) made from the scalar sinusoid of
+/// [`scalar_table`] read at α = s′·√(1 − β²) and scaled by 1 − 0.5·|β| (a strong dependence on
+/// β for the tests), 0 where the order is evanescent conically (α_m² + β² ≥ 1).
+fn conical_table() -> Arc<EfficiencyTable> {
+    let relief = ScalarRelief::new(Relief::sinusoid(80.0).unwrap(), Metal::AL, 1600.0).unwrap();
+    let (s, b, l) = (
+        grid(-0.99, 0.99, 41),
+        grid(0.0, 0.95, 6),
+        grid(360.0, 830.0, 24),
+    );
+    let (lo, hi) = (-9i32, 9i32);
+    let n = (hi - lo + 1) as usize * s.len() * b.len() * l.len();
+    let (mut te, mut tm) = (vec![0.0; n], vec![0.0; n]);
+    for (kb, &beta) in b.iter().enumerate() {
+        let cb = (1.0 - beta * beta).sqrt();
+        for (j, &lam) in l.iter().enumerate() {
+            for (i, &x) in s.iter().enumerate() {
+                let alpha = x * cb;
+                for o in relief.orders(alpha, lam) {
+                    let am = alpha + f64::from(o.order) * lam / 1600.0;
+                    if (lo..=hi).contains(&o.order) && 1.0 - am * am - beta * beta > 0.0 {
+                        let at = ((((o.order - lo) as usize * b.len() + kb) * l.len()) + j)
+                            * s.len()
+                            + i;
+                        te[at] = o.efficiency.te * (1.0 - 0.5 * beta);
+                        tm[at] = o.efficiency.tm * (1.0 - 0.5 * beta);
+                    }
+                }
+            }
+        }
+    }
+    Arc::new(EfficiencyTable::new_conical(1600.0, lo, s, b, l, te, tm).unwrap())
+}
+
 /// Every tabulated model of the tests at N, with its name.
 fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBsdf)> {
     let mut out: Vec<(String, GratingBsdf)> = PRESETS
@@ -60,6 +94,15 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
         "scalar sinusoid".into(),
         GratingBsdf::new(g).with_efficiency(e).unwrap(),
     ));
+    // Not for N = 1: its groove lobe is about λ/d wide in v, across which the albedo (read at
+    // the lobe's centre wi.y = −wo.y) does not follow the conical table's β dependence.
+    if slits != Slits::Finite(1) {
+        let e = OrderEfficiency::from_table(conical_table()).unwrap();
+        out.push((
+            "conical sinusoid".into(),
+            GratingBsdf::new(g).with_efficiency(e).unwrap(),
+        ));
+    }
     out
 }
 

@@ -340,7 +340,10 @@ fn json_tables_load_and_bad_ones_name_the_field() {
             |v| v["format"] = "other".into(),
             "format: expected \"diffraction-efficiency-table\", got \"other\"",
         ),
-        (|v| v["version"] = 2.into(), "version: expected 1, got 2"),
+        (
+            |v| v["version"] = 3.into(),
+            "version: expected 1 or 2, got 3",
+        ),
         (
             |v| v["grating"]["period_nm"] = (-1.0).into(),
             "invalid grating.period_nm = -1: must be finite and > 0",
@@ -479,4 +482,87 @@ fn odd_queries_are_finite_and_zero_where_they_should_be() {
             Polarised::default()
         );
     }
+}
+
+/// A conical table whose |β| planes all hold the classical table `t`'s values (0 where the
+/// order is evanescent conically).
+#[cfg(feature = "alloc")]
+fn planes_of(t: &EfficiencyTable, betas: &[f64]) -> EfficiencyTable {
+    use diffraction::relief::Polarised;
+    let s: Vec<f64> = t.sin_theta_i().collect();
+    let l: Vec<f64> = t.lambda_nm().collect();
+    let (lo, n_o) = (*t.orders().start(), t.order_count());
+    let d = t.period_nm();
+    let n = n_o * s.len() * betas.len() * l.len();
+    let (mut te, mut tm) = (vec![0.0; n], vec![0.0; n]);
+    let mut out = vec![Polarised::default(); n_o];
+    for (kb, &b) in betas.iter().enumerate() {
+        let cb = (1.0 - b * b).sqrt();
+        for (j, &lam) in l.iter().enumerate() {
+            for (i, &x) in s.iter().enumerate() {
+                t.efficiencies(x, lam, &mut out);
+                for (k, e) in out.iter().enumerate() {
+                    let am = x * cb + f64::from(lo + k as i32) * lam / d;
+                    if 1.0 - am * am - b * b > 0.0 {
+                        let at = ((k * betas.len() + kb) * l.len() + j) * s.len() + i;
+                        te[at] = e.te;
+                        tm[at] = e.tm;
+                    }
+                }
+            }
+        }
+    }
+    EfficiencyTable::new_conical(d, lo, s, betas.to_vec(), l, te, tm).unwrap()
+}
+
+/// Conical tables: at β = 0 a conical table reads exactly as the classical table of its β = 0
+/// plane; it depends on |β| only; an order appears exactly where α_m² + β² = 1; and each
+/// polarisation's sum stays at most 1.
+#[cfg(all(feature = "alloc", feature = "presets"))]
+#[test]
+fn conical_tables_follow_their_rule() {
+    use diffraction::relief::{Polarised, Preset};
+    let cd = Preset::Cd.table();
+    let c = planes_of(cd, &[0.0, 0.4, 0.8, 0.95]);
+    assert!(c.is_conical() && !cd.is_conical());
+    let n = cd.order_count();
+    let (mut a, mut b) = (vec![Polarised::default(); n], vec![Polarised::default(); n]);
+    let mut state = 7u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..500 {
+        let (s, lam) = (-0.999 + 1.998 * next(), 360.0 + 470.0 * next());
+        let ta = cd.efficiencies(s, lam, &mut a);
+        let tb = c.efficiencies_conical(s, 0.0, lam, &mut b);
+        for (x, y) in a.iter().zip(&b) {
+            // The same corners and weights: equal to rounding.
+            assert!((x.te - y.te).abs() < 1e-12 && (x.tm - y.tm).abs() < 1e-12);
+        }
+        assert!((ta - tb).abs() < 1e-12);
+        // |β| only, and the sums.
+        let beta = 0.97 * next();
+        let alpha = (1.0 - beta * beta).sqrt() * (-0.999 + 1.998 * next());
+        let t1 = c.efficiencies_conical(alpha, beta, lam, &mut a);
+        let t2 = c.efficiencies_conical(alpha, -beta, lam, &mut b);
+        assert_eq!(a, b);
+        assert_eq!(t1, t2);
+        let (st, sm) = a.iter().fold((0.0, 0.0), |(p, q), e| (p + e.te, q + e.tm));
+        assert!(st <= 1.0 + 1e-12 && sm <= 1.0 + 1e-12 && t1 <= 1.0);
+    }
+    // Order 1 at λ = 600 nm, β = 0.5: appears at α₁² + β² = 1, α = √0.75 − 600/1600.
+    let (beta, lam) = (0.5, 600.0);
+    let edge = 0.75f64.sqrt() - lam / 1600.0;
+    assert_eq!(c.efficiency_conical(1, edge + 1e-9, beta, lam).te, 0.0);
+    assert!(c.efficiency_conical(1, edge - 1e-3, beta, lam).te > 0.0);
+    // A classical table ignores β (the classical-mount reading).
+    assert_eq!(
+        cd.efficiency_conical(1, 0.1, 0.6, lam),
+        cd.efficiency(1, 0.1, lam)
+    );
+    // Beyond the incidence: nothing.
+    assert_eq!(c.efficiency_conical(0, 0.8, 0.6, lam), Polarised::default());
 }

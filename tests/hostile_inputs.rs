@@ -85,15 +85,15 @@ fn json_refusals_name_the_field_and_the_element() {
     let cases: Vec<(String, &str)> = vec![
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": 1.0"#)),
-            "version: expected 1, got 1.0",
+            "version: expected 1 or 2, got 1.0",
         ),
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": "1""#)),
-            "version: expected 1, got \"1\"",
+            "version: expected 1 or 2, got \"1\"",
         ),
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": null"#)),
-            "version: expected 1, got null",
+            "version: expected 1 or 2, got null",
         ),
         (
             json_with(|t| t.replace(r#""period_nm": 1000.0"#, r#""period_nm": null"#)),
@@ -177,7 +177,7 @@ fn json_refusals_name_the_field_and_the_element() {
         ),
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": 2"#)),
-            "version: expected 1, got 2",
+            "missing field `abs_beta`",
         ),
     ];
     for (text, want) in cases {
@@ -207,7 +207,7 @@ fn hostile_json_tables_are_refused_by_field() {
         (json_with(|t| t.replace("[0.0, 0.5]", "[0.5, 0.0]")), "invalid sin_theta_i = 0: must be strictly increasing (above the value before it)".into()),
         (json_with(|t| t.replace("[500.0, 600.0]", "[500.0, 500.0]")), "invalid lambda_nm = 500: must be strictly increasing (above the value before it)".into()),
         // Wrong version.
-        (json_with(|t| t.replace(r#""version": 1"#, r#""version": 3"#)), "version: expected 1, got 3".into()),
+        (json_with(|t| t.replace(r#""version": 1"#, r#""version": 3"#)), "version: expected 1 or 2, got 3".into()),
         // Claimed dimensions far beyond the data.
         (json_with(|t| t.replace(r#""order_max": 1"#, r#""order_max": 4000"#)), "te: has shape [3][2][2], expected [4002][2][2] ([order][lambda][sin])".into()),
         // An order whose rows disagree, a row longer than the grid.
@@ -226,8 +226,8 @@ fn hostile_json_tables_are_refused_by_field() {
             format!("te[0]: has more than {MAX_TABLE_NODES} wavelength rows"),
         ),
         // Deeply nested JSON, in a field the reader uses and in one it skips.
-        (json_with(|t| t.replacen(r#""te": ["#, &format!(r#""te": [{deep},"#), 1)), "te[0][0][0]: expected a number, got an array".into()),
-        (json_with(|t| t.replace(r#""version": 1"#, &format!(r#""version": {deep}"#))), "version: expected 1, got an array".into()),
+        (json_with(|t| t.replacen(r#""te": ["#, &format!(r#""te": [{deep},"#), 1)), "te[0][0][0][0]: expected a number, got an array".into()),
+        (json_with(|t| t.replace(r#""version": 1"#, &format!(r#""version": {deep}"#))), "version: expected 1 or 2, got an array".into()),
         // A table whose orders or grid disagree with its period: order 1 propagating at a
         // node where it is evanescent for d = 1000 nm; the same table on a 100 nm period.
         (json_with(|t| t.replace("[[0.1, 0.0], [0.1, 0.0]]]", "[[0.1, 0.01], [0.1, 0.0]]]")), "invalid te = 0.01: must be 0: order 1 is evanescent there (|sin_theta_i + m lambda/d| >= 1)".into()),
@@ -241,6 +241,57 @@ fn hostile_json_tables_are_refused_by_field() {
     // A deep value in a field the reader skips is skipped without recursion.
     let skipped = json_with(|t| t.replace(r#""sha256": "0""#, &format!(r#""sha256": {deep}"#)));
     assert!(serde_json::from_str::<EfficiencyTable>(&skipped).is_ok());
+}
+
+/// A version-2 (conical) table: 2 |β| planes of the table of `json_with` (orders −1, 0, 1 of
+/// d = 1000 nm; at |β| = 0.6 the s′ axis 0, 0.5 gives α = 0, 0.4).
+#[cfg(feature = "serde")]
+fn conical_json_with(edit: impl Fn(&str) -> String) -> String {
+    edit(concat!(
+        r#"{"format": "diffraction-efficiency-table", "version": 2, "name": "t","#,
+        r#" "grating": {"profile": "sinusoid", "period_nm": 1000.0, "metal": "Al"},"#,
+        r#" "sin_theta_i": [0.0, 0.5], "abs_beta": [0.0, 0.6], "lambda_nm": [500.0, 600.0],"#,
+        r#" "order_min": -1, "order_max": 1,"#,
+        r#" "te": [[[[0.1, 0.2], [0.1, 0.3]], [[0.1, 0.2], [0.1, 0.2]]], [[[0.5, 0.5], [0.5, 0.5]], [[0.5, 0.5], [0.5, 0.5]]], [[[0.1, 0.0], [0.1, 0.0]], [[0.1, 0.0], [0.0, 0.0]]]],"#,
+        r#" "tm": [[[[0.1, 0.2], [0.1, 0.3]], [[0.1, 0.2], [0.1, 0.2]]], [[[0.5, 0.5], [0.5, 0.5]], [[0.5, 0.5], [0.5, 0.5]]], [[[0.1, 0.0], [0.1, 0.0]], [[0.1, 0.0], [0.0, 0.0]]]],"#,
+        r#" "solver": {"method": "x"}, "sha256": "0"}"#
+    ))
+}
+
+/// Conical tables: read, and every class of hostile file refused with the field named.
+#[cfg(feature = "serde")]
+#[test]
+fn hostile_conical_tables_are_refused_by_field() {
+    let t: EfficiencyTable = serde_json::from_str(&conical_json_with(str::to_string)).unwrap();
+    assert!(t.is_conical());
+    assert_eq!(t.abs_beta().collect::<Vec<_>>(), vec![0.0, 0.6]);
+    let cases: Vec<(String, String)> = vec![
+        // A version-1 file with a conical axis, a version-2 file without one.
+        (json_with(|t| t.replace(r#""lambda_nm""#, r#""abs_beta": [0.0, 0.5], "lambda_nm""#)), "abs_beta: a conical axis needs version 2 (version 1 is classical)".into()),
+        (conical_json_with(|t| t.replace(r#""abs_beta": [0.0, 0.6], "#, "")), "missing field `abs_beta`".into()),
+        // Classical arrays in a conical file, and the reverse.
+        (json_with(|t| t.replace(r#""version": 1"#, r#""version": 2, "abs_beta": [0.0, 0.6]"#)), "te: has shape [3][2][2], expected [3][2][2][2] ([order][abs_beta][lambda][sin])".into()),
+        (conical_json_with(|t| t.replace(r#""version": 2"#, r#""version": 1"#).replace(r#""abs_beta": [0.0, 0.6], "#, "")), "te: has shape [3][2][2][2], expected [3][2][2] ([order][lambda][sin])".into()),
+        // The |β| axis: out of range, not increasing, NaN-like, too short.
+        (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.0, 1.0]")), "invalid abs_beta = 1: must lie in [0, 0.99999]".into()),
+        (conical_json_with(|t| t.replace("[0.0, 0.6]", "[-0.1, 0.6]")), "invalid abs_beta = -0.1: must lie in [0, 0.99999]".into()),
+        (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.6, 0.6]")), "invalid abs_beta = 0.6: must be strictly increasing (above the value before it)".into()),
+        (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.6]")), "invalid abs_beta: has 1 values, must have 2 to 4096".into()),
+        (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.0, null]")), "abs_beta[1]: expected a number, got null".into()),
+        // A plane of another shape, a value of the wrong type, deeper than four levels.
+        (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, 0.2], [0.1, 0.2], [0.1, 0.2]]]", 1)), "te[0][1]: has 3 wavelength rows, expected 2 (as the first)".into()),
+        (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, \"x\"], [0.1, 0.2]]]", 1)), "te[0][1][0][1]: expected a number, got \"x\"".into()),
+        (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, [0.2]], [0.1, 0.2]]]", 1)), "te[0][1][0][1]: expected a number, got an array".into()),
+        // Order 1 at s′ = 0.5, |β| = 0.6, λ = 600 nm: α₁ = 0.4 + 0.6, evanescent.
+        (conical_json_with(|t| t.replacen("[[0.1, 0.0], [0.0, 0.0]]]]", "[[0.1, 0.0], [0.0, 0.01]]]]", 1)), "invalid te = 0.01: must be 0: order 1 is evanescent there ((sin_theta_i sqrt(1 - beta^2) + m lambda/d)^2 + beta^2 >= 1)".into()),
+        // A node's sum above 1.
+        (conical_json_with(|t| t.replacen("[[[0.5, 0.5], [0.5, 0.5]], [[0.5, 0.5]", "[[[0.5, 0.5], [0.5, 0.5]], [[0.9, 0.5]", 1)), "invalid te = 1.1: must be a sum over orders <= 1.000001".into()),
+    ];
+    for (text, want) in cases {
+        let (got, _) = refusal(&text);
+        assert!(got.len() < 300, "a long message: {}…", &got[..300]);
+        assert_eq!(got, want);
+    }
 }
 
 /// `SampledWavelengths::new` refuses a subnormal density (1/pdf infinite), and the film's

@@ -33,17 +33,19 @@
 
 use std::collections::HashMap;
 use std::fmt;
-use std::sync::mpsc;
 use std::time::Instant;
 
 use diffraction::relief::{EfficiencyTable, MAX_TABLE_NODES};
 use diffraction::{Error, Requirement};
 
+mod cache;
 mod json;
 mod rigorous;
 
+use cache::{assemble, point_error, Cache, Point};
+
 pub use json::TableMeta;
-pub use rigorous::Rigorous;
+pub use rigorous::{Mapped, Rigorous};
 
 /// The reflected orders of one solve: `te[k]`, `tm[k]` are the efficiencies of order
 /// `order_min + k`. Orders not listed, and evanescent ones, count as 0.
@@ -104,6 +106,32 @@ pub trait OrderSolver: Sync {
     /// the incident direction of travel) and λ in nm, converged to the solver's own tolerance
     /// (well below the table's).
     fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String>;
+
+    /// The efficiencies in a conical mount: the incident direction of travel has direction
+    /// cosines α = `alpha` across and β = `beta` ≥ 0 along the grooves (order m leaves with
+    /// α + m·λ/d, β). TE and TM are then the incident s and p polarisations (only their mean,
+    /// the unpolarised efficiency, is independent of that choice). The default solves the
+    /// classical mount at β = 0 and refuses any other β.
+    fn solve_conical(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Result<Orders, String> {
+        if beta == 0.0 {
+            self.solve(alpha, lambda_nm)
+        } else {
+            Err("this solver has no conical mount".to_string())
+        }
+    }
+
+    /// [`solve_conical`](Self::solve_conical), with the node marked where the solver did not
+    /// converge to its tolerance but returned its best value: `Some(the last change)`. The
+    /// default marks nothing.
+    fn solve_marked(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+    ) -> Result<(Orders, Option<f64>), String> {
+        self.solve_conical(alpha, beta, lambda_nm)
+            .map(|o| (o, None))
+    }
 }
 
 /// What to build: the grid's range, the tolerance and the work allowed.
@@ -132,6 +160,12 @@ pub struct TableSpec {
     pub seed: u64,
     /// Worker threads (0: the machine's parallelism).
     pub threads: usize,
+    /// The starting |β| nodes of a conical table, strictly increasing in [0, 0.99999]
+    /// (β: the incident direction cosine along the grooves); empty (the default): a classical
+    /// table. A conical table's s axis is s′ = α/√(1 − β²) (`docs/efficiency_tables.md`).
+    pub abs_beta: Vec<f64>,
+    /// Intervals narrower than this in |β| are not bisected; default 0.02.
+    pub min_beta_step: f64,
 }
 
 impl Default for TableSpec {
@@ -148,6 +182,8 @@ impl Default for TableSpec {
             validation_points: 64,
             seed: 0x5eed_7ab1e,
             threads: 0,
+            abs_beta: Vec::new(),
+            min_beta_step: 0.02,
         }
     }
 }
@@ -252,8 +288,15 @@ pub struct BuildReport {
     pub held_out_points: usize,
     /// The largest error at the random points alone.
     pub random_points_max: f64,
-    /// Where the largest error is: (s, λ nm).
+    /// Where the largest error is: (s, λ nm); s′ = α/√(1 − β²) for a conical table (its
+    /// |β| is `worst_beta`).
     pub worst_point: (f64, f64),
+    /// |β| of the worst point (0 for a classical table).
+    pub worst_beta: f64,
+    /// Nodes and held-out points whose solve reached the solver's harmonic cap without
+    /// converging to its tolerance, taken at the cap's count (see [`Rigorous`]): how many, and
+    /// the largest last change among them (0 if none).
+    pub unconverged: (usize, f64),
     /// Intervals that exceeded the tolerance but were at the minimum width (not bisected).
     pub unresolved_intervals: usize,
     /// Solves made (nodes and checks; mirrored values not counted).
@@ -267,17 +310,19 @@ pub struct BuildReport {
 /// A table and how it was made.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BuiltTable {
-    /// The s nodes.
+    /// The s nodes (s′ = α/√(1 − β²) for a conical table).
     pub sin_theta_i: Vec<f64>,
+    /// The |β| nodes of a conical table; empty for a classical one.
+    pub abs_beta: Vec<f64>,
     /// The λ nodes, nm.
     pub lambda_nm: Vec<f64>,
     /// The first order stored.
     pub order_min: i32,
     /// The last order stored.
     pub order_max: i32,
-    /// TE efficiencies flattened `[order][λ][s]`.
+    /// TE efficiencies flattened `[order][λ][s]` (`[order][|β|][λ][s]` for a conical table).
     pub te: Vec<f64>,
-    /// TM efficiencies flattened `[order][λ][s]`.
+    /// TM efficiencies, flattened as `te`.
     pub tm: Vec<f64>,
     /// The table as the library reads it.
     pub table: EfficiencyTable,
@@ -348,6 +393,34 @@ fn check_spec(spec: &TableSpec, period_nm: f64) -> Result<(), TableError> {
     if spec.max_solves == 0 {
         return Err(invalid("max_solves", 0.0, Requirement::AtLeastOne));
     }
+    if !(spec.min_beta_step.is_finite() && spec.min_beta_step > 0.0) {
+        return Err(invalid(
+            "min_beta_step",
+            spec.min_beta_step,
+            Requirement::Positive,
+        ));
+    }
+    if !spec.abs_beta.is_empty() {
+        let within = Requirement::Within {
+            min: 0.0,
+            max: diffraction::relief::MAX_TABLE_ABS_BETA,
+        };
+        if spec.abs_beta.len() < 2 {
+            let r = Requirement::Count {
+                min: 2,
+                max: MAX_TABLE_NODES,
+            };
+            return Err(invalid("abs_beta", spec.abs_beta.len() as f64, r));
+        }
+        for (i, &b) in spec.abs_beta.iter().enumerate() {
+            if !(0.0..=diffraction::relief::MAX_TABLE_ABS_BETA).contains(&b) {
+                return Err(invalid("abs_beta", b, within));
+            }
+            if i > 0 && b <= spec.abs_beta[i - 1] {
+                return Err(invalid("abs_beta", b, Requirement::StrictlyIncreasing));
+            }
+        }
+    }
     Ok(())
 }
 
@@ -405,180 +478,6 @@ fn initial_grid(spec: &TableSpec, d: f64) -> (Vec<f64>, Vec<f64>) {
     (s, l)
 }
 
-/// Solves with a cache (keyed on the exact floats; mirrored for symmetric profiles).
-struct Cache<'a, S: OrderSolver> {
-    solver: &'a S,
-    map: HashMap<(u64, u64), Orders>,
-    solves: usize,
-    threads: usize,
-    start: Instant,
-}
-
-fn key(s: f64, l: f64, symmetric: bool) -> (u64, u64) {
-    let s = if symmetric { s.abs() } else { s };
-    ((s + 0.0).to_bits(), l.to_bits())
-}
-
-impl<'a, S: OrderSolver> Cache<'a, S> {
-    /// Solves every point not yet known, in parallel, reporting progress.
-    fn solve_all(
-        &mut self,
-        points: &[(f64, f64)],
-        max_solves: usize,
-        round: usize,
-        error: f64,
-        progress: &mut dyn FnMut(&Progress),
-    ) -> Result<(), TableError> {
-        let sym = self.solver.mirror_symmetric();
-        let mut todo: Vec<(f64, f64)> = Vec::new();
-        let mut seen = std::collections::HashSet::new();
-        for &(s, l) in points {
-            let k = key(s, l, sym);
-            if !self.map.contains_key(&k) && seen.insert(k) {
-                todo.push((if sym { s.abs() } else { s }, l));
-            }
-        }
-        if self.solves + todo.len() > max_solves {
-            return Err(TableError::Budget {
-                limit: "max_solves",
-                solves: self.solves,
-                grid: (0, 0),
-                achieved: error,
-                tolerance: f64::NAN,
-                best: None,
-            });
-        }
-        let planned = todo.len();
-        let threads = self.threads.max(1).min(planned.max(1));
-        let solver = self.solver;
-        let (tx, rx) = mpsc::channel();
-        let mut failure = None;
-        std::thread::scope(|scope| {
-            for t in 0..threads {
-                let tx = tx.clone();
-                let mine: Vec<(f64, f64)> = todo.iter().copied().skip(t).step_by(threads).collect();
-                scope.spawn(move || {
-                    for (s, l) in mine {
-                        let r = solver.solve(s, l);
-                        let stop = r.is_err();
-                        if tx.send((s, l, r)).is_err() || stop {
-                            return;
-                        }
-                    }
-                });
-            }
-            drop(tx);
-            let mut done = 0;
-            for (s, l, r) in rx {
-                match r {
-                    Ok(o) => {
-                        self.map.insert(key(s, l, sym), o);
-                        self.solves += 1;
-                        done += 1;
-                        let elapsed = self.start.elapsed().as_secs_f64();
-                        progress(&Progress {
-                            round,
-                            done,
-                            planned,
-                            total_solves: self.solves,
-                            error,
-                            seconds_per_solve: elapsed / self.solves as f64,
-                        });
-                    }
-                    Err(message) => {
-                        failure.get_or_insert(TableError::Solver {
-                            sin_theta_i: s,
-                            lambda_nm: l,
-                            message,
-                        });
-                    }
-                }
-            }
-        });
-        failure.map_or(Ok(()), Err)
-    }
-
-    fn get(&self, s: f64, l: f64) -> Orders {
-        let sym = self.solver.mirror_symmetric();
-        let o = &self.map[&key(s, l, sym)];
-        if sym && s < 0.0 {
-            o.mirrored()
-        } else {
-            o.clone()
-        }
-    }
-}
-
-/// The table's largest absolute error at one point against a solve there.
-fn point_error(table: &EfficiencyTable, solve: &Orders, s: f64, l: f64) -> f64 {
-    let mut out = vec![diffraction::relief::Polarised::default(); table.order_count()];
-    table.efficiencies(s, l, &mut out);
-    let first = *table.orders().start();
-    let mut worst: f64 = 0.0;
-    for (k, t) in out.iter().enumerate() {
-        let (te, tm) = solve.get(first + k as i32);
-        worst = worst.max((t.te - te).abs()).max((t.tm - tm).abs());
-    }
-    // Orders the solve has and the table does not store.
-    for (k, (&te, &tm)) in solve.te.iter().zip(&solve.tm).enumerate() {
-        if !table.orders().contains(&(solve.order_min + k as i32)) {
-            worst = worst.max(te.abs()).max(tm.abs());
-        }
-    }
-    worst
-}
-
-/// (order_min, order_max, TE, TM flattened `[order][λ][s]`, the library's table).
-type Assembled = (i32, i32, Vec<f64>, Vec<f64>, EfficiencyTable);
-
-/// Assembles the flattened arrays and the library's table from the solved nodes.
-fn assemble(
-    cache: &Cache<'_, impl OrderSolver>,
-    s: &[f64],
-    l: &[f64],
-    d: f64,
-) -> Result<Assembled, TableError> {
-    let mut lo = i32::MAX;
-    let mut hi = i32::MIN;
-    for &lam in l {
-        for &x in s {
-            let o = cache.get(x, lam);
-            for (k, (&a, &b)) in o.te.iter().zip(&o.tm).enumerate() {
-                if a > 0.0 || b > 0.0 {
-                    lo = lo.min(o.order_min + k as i32);
-                    hi = hi.max(o.order_min + k as i32);
-                }
-            }
-        }
-    }
-    if lo > hi {
-        lo = 0;
-        hi = 0;
-    }
-    let n = (hi - lo + 1) as usize * s.len() * l.len();
-    let mut te = vec![0.0; n];
-    let mut tm = vec![0.0; n];
-    for (j, &lam) in l.iter().enumerate() {
-        for (i, &x) in s.iter().enumerate() {
-            let o = cache.get(x, lam);
-            for m in lo..=hi {
-                // The loader's own test of evanescence: exactly 0 there.
-                let sm = x + f64::from(m) * lam / d;
-                if 1.0 - sm * sm <= 0.0 {
-                    continue;
-                }
-                let (a, b) = o.get(m);
-                let at = ((m - lo) as usize * l.len() + j) * s.len() + i;
-                te[at] = a.max(0.0);
-                tm[at] = b.max(0.0);
-            }
-        }
-    }
-    let table = EfficiencyTable::new(d, lo, s.to_vec(), l.to_vec(), te.clone(), tm.clone())
-        .map_err(TableError::Table)?;
-    Ok((lo, hi, te, tm, table))
-}
-
 /// A small seeded generator (SplitMix64) for the validation points.
 fn splitmix(state: &mut u64) -> f64 {
     *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
@@ -625,21 +524,28 @@ pub fn build_table<S: OrderSolver>(
     let mut cache = Cache {
         solver,
         map: HashMap::new(),
+        marked: HashMap::new(),
         solves: 0,
         threads,
         start: Instant::now(),
     };
+    let conical = !spec.abs_beta.is_empty();
     let (mut s, mut l) = initial_grid(spec, d);
+    let mut b = if conical {
+        spec.abs_beta.clone()
+    } else {
+        vec![0.0]
+    };
     let mut rng = spec.seed;
     let mut error = f64::NAN;
     let mut round = 0;
     let mut last: Option<BuiltTable> = None;
     let budget = |cache: &Cache<'_, S>, last: &Option<BuiltTable>, limit| {
         let best = last.clone().map(Box::new);
-        let (grid, achieved) = best.as_ref().map_or(((0, 0), f64::NAN), |b| {
+        let (grid, achieved) = best.as_ref().map_or(((0, 0), f64::NAN), |t| {
             (
-                (b.sin_theta_i.len(), b.lambda_nm.len()),
-                b.report.achieved_abs_error,
+                (t.sin_theta_i.len(), t.lambda_nm.len()),
+                t.report.achieved_abs_error,
             )
         });
         TableError::Budget {
@@ -651,68 +557,75 @@ pub fn build_table<S: OrderSolver>(
             best,
         }
     };
+    let mid = |v: &[f64], i: usize| 0.5 * (v[i] + v[i + 1]);
     loop {
         round += 1;
-        if s.len() > MAX_TABLE_NODES || l.len() > MAX_TABLE_NODES {
+        if s.len() > MAX_TABLE_NODES || l.len() > MAX_TABLE_NODES || b.len() > MAX_TABLE_NODES {
             return Err(budget(&cache, &last, "nodes"));
         }
-        // Nodes and the midpoint checks in one batch (the checks of intervals that get
-        // bisected become nodes of the next round).
-        let mut points: Vec<(f64, f64)> = Vec::new();
-        for &lam in &l {
-            for (i, &x) in s.iter().enumerate() {
-                points.push((x, lam));
-                if i + 1 < s.len() {
-                    points.push((0.5 * (x + s[i + 1]), lam));
+        // The held-out midpoints of this grid: along s on every (|β|, λ) line, along λ on
+        // every (s, |β|) line, along |β| on every (s, λ) line; with the axis and interval
+        // each one checks.
+        let mut checks: Vec<(Point, usize, usize)> = Vec::new();
+        for &beta in &b {
+            for &lam in &l {
+                for i in 0..s.len() - 1 {
+                    checks.push(((mid(&s, i), beta, lam), 0, i));
+                }
+            }
+            for j in 0..l.len() - 1 {
+                for &x in &s {
+                    checks.push(((x, beta, mid(&l, j)), 2, j));
                 }
             }
         }
-        for j in 0..l.len() - 1 {
-            let mid = 0.5 * (l[j] + l[j + 1]);
-            for &x in &s {
-                points.push((x, mid));
+        if conical {
+            for k in 0..b.len() - 1 {
+                for &lam in &l {
+                    for &x in &s {
+                        checks.push(((x, mid(&b, k), lam), 1, k));
+                    }
+                }
             }
         }
+        let mut points: Vec<Point> = Vec::new();
+        for &beta in &b {
+            for &lam in &l {
+                for &x in &s {
+                    points.push((x, beta, lam));
+                }
+            }
+        }
+        points.extend(checks.iter().map(|c| c.0));
         cache
             .solve_all(&points, spec.max_solves, round, error, progress)
             .map_err(|e| match e {
                 TableError::Budget { .. } => budget(&cache, &last, "max_solves"),
                 e => e,
             })?;
-        let (lo, hi, te, tm, table) = assemble(&cache, &s, &l, d)?;
+        let (lo, hi, te, tm, table) = assemble(&cache, (&s, &b, &l), conical, d)?;
         let mut errs = Vec::new();
-        let mut at: Vec<(f64, f64)> = Vec::new();
-        let mut split_s = vec![false; s.len() - 1];
-        let mut split_l = vec![false; l.len() - 1];
+        let mut at: Vec<Point> = Vec::new();
+        let mut split = [
+            vec![false; s.len() - 1],
+            vec![false; b.len().max(2) - 1],
+            vec![false; l.len() - 1],
+        ];
         let mut unresolved = 0;
-        for &lam in &l {
-            for i in 0..s.len() - 1 {
-                let x = 0.5 * (s[i] + s[i + 1]);
-                let e = point_error(&table, &cache.get(x, lam), x, lam);
-                errs.push(e);
-                at.push((x, lam));
-                if e > spec.tolerance {
-                    split_s[i] = true;
-                }
-            }
-        }
-        for j in 0..l.len() - 1 {
-            let mid = 0.5 * (l[j] + l[j + 1]);
-            for &x in &s {
-                let e = point_error(&table, &cache.get(x, mid), x, mid);
-                errs.push(e);
-                at.push((x, mid));
-                if e > spec.tolerance {
-                    split_l[j] = true;
-                }
+        for &(p, axis, i) in &checks {
+            let e = point_error(&table, &cache.get(p), p);
+            errs.push(e);
+            at.push(p);
+            if e > spec.tolerance {
+                split[axis][i] = true;
             }
         }
         let mut random_max: f64 = 0.0;
-        let any_split = split_s.iter().chain(&split_l).any(|&b| b);
+        let any_split = split.iter().flatten().any(|&x| x);
         let refinable = |split: &mut [bool], nodes: &[f64], min: f64, unresolved: &mut usize| {
-            for (i, b) in split.iter_mut().enumerate() {
-                if *b && nodes[i + 1] - nodes[i] < 2.0 * min {
-                    *b = false;
+            for (i, x) in split.iter_mut().enumerate() {
+                if *x && nodes[i + 1] - nodes[i] < 2.0 * min {
+                    *x = false;
                     *unresolved += 1;
                 }
             }
@@ -721,10 +634,16 @@ pub fn build_table<S: OrderSolver>(
             // The random validation points (step 4).
             let (s0, s1) = spec.sin_theta_range;
             let (l0, l1) = spec.lambda_range_nm;
-            let pts: Vec<(f64, f64)> = (0..spec.validation_points)
+            let (b0, b1) = (b[0], b[b.len() - 1]);
+            let pts: Vec<Point> = (0..spec.validation_points)
                 .map(|_| {
-                    let a = s0 + (s1 - s0) * splitmix(&mut rng);
-                    (a, l0 + (l1 - l0) * splitmix(&mut rng))
+                    let x = s0 + (s1 - s0) * splitmix(&mut rng);
+                    let beta = if conical {
+                        b0 + (b1 - b0) * splitmix(&mut rng)
+                    } else {
+                        0.0
+                    };
+                    (x, beta, l0 + (l1 - l0) * splitmix(&mut rng))
                 })
                 .collect();
             cache
@@ -733,26 +652,40 @@ pub fn build_table<S: OrderSolver>(
                     TableError::Budget { .. } => budget(&cache, &last, "max_solves"),
                     e => e,
                 })?;
-            for &(x, lam) in &pts {
-                let e = point_error(&table, &cache.get(x, lam), x, lam);
+            for &p in &pts {
+                let e = point_error(&table, &cache.get(p), p);
                 errs.push(e);
-                at.push((x, lam));
+                at.push(p);
                 random_max = random_max.max(e);
                 if e > spec.tolerance {
-                    split_s[cell(&s, x)] = true;
-                    split_l[cell(&l, lam)] = true;
+                    split[0][cell(&s, p.0)] = true;
+                    if conical {
+                        split[1][cell(&b, p.1)] = true;
+                    }
+                    split[2][cell(&l, p.2)] = true;
                 }
             }
         }
-        refinable(&mut split_s, &s, spec.min_sin_step, &mut unresolved);
-        refinable(&mut split_l, &l, spec.min_lambda_step_nm, &mut unresolved);
+        refinable(&mut split[0], &s, spec.min_sin_step, &mut unresolved);
+        if conical {
+            refinable(&mut split[1], &b, spec.min_beta_step, &mut unresolved);
+        }
+        refinable(&mut split[2], &l, spec.min_lambda_step_nm, &mut unresolved);
         let worst = (0..errs.len()).fold(0, |w, i| if errs[i] > errs[w] { i } else { w });
         error = errs.get(worst).copied().unwrap_or(0.0);
-        let worst_point = at.get(worst).copied().unwrap_or((f64::NAN, f64::NAN));
+        let worst_at = at
+            .get(worst)
+            .copied()
+            .unwrap_or((f64::NAN, f64::NAN, f64::NAN));
         let mut sorted = errs.clone();
         sorted.sort_by(f64::total_cmp);
+        let marked = cache
+            .marked
+            .values()
+            .fold((0usize, 0.0f64), |(n, w), &c| (n + 1, w.max(c)));
         let candidate = BuiltTable {
             sin_theta_i: s.clone(),
+            abs_beta: if conical { b.clone() } else { Vec::new() },
             lambda_nm: l.clone(),
             order_min: lo,
             order_max: hi,
@@ -766,14 +699,16 @@ pub fn build_table<S: OrderSolver>(
                 abs_error_median: percentile(&sorted, 0.5),
                 held_out_points: errs.len(),
                 random_points_max: random_max,
-                worst_point,
+                worst_point: (worst_at.0, worst_at.2),
+                worst_beta: worst_at.1,
+                unconverged: marked,
                 unresolved_intervals: unresolved,
                 solves: cache.solves,
                 rounds: round,
                 seconds: cache.start.elapsed().as_secs_f64(),
             },
         };
-        if !split_s.iter().chain(&split_l).any(|&b| b) {
+        if !split.iter().flatten().any(|&x| x) {
             if error > spec.tolerance {
                 // Only intervals at the minimum width are left: not reachable on this grid.
                 return Err(budget(&cache, &Some(candidate), "min_step"));
@@ -791,7 +726,10 @@ pub fn build_table<S: OrderSolver>(
             }
             out
         };
-        s = bisect(&s, &split_s);
-        l = bisect(&l, &split_l);
+        s = bisect(&s, &split[0]);
+        if conical {
+            b = bisect(&b, &split[1]);
+        }
+        l = bisect(&l, &split[2]);
     }
 }

@@ -9,11 +9,13 @@ use alloc::vec::Vec;
 use super::scalar::Polarised;
 use crate::math;
 
+mod conical;
 #[cfg(feature = "alloc")]
 mod load;
 #[cfg(feature = "presets")]
 mod preset;
 
+pub use conical::MAX_TABLE_ABS_BETA;
 #[cfg(feature = "presets")]
 pub use preset::Preset;
 
@@ -67,6 +69,8 @@ pub struct EfficiencyTable {
 enum Storage {
     Static {
         sin_theta_i: &'static [f32],
+        /// The |β| nodes of a conical table; empty for a classical (2-D) table.
+        abs_beta: &'static [f32],
         lambda_nm: &'static [f32],
         te: &'static [f32],
         tm: &'static [f32],
@@ -74,6 +78,8 @@ enum Storage {
     #[cfg(feature = "alloc")]
     Owned {
         sin_theta_i: Vec<f64>,
+        /// The |β| nodes of a conical table; empty for a classical (2-D) table.
+        abs_beta: Vec<f64>,
         lambda_nm: Vec<f64>,
         te: Vec<f64>,
         tm: Vec<f64>,
@@ -299,7 +305,7 @@ impl EfficiencyTable {
             return Polarised::default();
         }
         let mut wanted = Polarised::default();
-        let (sum_te, sum_tm) = self.each(sin_theta_i, lambda_nm, |m, e| {
+        let (sum_te, sum_tm) = self.each(sin_theta_i, 0.0, lambda_nm, |m, e| {
             if m == order {
                 wanted = e;
             }
@@ -332,7 +338,7 @@ impl EfficiencyTable {
             *o = Polarised::default();
         }
         let first = self.order_min;
-        let (sum_te, sum_tm) = self.each(sin_theta_i, lambda_nm, |m, e| {
+        let (sum_te, sum_tm) = self.each(sin_theta_i, 0.0, lambda_nm, |m, e| {
             // m − order_min is in 0..order_count.
             if let Some(o) = out.get_mut((m - first) as usize) {
                 *o = e;
@@ -347,28 +353,38 @@ impl EfficiencyTable {
     }
 
     /// Calls `f(m, η_m)` for every stored order before the normalisation and returns the TE
-    /// and TM sums.
-    fn each(&self, s: f64, lambda_nm: f64, f: impl FnMut(i32, Polarised)) -> (f64, f64) {
+    /// and TM sums; `beta` is read only by a conical table.
+    fn each(&self, s: f64, beta: f64, lambda_nm: f64, f: impl FnMut(i32, Polarised)) -> (f64, f64) {
         match &self.storage {
             Storage::Static {
                 sin_theta_i,
+                abs_beta,
                 lambda_nm: lam,
                 te,
                 tm,
-            } => self.each_in(*sin_theta_i, *lam, *te, *tm, s, lambda_nm, f),
+            } => self.each_in(
+                *sin_theta_i,
+                *abs_beta,
+                *lam,
+                *te,
+                *tm,
+                (s, beta, lambda_nm),
+                f,
+            ),
             #[cfg(feature = "alloc")]
             Storage::Owned {
                 sin_theta_i,
+                abs_beta,
                 lambda_nm: lam,
                 te,
                 tm,
             } => self.each_in(
                 sin_theta_i.as_slice(),
+                abs_beta.as_slice(),
                 lam.as_slice(),
                 te.as_slice(),
                 tm.as_slice(),
-                s,
-                lambda_nm,
+                (s, beta, lambda_nm),
                 f,
             ),
         }
@@ -379,13 +395,29 @@ impl EfficiencyTable {
     fn each_in<T: Values + ?Sized>(
         &self,
         sin: &T,
+        bet: &T,
         lam: &T,
         te: &T,
         tm: &T,
-        s: f64,
-        lambda_nm: f64,
+        (s, beta, lambda_nm): (f64, f64, f64),
         mut f: impl FnMut(i32, Polarised),
     ) -> (f64, f64) {
+        if bet.count() > 0 {
+            let Some(cell) = conical::Cell3::find(sin, bet, lam, s, beta, lambda_nm) else {
+                return (0.0, 0.0);
+            };
+            let slice = sin.count() * bet.count() * lam.count();
+            let (mut sum_te, mut sum_tm) = (0.0, 0.0);
+            let mut m = self.order_min;
+            for k in 0..self.order_count {
+                let e = cell.order(self.period_nm, m, k * slice, te, tm);
+                sum_te += e.te;
+                sum_tm += e.tm;
+                f(m, e);
+                m = m.wrapping_add(1);
+            }
+            return (sum_te, sum_tm);
+        }
         let Some(cell) = Cell::find(sin, lam, s, lambda_nm) else {
             return (0.0, 0.0);
         };
@@ -413,7 +445,7 @@ impl EfficiencyTable {
     /// # }
     /// ```
     pub fn sin_theta_i(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
-        self.axis(true)
+        self.axis(AxisName::Sin)
     }
 
     /// The table's wavelength nodes, nm, as f64.
@@ -426,24 +458,48 @@ impl EfficiencyTable {
     /// # }
     /// ```
     pub fn lambda_nm(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
-        self.axis(false)
+        self.axis(AxisName::Lambda)
     }
 
-    fn axis(&self, sin: bool) -> Axis<'_> {
+    fn axis(&self, which: AxisName) -> Axis<'_> {
         match &self.storage {
             Storage::Static {
                 sin_theta_i,
+                abs_beta,
                 lambda_nm,
                 ..
-            } => Axis::F32(if sin { sin_theta_i } else { lambda_nm }.iter()),
+            } => Axis::F32(
+                match which {
+                    AxisName::Sin => sin_theta_i,
+                    AxisName::Beta => abs_beta,
+                    AxisName::Lambda => lambda_nm,
+                }
+                .iter(),
+            ),
             #[cfg(feature = "alloc")]
             Storage::Owned {
                 sin_theta_i,
+                abs_beta,
                 lambda_nm,
                 ..
-            } => Axis::F64(if sin { sin_theta_i } else { lambda_nm }.iter()),
+            } => Axis::F64(
+                match which {
+                    AxisName::Sin => sin_theta_i,
+                    AxisName::Beta => abs_beta,
+                    AxisName::Lambda => lambda_nm,
+                }
+                .iter(),
+            ),
         }
     }
+}
+
+/// Which axis of a table.
+#[derive(Clone, Copy)]
+enum AxisName {
+    Sin,
+    Beta,
+    Lambda,
 }
 
 /// The factor that brings a sum over orders down to 1 where it exceeds 1.

@@ -28,7 +28,7 @@ const USAGE: &str =
     "usage: grating-table (--lines-per-mm N | --period NM) --profile lamellar|sinusoid|sawtooth
        [--depth NM] [--duty F] [--blaze DEG] (--metal Al|Ag|Au|Cu|Cr | --nk N,K)
        [--cover none|polycarbonate] [--cover-passes multiple|single] [--tolerance ABS]
-       [--lambda MIN,MAX] [--sin-max S] [--max-solves N] [--threads N] [--name NAME]
+       [--lambda MIN,MAX] [--sin-max S] [--abs-beta B0,B1,...] [--max-solves N] [--threads N] [--name NAME]
        [--keep-best] --out FILE
 
   --depth      ridge height (lamellar) or peak-to-valley depth (sinusoid), nm
@@ -37,6 +37,8 @@ const USAGE: &str =
   --tolerance  largest interpolation error allowed, absolute per order (default 0.01)
   --lambda     wavelength range, nm (default 360,830)
   --sin-max    the table covers sin(theta_i) in [-S, S] (default 0.9999)
+  --abs-beta   a conical table (version 2): its starting |beta| nodes, increasing in [0, 0.99999]
+               (beta: the incident direction cosine along the grooves; default: a classical table)
   --max-solves bound on rigorous solves (default 20000)
   --keep-best  if the tolerance is not reached, write the best table anyway (exit 1)";
 
@@ -198,6 +200,28 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
                     return Err(bad(flag, v, "must be in (0, 0.99999]"));
                 }
                 spec.sin_theta_range = (-x, x);
+            }
+            "--abs-beta" => {
+                let mut nodes = Vec::new();
+                for part in v.split(',') {
+                    let b = number(flag, part)?;
+                    if !(0.0..=0.99999).contains(&b) || nodes.last().is_some_and(|&l| b <= l) {
+                        return Err(bad(
+                            flag,
+                            v,
+                            "expected at least two increasing values in [0, 0.99999]",
+                        ));
+                    }
+                    nodes.push(b);
+                }
+                if nodes.len() < 2 {
+                    return Err(bad(
+                        flag,
+                        v,
+                        "expected at least two increasing values in [0, 0.99999]",
+                    ));
+                }
+                spec.abs_beta = nodes;
             }
             "--max-solves" => {
                 spec.max_solves = v
@@ -476,10 +500,12 @@ fn main() -> ExitCode {
     }
     let r = &built.report;
     eprintln!(
-        "wrote {}: {} x {} nodes (s x lambda), orders {}..={}, {} solves in {:.1} s; \
-         held-out error max {:.3e}, p95 {:.3e} over {} points (tolerance {:e})",
+        "wrote {}: {} x {} x {} nodes (s x |beta| x lambda), orders {}..={}, {} solves in {:.1} s; \
+         held-out error max {:.3e}, p95 {:.3e} over {} points (tolerance {:e}); \
+         {} unconverged solves (largest last change {:.2e})",
         args.out.display(),
         built.sin_theta_i.len(),
+        built.abs_beta.len().max(1),
         built.lambda_nm.len(),
         built.order_min,
         built.order_max,
@@ -488,7 +514,9 @@ fn main() -> ExitCode {
         r.achieved_abs_error,
         r.abs_error_p95,
         r.held_out_points,
-        r.tolerance
+        r.tolerance,
+        r.unconverged.0,
+        r.unconverged.1
     );
     code
 }

@@ -248,21 +248,30 @@ fn floats(v: &[f64]) -> Value {
     Value::Array(v.iter().map(|&x| Value::Float(x)).collect())
 }
 
-/// `[order][λ][s]` nested arrays of one polarisation.
+/// `[order][λ][s]` (or `[order][|β|][λ][s]`) nested arrays of one polarisation.
 fn nested(t: &BuiltTable, flat: &[f64]) -> Value {
     let (n_s, n_l) = (t.sin_theta_i.len(), t.lambda_nm.len());
+    let n_b = t.abs_beta.len().max(1);
     let n_o = (t.order_max - t.order_min + 1) as usize;
+    let rows = |plane: usize| {
+        Value::Array(
+            (0..n_l)
+                .map(|j| {
+                    let at = (plane * n_l + j) * n_s;
+                    let row = &flat[at..at + n_s];
+                    Value::Array(row.iter().map(|&x| Value::Float(round6(x))).collect())
+                })
+                .collect(),
+        )
+    };
     Value::Array(
         (0..n_o)
             .map(|k| {
-                Value::Array(
-                    (0..n_l)
-                        .map(|j| {
-                            let row = &flat[(k * n_l + j) * n_s..(k * n_l + j + 1) * n_s];
-                            Value::Array(row.iter().map(|&x| Value::Float(round6(x))).collect())
-                        })
-                        .collect(),
-                )
+                if t.abs_beta.is_empty() {
+                    rows(k)
+                } else {
+                    Value::Array((0..n_b).map(|b| rows(k * n_b + b)).collect())
+                }
             })
             .collect(),
     )
@@ -276,7 +285,7 @@ impl BuiltTable {
     pub fn to_json(&self, meta: &TableMeta) -> String {
         let r = &self.report;
         let max_sum = |flat: &[f64]| {
-            let slice = self.sin_theta_i.len() * self.lambda_nm.len();
+            let slice = self.sin_theta_i.len() * self.lambda_nm.len() * self.abs_beta.len().max(1);
             let mut sums = vec![0.0; slice];
             for (i, &x) in flat.iter().enumerate() {
                 sums[i % slice] += round6(x);
@@ -318,11 +327,14 @@ impl BuiltTable {
             ("interpolation_points", Value::Int(r.held_out_points as i64)),
             ("random_points_abs_error_max", Value::Float(r.random_points_max)),
             ("unresolved_intervals", Value::Int(r.unresolved_intervals as i64)),
+            ("unconverged_points", Value::Int(r.unconverged.0 as i64)),
+            ("unconverged_max_change", Value::Float(r.unconverged.1)),
             ("rounds", Value::Int(r.rounds as i64)),
         ];
-        let body = Value::Object(vec![
+        let conical = !self.abs_beta.is_empty();
+        let mut body = vec![
             ("format", Value::Str("diffraction-efficiency-table".into())),
-            ("version", Value::Int(1)),
+            ("version", Value::Int(if conical { 2 } else { 1 })),
             ("name", Value::Str(meta.name.clone())),
             ("description", Value::Str(meta.description.clone())),
             (
@@ -347,7 +359,11 @@ impl BuiltTable {
             ("solver", Value::Object(solver)),
             ("validation", Value::Object(validation)),
             ("command", Value::Str(meta.command.clone())),
-        ]);
+        ];
+        if conical {
+            body.push(("abs_beta", floats(&self.abs_beta)));
+        }
+        let body = Value::Object(body);
         let mut text = String::new();
         write_value(&mut text, &body);
         let hash = sha256_hex(text.as_bytes());

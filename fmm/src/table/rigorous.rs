@@ -11,9 +11,10 @@ pub struct Rigorous {
     pub grating: Grating,
     /// The solver and its options.
     pub solver: Solver,
-    /// A solve that reaches the harmonic cap with its last change at most this (absolute) is
-    /// taken at the cap's count instead of failing the build (0: never). The table's tolerance
-    /// is usually ten times the solver's: `grating-table` uses a quarter of the table's.
+    /// A solve that reaches the harmonic cap is taken at the cap's count (never failing the
+    /// build); one whose last change exceeds this (absolute) is also marked unconverged and
+    /// counted in the build's report (`BuildReport::unconverged`). The table's tolerance is
+    /// usually ten times the solver's: `grating-table` uses a quarter of the table's.
     pub accept_unconverged: f64,
 }
 
@@ -34,12 +35,34 @@ impl OrderSolver for Rigorous {
     /// solved 10⁻⁹ off it, as `python_ref` does: the appearing order's efficiency grows like the
     /// square root of the distance, so this changes it by about 3·10⁻⁵ of its scale.
     fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String> {
-        let s = off_rayleigh(&self.grating, sin_theta_i, lambda_nm);
-        let inc = Incidence::classical(s, lambda_nm).map_err(|e| e.to_string())?;
+        self.solve_marked(sin_theta_i, 0.0, lambda_nm).map(|r| r.0)
+    }
+
+    /// The full vector (conical) solve at β ≠ 0; TE and TM are the incident s and p
+    /// polarisations.
+    fn solve_conical(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Result<Orders, String> {
+        self.solve_marked(alpha, beta, lambda_nm).map(|r| r.0)
+    }
+
+    /// A solve that reaches the harmonic cap is never a failure of the build: it is taken at
+    /// the cap's count, and marked with its last change when that exceeds
+    /// [`accept_unconverged`](Self::accept_unconverged).
+    fn solve_marked(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+    ) -> Result<(Orders, Option<f64>), String> {
+        let s = off_rayleigh(&self.grating, alpha, beta, lambda_nm);
+        let inc = Incidence::from_cosines(s, beta, lambda_nm).map_err(|e| e.to_string())?;
+        let mut mark = None;
         let sol = match self.solver.solve(&self.grating, inc) {
             Err(crate::Error::NotConverged {
                 harmonics, change, ..
-            }) if change <= self.accept_unconverged => {
+            }) => {
+                if change.is_nan() || change > self.accept_unconverged {
+                    mark = Some(if change.is_finite() { change } else { 1.0 });
+                }
                 self.solver.solve_at(&self.grating, inc, harmonics)
             }
             r => r,
@@ -58,21 +81,22 @@ impl OrderSolver for Rigorous {
             out.te[k] = o.te;
             out.tm[k] = o.tm;
         }
-        Ok(out)
+        Ok((out, mark))
     }
 }
 
 /// The distance by which a solve is moved off a Rayleigh line.
 const RAYLEIGH_NUDGE: f64 = 1e-9;
 
-fn off_rayleigh(g: &Grating, s: f64, lambda_nm: f64) -> f64 {
+fn off_rayleigh(g: &Grating, s: f64, beta: f64, lambda_nm: f64) -> f64 {
     let media = [1.0, g.cover.map_or(1.0, |c| c.index)];
     let ratio = lambda_nm / g.period_nm;
     let on_line = |s: f64| {
         let m_max = ((media[1] + 1.0) / ratio).ceil().min(1e5) as i64;
         (-m_max..=m_max).any(|m| {
-            let a = (s + m as f64 * ratio).abs();
-            media.iter().any(|n| (a - n).abs() < 1e-12)
+            let a = s + m as f64 * ratio;
+            let q = (a * a + beta * beta).sqrt();
+            media.iter().any(|n| (q - n).abs() < 1e-12)
         })
     };
     let mut s = s;
@@ -87,4 +111,80 @@ fn off_rayleigh(g: &Grating, s: f64, lambda_nm: f64) -> f64 {
         };
     }
     s
+}
+
+/// The conical-to-classical mapping as an [`OrderSolver`]: a conical node (α, β, λ) is solved as
+/// the classical problem at λ' = λ/√(1 − β²), s' = α/√(1 − β²), with every medium's
+/// permittivity ε' = (ε − β²)/(1 − β²) (the metal's n + ik at λ, and the cover's). Exact for
+/// perfect conductors; for metals an approximation whose error is measured against the full
+/// conical solve in `fmm/tests/conical_reading.rs` (`docs/efficiency_tables.md`, "Conical
+/// tables"). Its TE and TM are the E-along-the-grooves and H-along-the-grooves waves, not s and
+/// p; their mean is the unpolarised efficiency. Cheaper than the vector solve (two scalar
+/// problems of half the size).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mapped(pub Rigorous);
+
+/// √z with a non-negative imaginary part, as (re, im).
+fn sqrt_upper(re: f64, im: f64) -> (f64, f64) {
+    let r = re.hypot(im);
+    (
+        ((r + re) / 2.0).max(0.0).sqrt(),
+        ((r - re) / 2.0).max(0.0).sqrt(),
+    )
+}
+
+impl Mapped {
+    /// The mapped classical grating at λ for β.
+    pub fn mapped_grating(&self, beta: f64, lambda_nm: f64) -> Result<Grating, String> {
+        let g = &self.0.grating;
+        let c = 1.0 - beta * beta;
+        let (n, k) = g.metal.index(lambda_nm);
+        let (er, ei) = ((n * n - k * k - beta * beta) / c, 2.0 * n * k / c);
+        let (np, kp) = sqrt_upper(er, ei);
+        let metal = diffraction::relief::Metal::custom(np, kp).map_err(|e| e.to_string())?;
+        let cover = g.cover.map(|cv| crate::Cover {
+            index: ((cv.index * cv.index - beta * beta) / c).sqrt(),
+            ..cv
+        });
+        Ok(Grating {
+            metal,
+            cover,
+            ..g.clone()
+        })
+    }
+}
+
+impl OrderSolver for Mapped {
+    fn period_nm(&self) -> f64 {
+        self.0.period_nm()
+    }
+
+    fn mirror_symmetric(&self) -> bool {
+        self.0.mirror_symmetric()
+    }
+
+    fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String> {
+        self.0.solve(sin_theta_i, lambda_nm)
+    }
+
+    fn solve_conical(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Result<Orders, String> {
+        self.solve_marked(alpha, beta, lambda_nm).map(|r| r.0)
+    }
+
+    fn solve_marked(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+    ) -> Result<(Orders, Option<f64>), String> {
+        if beta == 0.0 {
+            return self.0.solve_marked(alpha, 0.0, lambda_nm);
+        }
+        let cb = (1.0 - beta * beta).sqrt();
+        let inner = Rigorous {
+            grating: self.mapped_grating(beta, lambda_nm)?,
+            ..self.0.clone()
+        };
+        inner.solve_marked(alpha / cb, 0.0, lambda_nm / cb)
+    }
 }

@@ -55,8 +55,12 @@ impl GratingBsdf {
     /// with the lobe-by-lobe rule on every period).
     ///
     /// A tabulated model (`OrderEfficiency::Tabulated`, feature `relief`): the same
-    /// rules with ρ²·S replaced by η̃_m(u) = min(η_m(wo.x − u, λ), η_m(−wo.x, λ)), every period
-    /// lobe by lobe (η̃ has the table's kinks); at most Σ_m η_m(−wo.x, λ) ≤ 1. For N = ∞:
+    /// rules with ρ²·S replaced by η̃_m(u) = min(η_m(wo.x − u, wo.y, λ), η_m(−wo.x, −wo.y, λ))
+    /// (a conical table read at the groove lobe's centre wi.y = −wo.y: its variation across the
+    /// groove's width in v is not integrated, which is exact for narrow lobes and not for wide
+    /// ones: for N = 1, whose lobe is about λ/d wide in v, a conical test table's albedo was
+    /// 0.890 against a furnace of 0.846 ± 0.002), every period lobe by lobe (η̃ has the table's
+    /// kinks); at most Σ_m η_m(−wo.x, −wo.y, λ) ≤ 1. For N = ∞:
     /// Σ_m η̃_m·∫ g over the chord. Measured against the Monte-Carlo furnace within 1.6
     /// standard errors (`tests/bsdf_efficiency.rs`).
     ///
@@ -104,7 +108,7 @@ impl GratingBsdf {
         };
         let moments = moments && tab.is_none();
         let eta_at = |m: i64, u: f64| match &tab {
-            Some(o) => o.eta_at_u(m, u, wo.x, lambda_nm),
+            Some(o) => o.eta_at_u(m, u, wo, lambda_nm),
             None => 0.0,
         };
         // ∫ g over the chord of D at u.

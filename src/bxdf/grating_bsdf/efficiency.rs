@@ -9,22 +9,27 @@
 //! order m owning u = wi.x + wo.x is
 //!
 //! ```text
-//! η̃_m(wo, wi, λ) = min(η_m(−wi.x, λ), η_m(−wo.x, λ))        (unpolarised: (TE + TM)/2)
+//! η̃_m(wo, wi, λ) = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ))   (unpolarised: (TE + TM)/2)
 //! ```
 //!
-//! The reciprocity theorem of gratings makes both readings equal in exact theory (the reversed
-//! path, light arriving from wo, is the same order m with incidence sin θ = −wo.x), so the min
-//! changes nothing there; between the table's nodes the interpolation breaks that equality by
-//! its error, and the min keeps f exactly reciprocal and below the sampler's weight
-//! η_m(−wo.x, λ) (bounded weights, albedo ≤ Σ_m η_m(−wo.x, λ) ≤ 1).
+//! with η_m(α, β, λ) the efficiency for the incident direction of travel with direction cosines
+//! α across and β along the grooves. The reciprocity theorem of gratings makes both readings
+//! equal in exact theory (the reversed path, light arriving from wo, is the same order m with
+//! incidence (−wo.x, −wo.y), and |β| = |wo.y| = |wi.y| on the order's lobe centre, where
+//! η depends on |β| only by the grating's mirror symmetry y → −y), so the min changes nothing
+//! there; between the table's nodes the interpolation breaks that equality by its error, and
+//! the min keeps f exactly reciprocal and below the sampler's weight η_m(−wo.x, −wo.y, λ)
+//! (bounded weights, albedo ≤ Σ_m η_m(−wo.x, −wo.y, λ) ≤ 1).
 //!
-//! Off the plane across the grooves (v = wi.y + wo.y ≠ 0, conical diffraction) the tables are
-//! still read at sin θi = −wi.x and −wo.x: the classical-mount approximation (the tables hold
-//! the plane of incidence across the grooves only).
+//! A **conical table** (`EfficiencyTable::is_conical`, JSON version 2) holds η_m(α, |β|, λ)
+//! and is read at the full incident direction. A **classical table** (version 1, and the
+//! shipped presets) holds the plane of incidence across the grooves only and ignores β: off that
+//! plane it is the classical-mount approximation (measured: 22-59 % of orders with η ≥ 1 %
+//! within 10 % at azimuths 30-80°; `docs/efficiency_tables.md`, "Conical tables").
 //!
 //! **The sampler** of a tabulated model: the candidate orders are those of the amplitude model
 //! (periods meeting the disk's u-range), clipped to the table's orders; order m is chosen with
-//! P(m) = η_m(−wo.x, λ)/Σ η, every stored order's efficiency read once per call into a stack
+//! P(m) = η_m(−wo.x, −wo.y, λ)/Σ η, every stored order's efficiency read once per call into a stack
 //! buffer of [`MAX_TABULATED_ORDERS`] entries (no allocation). No defensive share is needed: f
 //! vanishes wherever η_m(−wo.x, λ) does (the min), so P(m) > 0 wherever f > 0. The rest (u from
 //! the period proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and
@@ -223,16 +228,17 @@ impl OrderEfficiency {
     }
 }
 
-/// Unpolarised η of one order of a table, 0 outside its orders and where it is not a finite
-/// positive number.
+/// Unpolarised η of one order of a table for the incident direction of travel (α, β) = `dir`
+/// (= (−wi.x, −wi.y)), 0 outside its orders and where it is not a finite positive number. A
+/// classical table ignores β.
 #[cfg(feature = "relief")]
 #[inline]
-pub(super) fn eta(t: &EfficiencyTable, order: i64, sin_theta_i: f64, lambda_nm: f64) -> f64 {
+pub(super) fn eta(t: &EfficiencyTable, order: i64, dir: (f64, f64), lambda_nm: f64) -> f64 {
     if order < i64::from(*t.orders().start()) || order > i64::from(*t.orders().end()) {
         return 0.0;
     }
     let e = t
-        .efficiency(order as i32, sin_theta_i, lambda_nm)
+        .efficiency_conical(order as i32, dir.0, dir.1, lambda_nm)
         .unpolarised();
     if e.is_finite() && e > 0.0 {
         e
@@ -344,7 +350,7 @@ impl GratingBsdf {
     pub fn efficiency(&self, order: i32) -> f64 {
         #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
-            return eta(t, i64::from(order), 0.0, 550.0);
+            return eta(t, i64::from(order), (0.0, 0.0), 550.0);
         }
         let rho = self.grating.open_fraction();
         rho * rho * single_slit_cycles(rho * f64::from(order))
@@ -357,7 +363,7 @@ impl GratingBsdf {
         self.efficiency.table()
     }
 
-    /// η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) of a tabulated model (see the
+    /// η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) of a tabulated model (see the
     /// [module docs](super)), unpolarised; the amplitude reading's η_m otherwise. Symmetric in
     /// (wo, wi) and ≥ 0; 0 for orders the table does not store and for non-finite input.
     ///
@@ -379,7 +385,7 @@ impl GratingBsdf {
         #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
             let m = i64::from(order);
-            return eta(t, m, -wi.x, lambda_nm).min(eta(t, m, -wo.x, lambda_nm));
+            return eta(t, m, (-wi.x, -wi.y), lambda_nm).min(eta(t, m, (-wo.x, -wo.y), lambda_nm));
         }
         #[cfg(not(feature = "relief"))]
         let _ = (wo, wi, lambda_nm);

@@ -8,8 +8,9 @@
 //! * [`AmplitudeWeights`]: the amplitude reading (`orders.rs`): w_m = S(π·ρ·m) + ε·U_m for
 //!   finite N, S(π·ρ·m) for N = ∞; the lobe carries ρ²·S(π·ρ·x) itself, so the order's factor
 //!   in f is 1.
-//! * [`TabulatedWeights`]: a table's η_m(−wo.x, λ) of every stored candidate; the order's
-//!   factor in f is η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) (`efficiency.rs`), the lobe the
+//! * [`TabulatedWeights`]: a table's η_m(−wo.x, −wo.y, λ) of every stored candidate (a
+//!   classical table ignores the second argument); the order's factor in f is
+//!   η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`), the lobe the
 //!   unit-integral (N·d/λ)·F_N·g.
 //!
 //! The model-level [`OrderSource`] builds the weights of a query; each public method matches
@@ -127,7 +128,7 @@ impl<'a> TabulatedWeights<'a> {
             hi: hi.min(first + count as i64 - 1),
             total: 0.0,
         };
-        table.efficiencies(-wo.x, lambda_nm, &mut o.buf[..count]);
+        table.efficiencies_conical(-wo.x, -wo.y, lambda_nm, &mut o.buf[..count]);
         let mut total = 0.0;
         for m in o.lo..=o.hi {
             total += o.weight(m);
@@ -136,20 +137,22 @@ impl<'a> TabulatedWeights<'a> {
         (total > 0.0 && total.is_finite()).then_some(o)
     }
 
-    /// η̃_m = min(w_m, η_m(−wi.x, λ)) with w_m = η_m(−wo.x, λ) this query's weight.
+    /// η̃_m = min(w_m, η_m(−wi.x, −wi.y, λ)) with w_m = η_m(−wo.x, −wo.y, λ) this query's
+    /// weight.
     #[inline]
-    fn eta_pair(&self, m: i64, wi_x: f64, lambda_nm: f64) -> f64 {
+    fn eta_pair(&self, m: i64, wi: (f64, f64), lambda_nm: f64) -> f64 {
         let w = self.weight(m);
         if w == 0.0 {
             return 0.0;
         }
-        w.min(eta(self.table, m, -wi_x, lambda_nm))
+        w.min(eta(self.table, m, (-wi.0, -wi.1), lambda_nm))
     }
 
-    /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x): the albedo's integrand.
+    /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x, and wi.y = −wo.y: the
+    /// groove lobe's centre v = 0): the albedo's integrand.
     #[inline]
-    pub(super) fn eta_at_u(&self, m: i64, u: f64, wo_x: f64, lambda_nm: f64) -> f64 {
-        self.eta_pair(m, u - wo_x, lambda_nm)
+    pub(super) fn eta_at_u(&self, m: i64, u: f64, wo: DVec3, lambda_nm: f64) -> f64 {
+        self.eta_pair(m, (u - wo.x, -wo.y), lambda_nm)
     }
 }
 
@@ -192,12 +195,12 @@ impl OrderWeights for TabulatedWeights<'_> {
 
     #[inline]
     fn lobe_factor(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eta_pair(m, wi.x, lambda_nm)
+        self.eta_pair(m, (wi.x, wi.y), lambda_nm)
     }
 
     #[inline]
     fn delta_efficiency(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eta_pair(m, wi.x, lambda_nm)
+        self.eta_pair(m, (wi.x, wi.y), lambda_nm)
     }
 
     fn order_bound(&self) -> f64 {
@@ -224,7 +227,7 @@ impl<'a> TabulatedWeights<'a> {
         match *table {}
     }
 
-    pub(super) fn eta_at_u(&self, _m: i64, _u: f64, _wo_x: f64, _lambda_nm: f64) -> f64 {
+    pub(super) fn eta_at_u(&self, _m: i64, _u: f64, _wo: DVec3, _lambda_nm: f64) -> f64 {
         match self.never {}
     }
 }
@@ -287,11 +290,11 @@ impl OrderSource {
                     return 0.0;
                 }
                 let (t, m) = (table.table(), m as i64);
-                let e = eta(t, m, -wo.x, lambda_nm);
+                let e = eta(t, m, (-wo.x, -wo.y), lambda_nm);
                 if e == 0.0 {
                     return 0.0;
                 }
-                e.min(eta(t, m, -wi.x, lambda_nm))
+                e.min(eta(t, m, (-wi.x, -wi.y), lambda_nm))
             }
         }
     }

@@ -206,6 +206,7 @@ impl EfficiencyTable {
             order_count: orders,
             storage: Storage::Owned {
                 sin_theta_i,
+                abs_beta: Vec::new(),
                 lambda_nm,
                 te,
                 tm,

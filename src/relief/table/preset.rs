@@ -42,6 +42,7 @@ static CD: EfficiencyTable = EfficiencyTable {
     order_count: data::CD_ORDER_COUNT,
     storage: Storage::Static {
         sin_theta_i: &data::CD_SIN_THETA_I,
+        abs_beta: &[],
         lambda_nm: &data::CD_LAMBDA_NM,
         te: &data::CD_TE,
         tm: &data::CD_TM,
@@ -54,6 +55,7 @@ static DVD: EfficiencyTable = EfficiencyTable {
     order_count: data::DVD_ORDER_COUNT,
     storage: Storage::Static {
         sin_theta_i: &data::DVD_SIN_THETA_I,
+        abs_beta: &[],
         lambda_nm: &data::DVD_LAMBDA_NM,
         te: &data::DVD_TE,
         tm: &data::DVD_TM,
@@ -66,6 +68,7 @@ static BLAZED600: EfficiencyTable = EfficiencyTable {
     order_count: data::BLAZED600_ORDER_COUNT,
     storage: Storage::Static {
         sin_theta_i: &data::BLAZED600_SIN_THETA_I,
+        abs_beta: &[],
         lambda_nm: &data::BLAZED600_LAMBDA_NM,
         te: &data::BLAZED600_TE,
         tm: &data::BLAZED600_TM,
@@ -78,6 +81,7 @@ static FOIL: EfficiencyTable = EfficiencyTable {
     order_count: data::FOIL_ORDER_COUNT,
     storage: Storage::Static {
         sin_theta_i: &data::FOIL_SIN_THETA_I,
+        abs_beta: &[],
         lambda_nm: &data::FOIL_LAMBDA_NM,
         te: &data::FOIL_TE,
         tm: &data::FOIL_TM,

@@ -3,7 +3,7 @@
 //!
 //! Each value is first read in a loosely typed form ([`Loose`]: what kind of value it was,
 //! never more than a short quote of a string), then converted with a message naming the field
-//! (`version: expected 1, got 1.0`, `lambda_nm[1]: expected a number, got null`). Errors the
+//! (`version: expected 1 or 2, got 1.0`, `lambda_nm[1]: expected a number, got null`). Errors the
 //! parser itself raises (`1e400`: number out of range; a truncated file) are prefixed with the
 //! field they occurred in. The arrays are read straight into flat vectors and refused as soon
 //! as they exceed the table's bounds ([`MAX_TABLE_NODES`] per axis and per row,
@@ -13,6 +13,7 @@
 
 use alloc::format;
 use alloc::string::{String, ToString};
+use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
 
@@ -21,11 +22,13 @@ use serde::de::{self, DeserializeSeed, IgnoredAny, MapAccess, SeqAccess, Visitor
 use super::{check_axis, check_period, EfficiencyTable};
 use super::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};
 use crate::error::{Error, Requirement};
+use crate::relief::MAX_TABLE_ABS_BETA;
 
 /// The `format` field's one accepted value.
 const FORMAT: &str = "diffraction-efficiency-table";
-/// The `version` field's one accepted value.
-const VERSION: i128 = 1;
+/// The `version` field's accepted values: 1 (classical, `[order][λ][s]`) and 2 (conical,
+/// with `abs_beta` and `[order][|β|][λ][s]`).
+const VERSIONS: [i128; 2] = [1, 2];
 /// The most characters of a string quoted in a message (a longer one is described by its
 /// length).
 const QUOTE_CHARS: usize = 40;
@@ -180,7 +183,7 @@ fn integer(name: &str, v: Loose) -> Result<i128, String> {
 /// The name of an element: `te[2][0][1]`.
 struct Path<'a> {
     name: &'a str,
-    index: [usize; 3],
+    index: [usize; 4],
     depth: usize,
 }
 
@@ -231,7 +234,7 @@ impl<'de> Visitor<'de> for Axis<'_> {
         loop {
             let path = Path {
                 name,
-                index: [out.len(), 0, 0],
+                index: [out.len(), 0, 0, 0],
                 depth: 1,
             };
             let Some(v) = seq
@@ -258,138 +261,8 @@ impl<'de> DeserializeSeed<'de> for Axis<'_> {
     }
 }
 
-/// One polarisation's `[order][λ][s]` array, flattened as it is read.
-#[derive(Default)]
-struct Cube {
-    values: Vec<f64>,
-    /// Orders, wavelength rows per order, values per row (of the first row read; every other
-    /// is checked against it).
-    shape: [usize; 3],
-}
-
-/// One level of a [`Cube`]: depth 0 the orders, 1 an order's rows, 2 a row's values.
-struct Level<'a> {
-    name: &'a str,
-    cube: &'a mut Cube,
-    index: [usize; 3],
-    depth: usize,
-    /// Whether a first element of this level was read before (the shape is then fixed).
-    fixed: [bool; 3],
-}
-
-impl Level<'_> {
-    fn path(&self, depth: usize) -> Path<'_> {
-        Path {
-            name: self.name,
-            index: self.index,
-            depth,
-        }
-    }
-}
-
-/// The most elements each level holds and what it counts.
-const LEVELS: [(usize, &str); 3] = [
-    (MAX_TABLE_ORDERS, "orders"),
-    (MAX_TABLE_NODES, "wavelength rows"),
-    (MAX_TABLE_NODES, "values"),
-];
-
-impl<'de> Visitor<'de> for &mut Level<'_> {
-    type Value = ();
-    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(
-            [
-                "an array of orders",
-                "an array of wavelength rows",
-                "an array of numbers",
-            ][self.depth],
-        )
-    }
-    refuse_long_strings!();
-    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
-        let depth = self.depth;
-        let (max, what) = LEVELS[depth];
-        let mut count = 0usize;
-        loop {
-            self.index[depth] = count;
-            let here = self.path(depth + 1).to_string();
-            let more = if depth == 2 {
-                match seq.next_element::<Loose>().map_err(|e| within(&here, e))? {
-                    None => false,
-                    Some(v) => {
-                        if self.cube.values.len() >= MAX_TABLE_VALUES {
-                            return Err(de::Error::custom(format_args!(
-                                "{}: has more than {MAX_TABLE_VALUES} values \
-                                 (MAX_TABLE_VALUES)",
-                                self.name
-                            )));
-                        }
-                        let x = number(&here, v).map_err(de::Error::custom)?;
-                        self.cube.values.push(x);
-                        true
-                    }
-                }
-            } else {
-                self.depth = depth + 1;
-                let got = seq
-                    .next_element_seed(&mut *self)
-                    .map_err(|e| within(&here, e));
-                self.depth = depth;
-                got?.is_some()
-            };
-            if !more {
-                break;
-            }
-            count += 1;
-            if count > max {
-                let at = self.path(depth).to_string();
-                return Err(de::Error::custom(format_args!(
-                    "{at}: has more than {max} {what}"
-                )));
-            }
-        }
-        let at = self.path(depth).to_string();
-        if self.fixed[depth] {
-            let want = self.cube.shape[depth];
-            if count != want {
-                return Err(de::Error::custom(format_args!(
-                    "{at}: has {count} {what}, expected {want} (as the first)"
-                )));
-            }
-        } else {
-            self.fixed[depth] = true;
-            self.cube.shape[depth] = count;
-        }
-        Ok(())
-    }
-}
-
-impl<'de> DeserializeSeed<'de> for &mut Level<'_> {
-    type Value = ();
-    fn deserialize<D: de::Deserializer<'de>>(self, d: D) -> Result<(), D::Error> {
-        d.deserialize_any(self)
-    }
-}
-
-/// A whole [`Cube`] field.
-struct CubeSeed<'a>(&'a str);
-
-impl<'de> DeserializeSeed<'de> for CubeSeed<'_> {
-    type Value = Cube;
-    fn deserialize<D: de::Deserializer<'de>>(self, d: D) -> Result<Cube, D::Error> {
-        let mut cube = Cube::default();
-        let mut level = Level {
-            name: self.0,
-            cube: &mut cube,
-            index: [0; 3],
-            depth: 0,
-            fixed: [false; 3],
-        };
-        d.deserialize_any(&mut level)?;
-        // An order without rows, or rows without values, leave the inner levels unread.
-        Ok(cube)
-    }
-}
+mod cube;
+use cube::{Cube, CubeSeed};
 
 /// The `grating` object: its `period_nm` (the other fields are skipped).
 struct GratingVisitor;
@@ -433,6 +306,7 @@ enum Key {
     Grating,
     PeriodNm,
     SinThetaI,
+    AbsBeta,
     LambdaNm,
     OrderMin,
     OrderMax,
@@ -442,12 +316,13 @@ enum Key {
 }
 
 impl Key {
-    const ALL: [(Key, &'static str); 10] = [
+    const ALL: [(Key, &'static str); 11] = [
         (Key::Format, "format"),
         (Key::Version, "version"),
         (Key::Grating, "grating"),
         (Key::PeriodNm, "period_nm"),
         (Key::SinThetaI, "sin_theta_i"),
+        (Key::AbsBeta, "abs_beta"),
         (Key::LambdaNm, "lambda_nm"),
         (Key::OrderMin, "order_min"),
         (Key::OrderMax, "order_max"),
@@ -491,6 +366,7 @@ struct Fields {
     version: Option<Loose>,
     period_nm: Option<Option<f64>>,
     sin_theta_i: Option<Vec<f64>>,
+    abs_beta: Option<Vec<f64>>,
     lambda_nm: Option<Vec<f64>>,
     order_min: Option<Loose>,
     order_max: Option<Loose>,
@@ -524,6 +400,7 @@ impl<'de> Visitor<'de> for FileVisitor {
                 Key::Version => once!(f.version, core::marker::PhantomData::<Loose>),
                 Key::Grating => once!(f.period_nm, GratingVisitor),
                 Key::SinThetaI => once!(f.sin_theta_i, Axis(name)),
+                Key::AbsBeta => once!(f.abs_beta, Axis(name)),
                 Key::LambdaNm => once!(f.lambda_nm, Axis(name)),
                 Key::OrderMin => once!(f.order_min, core::marker::PhantomData::<Loose>),
                 Key::OrderMax => once!(f.order_max, core::marker::PhantomData::<Loose>),
@@ -549,10 +426,10 @@ impl Fields {
             } => {}
             other => return Err(text(format!("format: expected {FORMAT:?}, got {other}"))),
         }
-        match self.version.ok_or_else(|| missing("version"))? {
-            Loose::Int(VERSION) => {}
-            other => return Err(text(format!("version: expected {VERSION}, got {other}"))),
-        }
+        let version = match self.version.ok_or_else(|| missing("version"))? {
+            Loose::Int(v) if VERSIONS.contains(&v) => v,
+            other => return Err(text(format!("version: expected 1 or 2, got {other}"))),
+        };
         let period = self
             .period_nm
             .ok_or_else(|| missing("grating"))?
@@ -560,6 +437,19 @@ impl Fields {
         check_period("grating.period_nm", period).map_err(typed)?;
         let sin = self.sin_theta_i.ok_or_else(|| missing("sin_theta_i"))?;
         check_axis("sin_theta_i", &sin, Some((-1.0, 1.0))).map_err(typed)?;
+        let beta = match (version, self.abs_beta) {
+            (1, None) => None,
+            (1, Some(_)) => {
+                return Err(text(
+                    "abs_beta: a conical axis needs version 2 (version 1 is classical)".to_string(),
+                ))
+            }
+            (_, None) => return Err(missing("abs_beta")),
+            (_, Some(b)) => {
+                check_axis("abs_beta", &b, Some((0.0, MAX_TABLE_ABS_BETA))).map_err(typed)?;
+                Some(b)
+            }
+        };
         let lam = self.lambda_nm.ok_or_else(|| missing("lambda_nm"))?;
         check_axis("lambda_nm", &lam, None).map_err(typed)?;
         let order_min = self.order_min.ok_or_else(|| missing("order_min"))?;
@@ -601,25 +491,48 @@ impl Fields {
                 requirement,
             )));
         }
-        let want = [n_o as usize, lam.len(), sin.len()];
+        // The expected shape, outermost first: [order][λ][s] or [order][|β|][λ][s].
+        let mut want = vec![n_o as usize];
+        want.extend(beta.as_ref().map(Vec::len));
+        want.extend([lam.len(), sin.len()]);
         let mut flat = [Vec::new(), Vec::new()];
         for (k, (name, cube)) in [("te", self.te), ("tm", self.tm)].into_iter().enumerate() {
             let cube = cube.ok_or_else(|| missing(name))?;
-            // An empty level leaves the levels inside it unread (0).
-            let got = cube.shape;
-            let same = got[0] == want[0]
-                && (got[0] == 0 || got[1] == want[1])
-                && (got[0] * got[1] == 0 || got[2] == want[2]);
+            // An empty level leaves the levels inside it unread (0); a 4-level array in a
+            // version-1 file (or a 3-level one in version 2) has the wrong shape.
+            let depth = if cube.leaf == 0 {
+                want.len()
+            } else {
+                cube.leaf
+            };
+            let got = &cube.shape[..depth];
+            let mut same = got.len() == want.len();
+            let mut outer = 1;
+            for (g, w) in got.iter().zip(&want) {
+                same &= outer == 0 || g == w;
+                outer *= g;
+            }
             if !same || cube.values.len() != want.iter().product::<usize>() {
+                let dims = |v: &[usize]| v.iter().map(|n| format!("[{n}]")).collect::<String>();
+                let axes = if beta.is_some() {
+                    "[order][abs_beta][lambda][sin]"
+                } else {
+                    "[order][lambda][sin]"
+                };
                 return Err(text(format!(
-                    "{name}: has shape [{}][{}][{}], expected [{}][{}][{}] ([order][lambda][sin])",
-                    got[0], got[1], got[2], want[0], want[1], want[2]
+                    "{name}: has shape {}, expected {} ({axes})",
+                    dims(got),
+                    dims(&want)
                 )));
             }
             flat[k] = cube.values;
         }
         let [te, tm] = flat;
-        EfficiencyTable::new(period, first, sin, lam, te, tm).map_err(typed)
+        match beta {
+            None => EfficiencyTable::new(period, first, sin, lam, te, tm),
+            Some(b) => EfficiencyTable::new_conical(period, first, sin, b, lam, te, tm),
+        }
+        .map_err(typed)
     }
 }
 
@@ -648,7 +561,7 @@ impl Fields {
 /// assert!((t.efficiency(0, 0.2, 550.0).tm - 0.8).abs() < 1e-15);
 /// let bad = json.replace("\"version\": 1", "\"version\": 1.0");
 /// let e = serde_json::from_str::<EfficiencyTable>(&bad).unwrap_err();
-/// assert!(e.to_string().starts_with("version: expected 1, got 1.0"));
+/// assert!(e.to_string().starts_with("version: expected 1 or 2, got 1.0"));
 /// let bad = json.replace("[500.0, 600.0]", "[500.0, 1e400]");
 /// let e = serde_json::from_str::<EfficiencyTable>(&bad).unwrap_err();
 /// assert!(e.to_string().starts_with("lambda_nm[1]: number out of range"));
