@@ -317,6 +317,7 @@ impl GrooveSpread {
     /// assert!((g.sample(0.75, 550.0) - 0.1).abs() < 1e-15); // the proxy's quartile is s
     /// # Ok::<(), diffraction::Error>(())
     /// ```
+    #[doc(hidden)]
     #[must_use]
     pub fn sample(self, uc: f64, lambda_nm: f64) -> f64 {
         let s = self.proxy_scale(lambda_nm);
@@ -367,6 +368,7 @@ impl GrooveSpread {
     /// assert!((g.pdf(1e150, 550.0) / (0.1 / (std::f64::consts::PI * 1e300)) - 1.0).abs() < 1e-12);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
+    #[doc(hidden)]
     #[must_use]
     pub fn pdf(self, v: f64, lambda_nm: f64) -> f64 {
         let s = self.proxy_scale(lambda_nm);
@@ -397,6 +399,7 @@ impl GrooveSpread {
     /// assert!(GrooveSpread::gaussian(0.1)?.proxy_bound() < 1.53);
     /// # Ok::<(), diffraction::Error>(())
     /// ```
+    #[doc(hidden)]
     #[must_use]
     pub fn proxy_bound(self) -> f64 {
         match self.0 {

@@ -36,9 +36,9 @@ pub use metal::{Metal, MAX_INDEX};
 pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
-pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES, QUADRATURE_NODES};
+pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES};
 #[cfg(feature = "presets")]
 pub use table::Preset;
 pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};
 #[cfg(feature = "alloc")]
-pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE};
+pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};

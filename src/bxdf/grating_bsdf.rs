@@ -44,7 +44,7 @@
 //!    (ε = [`DEFENSIVE_ORDER_SHARE`], U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²) an upper bound of S over
 //!    the period, since S(β) ≤ 3/(3 + β²)), and w_m = η_m/ρ² for N = ∞. The defensive term
 //!    keeps P(m) > 0 for missing orders (η_m = 0), where f is small but not 0 for finite N.
-//!    When more than [`MAX_WEIGHTED_ORDERS`] orders are candidates (d/λ above about 127) the
+//!    When more than `MAX_WEIGHTED_ORDERS` orders are candidates (d/λ above about 127) the
 //!    choice is uniform instead (bounded work).
 //! 2. **u inside the period** (finite N), from a proxy of F_N (`lobe.rs`), x = m + r,
 //!    u = x·λ/d. For N ≥ 2 the Lorentzian r = tan((2ξ − 1)·atan N)/(2N), with density
@@ -80,12 +80,12 @@
 //! far above the 10⁻¹⁶ resolution of unit vectors). The threshold for SPECULAR is therefore
 //! **N = ∞** (or an ideal groove, specular in v). A renderer working in `f32` resolves u only to
 //! about 10⁻⁷; [`GratingBsdf::is_near_specular`] reports lobes narrower than
-//! [`NEAR_SPECULAR_HALF_WIDTH`] = 10⁻⁶, for which such a renderer should switch to N = ∞ (the
+//! `NEAR_SPECULAR_HALF_WIDTH` = 10⁻⁶, for which such a renderer should switch to N = ∞ (the
 //! same orders, the same energy) rather than evaluate a lobe it cannot resolve.
 //!
 //! # Regularisation
 //!
-//! [`Bsdf::regularize`] widens lobes narrower than [`REGULARIZE_MAX_HALF_WIDTH`] (0.03 in u and
+//! [`Bsdf::regularize`] widens lobes narrower than `REGULARIZE_MAX_HALF_WIDTH` (0.03 in u and
 //! v) like pbrt-v4's microfacet `Regularize` (α < 0.3 → clamp(2α, 0.1, 0.3)): the half-width at
 //! 550 nm becomes clamp(2·h, 0.01, 0.03). In u that lowers N (N = ∞ becomes a finite N), in v it
 //! shortens the coherence length or widens the Gaussian (an ideal groove becomes a Gaussian
@@ -139,18 +139,14 @@ mod regularize;
 mod sampling;
 mod wavelength;
 
-pub use albedo::{ALBEDO_CUT_MARGIN, MAX_ALBEDO_ORDERS};
 pub use efficiency::OrderEfficiency;
 #[cfg(feature = "relief")]
 pub use efficiency::{Tabulated, MAX_TABULATED_ORDERS};
 use lobe::{Lobe, PeriodProxy};
 use order_weights::{AmplitudeWeights, OrderSource};
 use orders::AmplitudeOrders;
-pub use orders::{DEFENSIVE_ORDER_SHARE, MAX_WEIGHTED_ORDERS};
-pub use regularize::{
-    NEAR_SPECULAR_HALF_WIDTH, REGULARIZE_MAX_HALF_WIDTH, REGULARIZE_MIN_HALF_WIDTH,
-};
-pub use wavelength::{WavelengthSample, DEFENSIVE_WAVELENGTH_SHARE, MAX_WAVELENGTH_PEAKS};
+pub use orders::DEFENSIVE_ORDER_SHARE;
+pub use wavelength::{WavelengthSample, DEFENSIVE_WAVELENGTH_SHARE};
 
 /// The energy-normalised Agu-Hill grating (see the [module docs](self)): a radiometric
 /// [`Bsdf`] whose orders carry the power of an amplitude grating, with exact sampling.
@@ -599,7 +595,7 @@ impl Bsdf for GratingBsdf {
         }
     }
 
-    /// Widens narrow lobes (see [`REGULARIZE_MAX_HALF_WIDTH`] and the [module docs](self)).
+    /// Widens narrow lobes (see `REGULARIZE_MAX_HALF_WIDTH` and the [module docs](self)).
     fn regularize(&mut self) {
         *self = self.regularized();
     }

@@ -25,7 +25,7 @@ use crate::math;
 /// ```
 pub const MAX_DEPTH_NM: f64 = 10_000.0;
 /// The most heights of a [`Relief::sampled`] profile and the most harmonics of a
-/// [`Relief::fourier`] series: bounds the work of one order to [`QUADRATURE_NODES`] complex
+/// [`Relief::fourier`] series: bounds the work of one order to `QUADRATURE_NODES` complex
 /// exponentials.
 ///
 /// ```
@@ -39,14 +39,14 @@ pub const MAX_SAMPLES: usize = 4096;
 /// [`Relief::fourier`]).
 ///
 /// ```
-/// use diffraction::relief::{Relief, QUADRATURE_NODES};
-/// // The rule is a discrete Fourier transform on its nodes: order m and m + J alias.
+/// use diffraction::relief::Relief;
+/// // The rule is a discrete Fourier transform on its J = 4096 nodes: order m and m + J alias.
 /// let f = Relief::fourier(&[(40.0, 0.0)])?;
-/// let j = QUADRATURE_NODES as i32;
+/// let j = 4096;
 /// assert_eq!(f.power(3, 0.02, 1000.0), f.power(3 + j, 0.02, 1000.0));
 /// # Ok::<(), diffraction::Error>(())
 /// ```
-pub const QUADRATURE_NODES: usize = 4096;
+pub(crate) const QUADRATURE_NODES: usize = 4096;
 /// The most recurrence steps one Bessel value of a sinusoid may take before Debye's expansions
 /// are used (their accuracy there is below 10⁻¹¹ of the local amplitude, `src/bessel.rs`): bounds
 /// a sinusoid's order to about 2000 steps whatever its phase.
@@ -96,7 +96,7 @@ enum Kind {
     },
     #[cfg(feature = "alloc")]
     Fourier {
-        /// h at the [`QUADRATURE_NODES`] nodes x_j = j·d/J.
+        /// h at the `QUADRATURE_NODES` nodes x_j = j·d/J.
         nodes: Vec<f64>,
         depth_nm: f64,
         /// max_j |d·h'(x_j)|: the largest slope times the period.
@@ -223,7 +223,7 @@ impl Relief {
     /// peak-to-valley depth at most [`MAX_DEPTH_NM`]). Feature `alloc`.
     ///
     /// The phase screen's coefficients are integrated by the trapezoid rule on
-    /// [`QUADRATURE_NODES`] points, which is exact (to rounding) for every Fourier component of
+    /// `QUADRATURE_NODES` points, which is exact (to rounding) for every Fourier component of
     /// the periodic integrand below that count: for order m when |m| + K·(κ·A + 20) < 4096,
     /// A = Σ_k √(a_k² + b_k²), the integrand's bandwidth (the components of exp(−iκh) beyond
     /// K·(κA + 20) are below 10⁻¹⁷). Orders and phases beyond that are aliased: a documented

@@ -14,14 +14,14 @@ use crate::Slits;
 use core::f64::consts::PI;
 
 /// [`GratingBsdf::albedo`] returns `None` above this many candidate orders.
-pub const MAX_ALBEDO_ORDERS: i64 = 512;
+pub(crate) const MAX_ALBEDO_ORDERS: i64 = 512;
 
 /// A period whose centre is within this many periods of a cut (the disk's edge, or the step of
 /// the chord's mass where its end crosses v = 0) is integrated lobe by lobe; farther ones by
 /// the moment rule ([`GratingBsdf::albedo`]). At 2.5 periods the nearest singularity of the
 /// integrand is 5 half-periods from the period's centre, where degree-15 interpolation
 /// converges like 10⁻¹⁵.
-pub const ALBEDO_CUT_MARGIN: f64 = 2.5;
+pub(crate) const ALBEDO_CUT_MARGIN: f64 = 2.5;
 
 /// The step of the chord's mass is that many groove widths (the Cauchy proxy's scale) wide in
 /// v: beyond this many widths of it the mass is smooth on the scale of a period.
@@ -36,11 +36,11 @@ const MOMENT_POINTS: usize = 16;
 impl GratingBsdf {
     /// The albedo ∫ f·cos θi dωi for light leaving toward `wo` at λ: the part of every lobe
     /// inside the disk D (see the [module docs](super)); at most ρ = w/d. `None` when more than
-    /// [`MAX_ALBEDO_ORDERS`] orders are candidates; 0 below the surface.
+    /// `MAX_ALBEDO_ORDERS` orders are candidates; 0 below the surface.
     ///
     /// N = ∞: the closed form Σ_m η_m·∫ g over the chord of D at u = m·λ/d (by
     /// [`GrooveSpread::mass`](crate::GrooveSpread::mass)). Finite N: the periods within
-    /// [`ALBEDO_CUT_MARGIN`] periods (or 8 groove widths) of a place where the chord starts,
+    /// `ALBEDO_CUT_MARGIN` periods (or 8 groove widths) of a place where the chord starts,
     /// stops or steps are integrated lobe by lobe: Gauss-Legendre (8 points) on every side lobe
     /// of F_N out to 64 lobes from the peak (all of them for N ≤ 128), and beyond them F_N
     /// replaced by its local mean 1/(2N²·sin²(π·r)) on 24 geometric pieces (the error of that

@@ -10,7 +10,7 @@
 //! U_m = 3/(3 + (π·ρ·(|m| − ½)₊)²) an upper bound of S(π·ρ·x)/1 over the period, since
 //! S(β) ≤ 3/(3 + β²)), and w_m = η_m/ρ² for N = ∞. The defensive term keeps P(m) > 0 for
 //! missing orders (η_m = 0), where the finite-N value is small but not 0. Above
-//! [`MAX_WEIGHTED_ORDERS`] candidates (d/λ above about 127) the choice is uniform instead
+//! `MAX_WEIGHTED_ORDERS` candidates (d/λ above about 127) the choice is uniform instead
 //! (bounded work).
 
 use core::f64::consts::PI;
@@ -22,9 +22,10 @@ use crate::math;
 use crate::{Grating, Slits};
 
 /// The share ε of the envelope bound U_m in the order weights w_m = η_m/ρ² + ε·U_m.
+#[doc(hidden)]
 pub const DEFENSIVE_ORDER_SHARE: f64 = 0.125;
 /// Above this many candidate orders the order is chosen uniformly (bounded work per call).
-pub const MAX_WEIGHTED_ORDERS: i64 = 256;
+pub(crate) const MAX_WEIGHTED_ORDERS: i64 = 256;
 /// x = d·u/λ beyond this magnitude is not sampled (orders would not fit an `i64` exactly).
 const MAX_PHASE: f64 = 4.0e15;
 /// Orders |m| ≤ this have their weights w_m and prefix sums in a table, so that the candidates'
@@ -45,7 +46,7 @@ pub(super) struct Candidates {
     pub hi: i64,
     /// Σ w over the candidates (their count for the uniform choice).
     pub total: f64,
-    /// The choice is uniform (more than [`MAX_WEIGHTED_ORDERS`] candidates).
+    /// The choice is uniform (more than `MAX_WEIGHTED_ORDERS` candidates).
     pub uniform: bool,
 }
 

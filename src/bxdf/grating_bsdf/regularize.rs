@@ -8,12 +8,12 @@ use crate::{Band, Grating, Slits};
 
 /// Lobes narrower than this half-width in u (at the band's shortest wavelength) are reported by
 /// [`GratingBsdf::is_near_specular`].
-pub const NEAR_SPECULAR_HALF_WIDTH: f64 = 1e-6;
+pub(crate) const NEAR_SPECULAR_HALF_WIDTH: f64 = 1e-6;
 /// [`regularize`](crate::Bsdf::regularize) widens lobes whose half-width at 550 nm is below this
 /// (in u or v).
-pub const REGULARIZE_MAX_HALF_WIDTH: f64 = 0.03;
+pub(crate) const REGULARIZE_MAX_HALF_WIDTH: f64 = 0.03;
 /// The smallest half-width [`regularize`](crate::Bsdf::regularize) produces.
-pub const REGULARIZE_MIN_HALF_WIDTH: f64 = 0.01;
+pub(crate) const REGULARIZE_MIN_HALF_WIDTH: f64 = 0.01;
 /// The wavelength at which [`regularize`](crate::Bsdf::regularize) measures widths, nm.
 const REGULARIZE_REFERENCE_NM: f64 = 550.0;
 
@@ -27,7 +27,7 @@ fn widen(h: f64) -> f64 {
 }
 
 impl GratingBsdf {
-    /// Whether the lobes at 360 nm are narrower than [`NEAR_SPECULAR_HALF_WIDTH`] in u or v
+    /// Whether the lobes at 360 nm are narrower than `NEAR_SPECULAR_HALF_WIDTH` in u or v
     /// (advice for `f32` renderers, see the [module docs](super)); always `false` for N = ∞ and
     /// ideal grooves, which are specular already.
     ///
@@ -49,8 +49,8 @@ impl GratingBsdf {
     }
 
     /// The model after [`Bsdf::regularize`](crate::Bsdf::regularize): lobes narrower than
-    /// [`REGULARIZE_MAX_HALF_WIDTH`] at 550 nm widened to clamp(2h,
-    /// [`REGULARIZE_MIN_HALF_WIDTH`], [`REGULARIZE_MAX_HALF_WIDTH`]): in u through N
+    /// `REGULARIZE_MAX_HALF_WIDTH` at 550 nm widened to clamp(2h,
+    /// `REGULARIZE_MIN_HALF_WIDTH`, `REGULARIZE_MAX_HALF_WIDTH`): in u through N
     /// (h = λ/(N·d); N = ∞ counts as h = 0; N never grows), in v through the coherence length
     /// (h = λ/L), the Gaussian σ, or an ideal groove becoming a Gaussian of σ = 0.01. The orders,
     /// their efficiencies and the albedo's Parseval bound do not change.

@@ -11,10 +11,11 @@ use crate::random::unit_random;
 use crate::{Band, Peak, Slits};
 
 /// The uniform share of [`GratingBsdf::sample_wavelength`].
+#[doc(hidden)]
 pub const DEFENSIVE_WAVELENGTH_SHARE: f64 = 0.1;
 /// [`GratingBsdf::sample_wavelength`] follows at most this many peaks (in order of |m|); the
 /// uniform share covers the rest.
-pub const MAX_WAVELENGTH_PEAKS: usize = 64;
+pub(crate) const MAX_WAVELENGTH_PEAKS: usize = 64;
 
 /// One sampled wavelength (see [`GratingBsdf::sample_wavelength`]).
 ///
@@ -44,7 +45,7 @@ impl GratingBsdf {
     ///
     /// At fixed directions f is a sum of peaks at λ_m = d·|u|/|m| of width about λ_m/(|m|·N).
     /// The sampler is a mixture: with probability [`DEFENSIVE_WAVELENGTH_SHARE`] uniform over
-    /// the band; otherwise peak m (the first [`MAX_WAVELENGTH_PEAKS`] orders m ≠ 0 with λ_m in
+    /// the band; otherwise peak m (the first `MAX_WAVELENGTH_PEAKS` orders m ≠ 0 with λ_m in
     /// the band, [`Grating::peaks`](crate::Grating::peaks)) with probability ∝ its area η_m·(d/|m|)·g(v; λ_m), or
     /// order 0 (when its period, λ > 2·d·|u|, reaches the band) with probability ∝ f at the
     /// middle of that range times its length. Inside peak m the phase x = d·|u|/λ is drawn

@@ -17,8 +17,8 @@ use alloc::vec::Vec;
 use super::{interval, scale, AxisName, EfficiencyTable, Values, GRAZING_CORNER};
 #[cfg(feature = "alloc")]
 use super::{
-    load::{check_axis, check_period},
-    Storage, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, SUM_TOLERANCE,
+    load::{check_axis, check_period, SUM_TOLERANCE},
+    Storage, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
 };
 #[cfg(feature = "alloc")]
 use crate::error::{Error, Requirement};
@@ -243,7 +243,7 @@ impl EfficiencyTable {
 }
 
 /// Checks one polarisation's values of a conical table: finite and ≥ 0, each node's sum over
-/// orders ≤ 1 + [`SUM_TOLERANCE`], 0 where the order is evanescent at the node.
+/// orders ≤ 1 + `SUM_TOLERANCE`, 0 where the order is evanescent at the node.
 #[cfg(feature = "alloc")]
 fn check_values(
     name: &'static str,
@@ -298,7 +298,7 @@ impl EfficiencyTable {
     /// `sin_theta_i` nodes being s′ = α/√(1 − β²) in [−1, 1], and the TE and TM values
     /// flattened `[order][|β|][λ][s′]`: `te[((k·n_β + b)·n_λ + j)·n_s + i]`. Each value must be
     /// 0 where its order is evanescent at the node ((s′·√(1 − β²) + m·λ/d)² + β² ≥ 1), and each
-    /// node's sum over orders at most 1 + [`SUM_TOLERANCE`]. Errors name the field.
+    /// node's sum over orders at most 1 + `SUM_TOLERANCE`. Errors name the field.
     ///
     /// ```
     /// use diffraction::relief::EfficiencyTable;

@@ -25,7 +25,7 @@ pub const MAX_TABLE_ORDERS: usize = 2 * MAX_RELIEF_ORDER as usize + 1;
 pub const MAX_TABLE_VALUES: usize = 1 << 24;
 /// How far a node's sum over orders may exceed 1 (solver round-off;
 /// `python_ref/efficiency_table.py`'s `SUM_TOLERANCE`).
-pub const SUM_TOLERANCE: f64 = 1e-6;
+pub(crate) const SUM_TOLERANCE: f64 = 1e-6;
 
 /// The presets' sin θi nodes: steps of 0.1, plus ±0.95, ±0.98 and the grazing ends ±0.9999.
 const DEFAULT_SIN_THETA_I: [f64; 25] = [
@@ -84,7 +84,7 @@ pub(super) fn check_axis(
 }
 
 /// Checks one polarisation's values (`docs/efficiency_tables.md`, check 4): finite and ≥ 0,
-/// each node's sum over orders ≤ 1 + [`SUM_TOLERANCE`], 0 where the order is evanescent.
+/// each node's sum over orders ≤ 1 + `SUM_TOLERANCE`, 0 where the order is evanescent.
 fn check_values(
     name: &'static str,
     period_nm: f64,
@@ -139,7 +139,7 @@ impl EfficiencyTable {
     /// [`MAX_TABLE_NODES`] finite nodes, strictly increasing, s in [−1, 1], λ > 0; `te` a whole
     /// number (1 to [`MAX_TABLE_ORDERS`], at most [`MAX_TABLE_VALUES`] values) of
     /// `[λ][sin θi]` slices and `tm` as long; the last order fits an `i32`; every η finite and
-    /// ≥ 0, each node's sum over orders at most 1 + [`SUM_TOLERANCE`], and η = 0 wherever the
+    /// ≥ 0, each node's sum over orders at most 1 + `SUM_TOLERANCE`, and η = 0 wherever the
     /// order is evanescent at the node (|s + m·λ/d| ≥ 1).
     ///
     /// ```
