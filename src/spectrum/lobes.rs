@@ -6,9 +6,9 @@ use glam::DVec3;
 
 use super::rules::{gl3, gl4, gl8};
 use super::Spectral;
-use crate::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
-use crate::math::{ceil, floor, rint};
-use crate::quadrature::GL8;
+use crate::num::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
+use crate::num::math::{ceil, floor, rint};
+use crate::num::quadrature::GL8;
 use crate::Grating;
 
 /// Largest wavelength span of one 4-point Gauss-Legendre piece in the peak searches' treatment
@@ -63,7 +63,7 @@ impl<'a> Lobes<'a> {
     /// F_N at phase x.
     #[inline]
     pub(super) fn n_slit(&self, x: f64) -> f64 {
-        crate::kernel::n_slit_cycles(x, self.n_int)
+        crate::num::kernel::n_slit_cycles(x, self.n_int)
     }
 
     /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables (8-point rule).
@@ -120,7 +120,7 @@ impl<'a> Lobes<'a> {
         for j in 0..lobes {
             let (mid, half) = ((j as f64 + 0.5) * width, 0.5 * width);
             for (xi, wi) in GL8.nodes.iter().zip(GL8.weights) {
-                sum += wi * half * crate::kernel::n_slit_cycles(mid + half * xi, self.n_int);
+                sum += wi * half * crate::num::kernel::n_slit_cycles(mid + half * xi, self.n_int);
             }
         }
         2.0 * sum
