@@ -245,7 +245,7 @@ def generate(out_root: Path) -> list[Path]:
         out_root / CMF_OUT,
         [
             "cmf_interp.csv: CIE 1931 2-degree colour-matching functions LINEARLY interpolated between the",
-            f'1 nm rows of colour.MSDS_CMFS["{CMF_KEY}"] (the same table as src/cie_data.rs).',
+            f'1 nm rows of colour.MSDS_CMFS["{CMF_KEY}"] (the same table as src/data/cie_data.rs).',
             f"Made with numpy.interp in float64 ({ver}); written with Python repr().",
             "Wavelengths: 360, 830, a few integers and near-integers, and seeded random non-integers in [360, 830].",
             f"Rows: {len(rows)}.",
@@ -303,7 +303,7 @@ def generate(out_root: Path) -> list[Path]:
         out_root / LAB_OUT,
         [
             "lab_de2000.csv: CIE XYZ pairs -> CIELAB (L*, a*, b*) -> CIEDE2000 colour difference.",
-            "White (Xn, Yn, Zn): the D65 white of the 1 nm tables of src/cie_data.rs,",
+            "White (Xn, Yn, Zn): the D65 white of the 1 nm tables of src/data/cie_data.rs,",
             "  Xn = int(D65 * xbar) / int(D65 * ybar), Yn = 1, Zn = int(D65 * zbar) / int(D65 * ybar) over",
             "  360-830 nm with both factors linearly interpolated between rows (exact integrals of the",
             "  piecewise-quadratic products): the reference colour of a white reflector, Spectral::white().",

@@ -4,7 +4,7 @@
 
 Random (preset, order, sin theta_i, lambda) points interpolated by `efficiency_table.interpolate_normalised`
 (the documented rule, then the per-polarisation scaling where the sum over orders exceeds 1) on the
-data the crate ships: the nodes and efficiencies of src/efficiency_presets_data.rs, i.e. the JSON tables
+data the crate ships: the nodes and efficiencies of src/data/efficiency_presets_data.rs, i.e. the JSON tables
 rounded to `presets.RUST_DECIMALS` decimals and then to float32, as the Rust literals are read.
 """
 
@@ -38,7 +38,7 @@ def f32(values):
 
 
 def shipped(name: str, root: Path = REPO) -> dict:
-    """The preset's table as src/efficiency_presets_data.rs holds it."""
+    """The preset's table as src/data/efficiency_presets_data.rs holds it."""
     t = presets.coarsen(et.read_json(root / presets.JSON_DIR / f"{name}.json"))
     c = dict(t)
     c["sin_theta_i"] = f32(t["sin_theta_i"]).tolist()
@@ -75,7 +75,7 @@ def generate(out_root: Path) -> list[Path]:
         "te, tm: python_ref/efficiency_table.py interpolate_normalised (the rule of docs/efficiency_tables.md,",
         "then per polarisation every order scaled by 1/sum where the sum over the stored orders exceeds 1) on the",
         f"shipped data: the JSON tables of data/efficiencies/ rounded to {presets.RUST_DECIMALS} decimals, then to float32",
-        "(src/efficiency_presets_data.rs). Made by python_ref/efficiency_interp.py with numpy "
+        "(src/data/efficiency_presets_data.rs). Made by python_ref/efficiency_interp.py with numpy "
         f"{np.__version__}; regenerate with `{REGEN_CMD}`.",
     ]
     write_csv(out_root / CSV_OUTPUT, comments,

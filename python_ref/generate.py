@@ -7,12 +7,12 @@
     python3 python_ref/generate.py --check --full   # regenerate and compare every part, the slow ones too
     python3 python_ref/generate.py --only tables kernels   # restrict to some parts (for development)
 
-Parts: tables (src/cie_data.rs), kernels (tests/data/kernels.csv), colour (cmf_interp.csv,
+Parts: tables (src/data/cie_data.rs), kernels (tests/data/kernels.csv), colour (cmf_interp.csv,
 xyz_to_srgb.csv, srgb_transfer.csv, lab_de2000.csv), spectral (spectral_xyz.csv; the slow one),
-stam (stam_orders.csv), metals (src/metals_data.rs, tests/data/metals.csv), rigorous
+stam (stam_orders.csv), metals (src/data/metals_data.rs, tests/data/metals.csv), rigorous
 (tests/data/rigorous_orders.csv, tests/data/rigorous_conical.csv and data/efficiencies/*.json: hours of solves, needs
 requirements-rigorous.txt; `--check` only verifies their hashes and validates the tables), presets
-(src/efficiency_presets_data.rs from data/efficiencies/*.json).
+(src/data/efficiency_presets_data.rs from data/efficiencies/*.json).
 
 The slow parts (spectral, about 290 s on 2 cores, and stam, about 28 s) carry a fingerprint line
 in their files' comment header: `# Inputs sha256: A; data sha256: B`, where A hashes what the

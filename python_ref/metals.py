@@ -17,7 +17,7 @@ licence. `python3 python_ref/metals.py --extract DIR` rebuilds those CSVs from a
 database (DIR contains `database/data/...`); it is not part of `generate.py` (the database is not a
 Python package). Everything else is generated from the committed CSVs:
 
-* `src/metals_data.rs`: rows [wavelength_nm, n, k] at the source's own points;
+* `src/data/metals_data.rs`: rows [wavelength_nm, n, k] at the source's own points;
 * `tests/data/metals.csv`: n, k linearly interpolated in wavelength at the source points, the
   midpoints between them and the band edges, with the normal-incidence reflectance
   R = ((n-1)^2 + k^2) / ((n+1)^2 + k^2).
@@ -42,7 +42,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import FIRST_NM, LAST_NM, REGEN_CMD, REPO, f, write_csv  # noqa: E402
 
 DATA_DIR = Path("python_ref/data/metals")
-RUST_OUTPUT = Path("src/metals_data.rs")
+RUST_OUTPUT = Path("src/data/metals_data.rs")
 CSV_OUTPUT = Path("tests/data/metals.csv")
 
 # The database commit the committed CSVs were extracted from (refractiveindex.info-database).
@@ -277,7 +277,7 @@ def generate(out_root: Path) -> list[Path]:
         "Complex refractive index n + ik of Al, Ag, Au, Cu, Cr at the sources' own wavelengths inside",
         f"{FIRST_NM}-{LAST_NM} nm ('source'), the midpoints between neighbouring source rows ('midpoint') and",
         "the band edges ('band_edge'); n and k each linearly interpolated in wavelength with numpy.interp",
-        "on the rows of python_ref/data/metals/<Metal>.csv (the rows of src/metals_data.rs), and the",
+        "on the rows of python_ref/data/metals/<Metal>.csv (the rows of src/data/metals_data.rs), and the",
         "normal-incidence reflectance R = ((n-1)^2 + k^2) / ((n+1)^2 + k^2) in float64.",
         "Sources: " + "; ".join(f"{s.metal} doi:{s.doi}" for s in SOURCES) + ".",
         f"Check: Al at 550 nm: n + ik = {complex(al.nk(550.0)):.4f}, R = {r550:.4f}.",

@@ -1,9 +1,9 @@
 """Rigorous efficiency tables of the crate's presets: a CD, a DVD, a ruled blazed grating, a foil.
 
     python3 python_ref/rigorous.py --presets    # solve and write data/efficiencies/*.json, then the Rust file
-    python3 python_ref/presets.py --rust        # only src/efficiency_presets_data.rs from the committed JSON
+    python3 python_ref/presets.py --rust        # only src/data/efficiency_presets_data.rs from the committed JSON
 
-`src/efficiency_presets_data.rs` is made from the JSON files alone (cheap; `generate.py` part
+`src/data/efficiency_presets_data.rs` is made from the JSON files alone (cheap; `generate.py` part
 `presets` regenerates and compares it in `--check`), on the JSON tables' grid (COARSEN = 1: a larger value would
 drop nodes in both axes, keeping the last); its header repeats the interpolation error the JSON
 tables measured against fresh solves inside grid cells.
@@ -42,7 +42,7 @@ import efficiency_table as et  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 JSON_DIR = Path("data/efficiencies")
-RUST_OUTPUT = Path("src/efficiency_presets_data.rs")
+RUST_OUTPUT = Path("src/data/efficiency_presets_data.rs")
 COARSEN = 1
 RUST_DECIMALS = 5
 PRESETS_CMD = "python3 python_ref/rigorous.py --presets"
@@ -191,7 +191,7 @@ def _rust(root: Path) -> str:
         body.append(f"/// {name}: blaze angle, degrees (sawtooth only).")
         blaze = "None" if g["blaze_deg"] is None else f"Some({float(g['blaze_deg'])!r})"
         body.append(f"pub(crate) const {up}_BLAZE_DEG: Option<f64> = {blaze};")
-        body.append(f"/// {name}: metal (a name of src/metals_data.rs, or N+Ki).")
+        body.append(f"/// {name}: metal (a name of src/data/metals_data.rs, or N+Ki).")
         body.append(f"pub(crate) const {up}_METAL: &str = {json.dumps(g['metal'])};")
         body.append(f"/// {name}: cover over the metal (none or polycarbonate; docs/efficiency_tables.md).")
         body.append(f"pub(crate) const {up}_COVER: &str = {json.dumps(g['cover'])};")
@@ -263,7 +263,7 @@ def revalidate(name: str) -> None:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rust", action="store_true", help="write src/efficiency_presets_data.rs from the JSON files")
+    ap.add_argument("--rust", action="store_true", help="write src/data/efficiency_presets_data.rs from the JSON files")
     ap.add_argument("--revalidate", metavar="NAME", help="redo a committed table's interpolation check")
     args = ap.parse_args()
     if args.revalidate:

@@ -3,7 +3,7 @@
 
     python3 python_ref/rigorous.py --validate        # the solver's checks; exit 1 on any failure (~1 min)
     python3 python_ref/rigorous.py --orders          # tests/data/rigorous_orders.csv (long: see its header)
-    python3 python_ref/rigorous.py --presets         # data/efficiencies/*.json and src/efficiency_presets_data.rs
+    python3 python_ref/rigorous.py --presets         # data/efficiencies/*.json and src/data/efficiency_presets_data.rs
     python3 python_ref/rigorous.py --all             # all three, in this order
     python3 python_ref/rigorous.py --check           # cheap: the committed files' hashes and headers
 

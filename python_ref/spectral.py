@@ -4,7 +4,7 @@ The reference colour of DESIGN.md:
 
     XYZ = ∫ E(λ) I(u, λ) cmf(λ) dλ / ∫ E(λ) ȳ(λ) dλ   over [360, 830] nm,
 
-with E and the CMFs linearly interpolated between the 1 nm rows of src/cie_data.rs, and
+with E and the CMFs linearly interpolated between the 1 nm rows of src/data/cie_data.rs, and
 I(u, λ) = S(y) F_N(x), x = d u / λ, y = w u / λ, S(y) = (sin πy / πy)²,
 F_N(x) = sin²(πNx) / (N² sin²(πx)).
 
@@ -306,7 +306,7 @@ def generate(out_root: Path) -> list[Path]:
         "  I(u,l) = S(y) F_N(x), x = d u / l, y = w u / l, S(y) = (sin(pi y)/(pi y))^2,",
         "  F_N(x) = sin^2(pi N x) / (N^2 sin^2(pi x)) (1 at integer x); d = period_nm, w = slit_width_nm,",
         "  N = n; E = 1 (illuminant E) or the 1 nm D65 table; E and the CIE 1931 2-degree CMFs of",
-        "  src/cie_data.rs LINEARLY interpolated between the 1 nm rows. A perfect white reflector has Y = 1.",
+        "  src/data/cie_data.rs LINEARLY interpolated between the 1 nm rows. A perfect white reflector has Y = 1.",
         f"Made in float64 with numpy ({versions()}), independently of the crate's Rust code:",
         "  integrated in x-space (l = d|u|/x; I is even in u) lobe by lobe: [x_min, x_max] split at every",
         "  zero x = k/N of sin(pi N x) and at every x where l is an integer nm (the interpolation kinks);",

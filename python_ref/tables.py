@@ -1,4 +1,4 @@
-"""`src/cie_data.rs`: the CIE 1931 2° CMFs and illuminants D65 and A at 1 nm, 360..=830 nm."""
+"""`src/data/cie_data.rs`: the CIE 1931 2° CMFs and illuminants D65 and A at 1 nm, 360..=830 nm."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import colour
 
 from common import CMF_KEY, FIRST_NM, LAST_NM, N_ROWS, REGEN_CMD, REPO, cie, f
 
-OUTPUT = Path("src/cie_data.rs")
+OUTPUT = Path("src/data/cie_data.rs")
 
 
 def rust_float(v) -> str:

@@ -11,9 +11,9 @@
 
 use glam::DVec3;
 
-use crate::bxdf::both_above;
 use crate::color::Xyz;
 use crate::error::{Error, Requirement};
+use crate::model::both_above;
 #[cfg(doc)]
 use crate::spectrum::bounds;
 use crate::spectrum::saturate;
@@ -101,7 +101,7 @@ pub type RadiometricTable = ColorTable;
 ///   whose image in the (u, v) plane is [u0, u1] × [v0, v1] (d(wi.x)·d(wi.y) = cos θi·dωi) gives
 ///   L · (u1 − u0) · `mean(u0, u1)` · [`GrooveSpread::mass`](crate::GrooveSpread::mass)`(v0, v1,
 ///   ·)` exactly; a pixel footprint [u0, u1] of a point light
-///   ([`footprint::u_interval`](crate::footprint::u_interval)) E⊥ · cos θi · g(v) · `mean(u0,
+///   ([`footprint::u_interval`](crate::optics::footprint::u_interval)) E⊥ · cos θi · g(v) · `mean(u0,
 ///   u1)`. The error scale Y_b is the largest C at d·|u| ≥ 360 nm, at least ρ²·d/∫ȳ (an order
 ///   of efficiency ρ² at 555 nm under E). Measured at 10⁻⁴ (`tests/radiometric_table.rs`,
 ///   docs/color_table.md): within 7.4·10⁻⁵ of the exposure and 0.023 ΔE2000 of the direct

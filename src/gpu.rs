@@ -40,8 +40,8 @@
 //! # Ok::<(), diffraction::Error>(())
 //! ```
 //!
-//! [`kernel::single_slit_cycles`]: crate::kernel::single_slit_cycles
-//! [`kernel::n_slit_cycles`]: crate::kernel::n_slit_cycles
+//! [`kernel::single_slit_cycles`]: crate::num::kernel::single_slit_cycles
+//! [`kernel::n_slit_cycles`]: crate::num::kernel::n_slit_cycles
 
 use alloc::format;
 use alloc::string::String;
@@ -53,7 +53,7 @@ mod tabulated;
 pub use tabulated::{pack_efficiency_table, GpuEfficiencyTables, EFFICIENCY_HEADER_WORDS};
 
 use crate::grating_bsdf::DEFENSIVE_ORDER_SHARE;
-use crate::special::atan;
+use crate::num::special::atan;
 use crate::{ColorTable, Grating, GratingBsdf, GrooveKind, Illumination, Slits};
 
 /// The slit kernels in f32, phases in cycles (see the [module docs](self)).

@@ -5,8 +5,8 @@ use core::ops::{Add, Mul};
 
 use glam::DVec3;
 
-use crate::bxdf::{both_above, SpectralResponse};
 use crate::error::{Error, Requirement};
+use crate::model::{both_above, SpectralResponse};
 
 /// The coefficients of the paper's eq. 12, I = ambient + diffuse + diffraction, with Phong's
 /// ambient and diffuse terms and a diffraction model in place of the specular one:

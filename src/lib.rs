@@ -175,68 +175,30 @@ compile_error!("diffraction needs either the `std` (default) or the `libm` featu
 #[cfg(feature = "alloc")]
 extern crate alloc;
 
-mod band;
-#[cfg(any(feature = "relief", feature = "baselines"))]
-mod bessel;
-mod bxdf;
-pub mod cie;
-mod cie_data;
 pub mod color;
 #[cfg(feature = "alloc")]
 mod color_table;
-#[cfg(any(feature = "relief", feature = "baselines"))]
-mod complex;
-// The presets' tables; their grating descriptions (profile, depth, metal, cover) are not read.
-// Measured efficiencies such as 0.3183 and 0.4342 are data, not 1/π or log10(e).
-#[cfg(feature = "presets")]
-#[allow(dead_code, clippy::approx_constant)]
-mod efficiency_presets_data;
+mod data;
 mod error;
-mod film;
-mod float;
-pub mod footprint;
-pub mod frame;
 #[cfg(feature = "gpu")]
 pub mod gpu;
-mod grating;
-pub mod groove;
 mod illumination;
-pub mod kernel;
-mod math;
-// Measured data: Cr's k = 3.14 at 451 nm (Johnson & Christy 1974) is a measurement, not π.
-#[cfg(feature = "relief")]
-#[allow(clippy::approx_constant)]
-mod metals_data;
-mod orders;
+mod model;
+mod num;
+mod optics;
 mod parse;
-mod quadrature;
-mod random;
+mod path;
 #[cfg(feature = "relief")]
 pub mod relief;
-mod sampled_spectrum;
-mod special;
 pub mod spectrum;
-pub mod visible;
-mod wavelengths;
 
-pub use band::Band;
-#[cfg(feature = "baselines")]
-pub use bxdf::stam;
-pub use bxdf::{
-    bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, BsdfSample4, DiffractionBrdf,
-    Envelope, GratingBsdf, GratingResponse, HeroMis, PeakSummary, SpectralResponse,
-    WavelengthSample, MIN_COS_THETA,
-};
-#[cfg(feature = "baselines")]
-pub use bxdf::{Profile, Stam, Thorman};
 #[cfg(feature = "alloc")]
 #[allow(deprecated)]
 pub use color_table::RadiometricTable;
 #[cfg(feature = "alloc")]
 pub use color_table::{ColorTable, TableSource};
+pub use data::cie;
 pub use error::{Error, Requirement};
-pub use film::SpectralFilm;
-pub use float::Float;
 /// The vector library of every direction and point in the API: [`glam`](https://docs.rs/glam)
 /// **0.30** (`DVec3`, `DVec2`, `Vec3`), re-exported so that a renderer uses the very types the
 /// crate takes, whatever `glam` it depends on itself. Write `use diffraction::glam::DVec3;`;
@@ -251,14 +213,31 @@ pub use float::Float;
 /// # Ok::<(), diffraction::Error>(())
 /// ```
 pub use glam;
-pub use grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
-pub use groove::{GrooveKind, GrooveSpread};
 pub use illumination::Illumination;
-pub use orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
+#[cfg(feature = "baselines")]
+pub use model::stam;
+pub use model::{
+    bsdf, grating_bsdf, AguHill, Bsdf, BsdfFlags, BsdfSample, BsdfSample4, DiffractionBrdf,
+    Envelope, GratingBsdf, GratingResponse, HeroMis, PeakSummary, SpectralResponse,
+    WavelengthSample, MIN_COS_THETA,
+};
+#[cfg(feature = "baselines")]
+pub use model::{Profile, Stam, Thorman};
+pub use num::float::Float;
+pub use num::kernel;
+pub use num::random::unit_random;
+pub use optics::band::Band;
+pub use optics::footprint;
+pub use optics::frame;
+pub use optics::grating::{DiffractedOrder, DiffractedOrders, Grating, Peak, Peaks, Slits};
+pub use optics::groove;
+pub use optics::groove::{GrooveKind, GrooveSpread};
+pub use optics::orders::{GratingEquation, Order, Orders, Propagating, MAX_ORDERS};
 pub use parse::ParseError;
-pub use random::unit_random;
-pub use sampled_spectrum::SampledSpectrum;
-pub use wavelengths::SampledWavelengths;
+pub use path::film::SpectralFilm;
+pub use path::sampled_spectrum::SampledSpectrum;
+pub use path::visible;
+pub use path::wavelengths::SampledWavelengths;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

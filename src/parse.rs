@@ -3,7 +3,7 @@
 use core::fmt;
 
 /// A string is not one of the names a [`FromStr`](core::str::FromStr) implementation of the
-/// crate accepts ([`Clip`](crate::color::Clip), [`Illuminant`](crate::cie::Illuminant)).
+/// crate accepts ([`Clip`](crate::color::Clip), [`Illuminant`](crate::data::cie::Illuminant)).
 ///
 /// It says what was being parsed and lists the accepted spellings. It does not hold the rejected
 /// input (the library allocates nothing); the caller has it and can print it beside this message.

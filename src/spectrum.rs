@@ -54,9 +54,9 @@
 
 use glam::DVec3;
 
-use crate::cie;
-pub use crate::cie::Illuminant;
 use crate::color::Xyz;
+use crate::data::cie;
+pub use crate::data::cie::Illuminant;
 use crate::{Band, Envelope, Grating, GratingResponse};
 
 mod asymptotic;

@@ -3,7 +3,7 @@
 use super::srgb::saturate;
 use super::Xyz;
 use crate::error::positive;
-use crate::math::{atan2, cbrt, cos, exp, sin, sqrt};
+use crate::num::math::{atan2, cbrt, cos, exp, sin, sqrt};
 use crate::Error;
 
 /// A reference white for CIELAB: an XYZ whose three components are finite and positive.

@@ -3,7 +3,7 @@
 use core::ops::{Add, Mul};
 
 use super::Xyz;
-use crate::math::powf;
+use crate::num::math::powf;
 
 /// XYZ → linear sRGB, IEC 61966-2-1 as published (four decimals), as colour-science 0.4 uses it
 /// (`colour.RGB_COLOURSPACES['sRGB'].matrix_XYZ_to_RGB`).

@@ -1,7 +1,7 @@
 //! The whole colour pipeline on every row of the CIE 1931 table.
 
 use super::*;
-use crate::cie_data::CIE1931_2DEG;
+use crate::data::cie_data::CIE1931_2DEG;
 
 /// Every integer wavelength of the CIE 1931 2° table (360..=830 nm) as a pure spectral colour
 /// at five intensities, through the whole pipeline with each clipping scheme.

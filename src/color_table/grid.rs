@@ -12,7 +12,7 @@ use super::interpolant::{cell_integral, derivatives, hermite, Node};
 use super::layout::{bounds, work_units, MAX_BLOCK_INTERVALS, SHIFT, TINY_FRACTION, U_MAX};
 use crate::color::Xyz;
 use crate::error::{Error, Requirement};
-use crate::math::cbrt;
+use crate::num::math::cbrt;
 
 /// One uniform block of the grid.
 #[derive(Debug, Clone, Copy, PartialEq)]

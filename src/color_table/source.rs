@@ -202,8 +202,8 @@ impl Source {
             (Source::Paper { .. }, slits) => (white, GratingNodes::paper_floor(slits.as_f64())),
             (Source::Radiometric { .. }, slits) => {
                 // As the build's.
-                let floor =
-                    (rho * rho * d / crate::cie::cmf_areas()[1]).clamp(f64::MIN_POSITIVE, f64::MAX);
+                let floor = (rho * rho * d / crate::data::cie::cmf_areas()[1])
+                    .clamp(f64::MIN_POSITIVE, f64::MAX);
                 let max = match slits {
                     Slits::Finite(n) => {
                         let k = (rho * rho * n as f64 * d).min(f64::MAX);
@@ -277,8 +277,8 @@ impl Source {
                 let rho = g.open_fraction();
                 // Clamped to the normal range: a scale of 0 (d = 5e-324 nm) would leave no
                 // tolerance.
-                plan.floor =
-                    (rho * rho * d / crate::cie::cmf_areas()[1]).clamp(f64::MIN_POSITIVE, f64::MAX);
+                plan.floor = (rho * rho * d / crate::data::cie::cmf_areas()[1])
+                    .clamp(f64::MIN_POSITIVE, f64::MAX);
                 if let Slits::Finite(n) = slits {
                     let (w, f) = (plan.white, plan.floor);
                     let nodes = GratingNodes::new(spectral, g, n as f64, accuracy, *k, w, f)?;

@@ -1,5 +1,5 @@
 // diffraction: the two slit factors in f32 with the phase in cycles, the GPU twin of
-// src/kernel.rs (`single_slit_cycles`, `n_slit_cycles`). Only +, -, *, /, round, ldexp,
+// src/num/kernel.rs (`single_slit_cycles`, `n_slit_cycles`). Only +, -, *, /, round, ldexp,
 // conversions and integer arithmetic are used: WGSL's built-in `sin` is allowed an absolute
 // error of 2^-11 (and only on [-pi, pi]), far too coarse near the peaks, so sin(pi z) is a
 // polynomial here. Accuracy on any conforming implementation: docs/gpu.md (at most 1e-5

@@ -57,7 +57,7 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
                 let cm2 = 1.0 - sm * sm;
                 if cm2 > GRAZING_CORNER {
                     let e = table.efficiency(m, s, l);
-                    let g = crate::math::sqrt(1.0 - s * s) / crate::math::sqrt(cm2);
+                    let g = crate::num::math::sqrt(1.0 - s * s) / crate::num::math::sqrt(cm2);
                     w.push((e.te * g) as f32);
                     w.push((e.tm * g) as f32);
                 } else {

@@ -1,6 +1,6 @@
 //! The Fresnel reflectances of a flat absorbing medium n + ik lit from air.
 
-use crate::complex::Complex;
+use crate::num::complex::Complex;
 
 /// (R_s, R_p) for index n + ik (n > 0, k ≥ 0) at cos θ = `cos_theta` (clamped to [0, 1], NaN
 /// as 0): see [`Metal::reflectance`](super::Metal::reflectance).

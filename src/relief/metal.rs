@@ -5,8 +5,8 @@ use core::fmt;
 use core::str::FromStr;
 
 use super::fresnel;
+use crate::data::metals_data::{AG_NK, AL_NK, AU_NK, CR_NK, CU_NK};
 use crate::error::{Error, Requirement};
-use crate::metals_data::{AG_NK, AL_NK, AU_NK, CR_NK, CU_NK};
 use crate::ParseError;
 
 /// The largest n and k [`Metal::custom`] accepts: above every measured material in the visible
@@ -24,7 +24,7 @@ pub const MAX_INDEX: f64 = 1e4;
 /// reflectances.
 ///
 /// The tabulated metals are measurements at the sources' own wavelengths, generated into the
-/// crate by `python_ref/metals.py` (`src/metals_data.rs`: Al from Rakić, Appl. Opt. 34, 4755
+/// crate by `python_ref/metals.py` (`src/data/metals_data.rs`: Al from Rakić, Appl. Opt. 34, 4755
 /// (1995); Ag, Au and Cu from Johnson & Christy, Phys. Rev. B 6, 4370 (1972); Cr from Johnson &
 /// Christy, Phys. Rev. B 9, 5056 (1974)), each row set covering 360-830 nm. n and k are each
 /// interpolated linearly in λ between neighbouring rows; outside the rows (below about 326-354

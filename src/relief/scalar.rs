@@ -7,7 +7,7 @@ use core::f64::consts::TAU;
 use super::metal::Metal;
 use super::shape::Relief;
 use crate::error::{Error, Requirement};
-use crate::math;
+use crate::num::math;
 
 /// The longest period accepted, nm (1 mm, a 1 line/mm grating: coarser structures are not
 /// gratings a renderer shows as such).

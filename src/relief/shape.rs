@@ -7,12 +7,12 @@ use alloc::vec::Vec;
 use core::f64::consts::TAU;
 use core::f64::consts::{FRAC_PI_2, PI};
 
-use crate::bessel::bessel_j_bounded;
-#[cfg(feature = "alloc")]
-use crate::complex::Complex;
 use crate::error::{Error, Requirement};
-use crate::kernel::sincospi;
-use crate::math;
+use crate::num::bessel::bessel_j_bounded;
+#[cfg(feature = "alloc")]
+use crate::num::complex::Complex;
+use crate::num::kernel::sincospi;
+use crate::num::math;
 
 /// The largest relief depth accepted (peak-to-valley, nm): 10 µm, forty wavelengths of visible
 /// light, far beyond where a scalar model means anything; it bounds the phases (κ·h ≤ 1.3·10⁵
@@ -48,7 +48,7 @@ pub const MAX_SAMPLES: usize = 4096;
 /// ```
 pub(crate) const QUADRATURE_NODES: usize = 4096;
 /// The most recurrence steps one Bessel value of a sinusoid may take before Debye's expansions
-/// are used (their accuracy there is below 10⁻¹¹ of the local amplitude, `src/bessel.rs`): bounds
+/// are used (their accuracy there is below 10⁻¹¹ of the local amplitude, `src/num/bessel.rs`): bounds
 /// a sinusoid's order to about 2000 steps whatever its phase.
 const BESSEL_STEPS: f64 = 2000.0;
 /// Below this |t|, sin t / t is 1 − t²/6 (the next term, t⁴/120, is below 10⁻¹⁸).

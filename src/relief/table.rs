@@ -7,7 +7,7 @@ use core::ops::RangeInclusive;
 use alloc::vec::Vec;
 
 use super::scalar::Polarised;
-use crate::math;
+use crate::num::math;
 
 mod conical;
 #[cfg(feature = "alloc")]

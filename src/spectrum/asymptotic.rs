@@ -21,10 +21,10 @@ use super::order0;
 use super::rules::{gl2, gl3, gl4, gl6};
 use super::smooth_band::Limits;
 use super::{Spectral, BAND};
-use crate::cie::Illuminant;
-use crate::kernel::{single_slit_cycles, sinpi};
-use crate::math::{ceil, floor, ln, rint, sqrt};
-use crate::quadrature::GL8;
+use crate::data::cie::Illuminant;
+use crate::num::kernel::{single_slit_cycles, sinpi};
+use crate::num::math::{ceil, floor, ln, rint, sqrt};
+use crate::num::quadrature::GL8;
 use crate::{Grating, Slits};
 use core::f64::consts::PI;
 
@@ -74,7 +74,7 @@ fn node_spacing_nm(illuminant: Illuminant) -> f64 {
 /// divided by N relative to the order's peak h(m)/N, while the 3-point rule's relative error
 /// grows as span⁶: the product stays that of N = 5.
 fn order_span_nm(n: f64) -> f64 {
-    let grow = crate::math::powf(n / bounds::ASYMPTOTIC_MIN_SLITS as f64, 1.0 / 6.0);
+    let grow = crate::num::math::powf(n / bounds::ASYMPTOTIC_MIN_SLITS as f64, 1.0 / 6.0);
     (ENVELOPE_SPAN_NM * grow).clamp(ENVELOPE_SPAN_NM, MAX_ORDER_SPAN_NM)
 }
 

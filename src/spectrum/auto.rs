@@ -3,8 +3,8 @@
 use super::bounds::{self, accuracy_floor};
 use super::strategy::StrategyKind;
 use super::{Spectral, Strategy, BAND};
-use crate::kernel::sinpi;
-use crate::math::rint;
+use crate::num::kernel::sinpi;
+use crate::num::math::rint;
 use crate::{Grating, Slits};
 
 /// Where the band holds at most this many lobes of F_N, `Exact` (which integrates every lobe

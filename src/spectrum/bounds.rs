@@ -17,7 +17,7 @@
 //! assert!(bounds::ASYMPTOTIC_ORDERS < bounds::PEAK_SEARCH_PER_SLIT / 1000.0);
 //! ```
 
-use crate::cie_data;
+use crate::data::cie_data;
 
 /// The peak search's bound is `PEAK_SEARCH_PER_SLIT / N` of the accuracy unit. Its leading
 /// error is the far tails of each order (F_N's mass spread over the period, with E·S·cmf not
@@ -74,7 +74,7 @@ pub const WINDOWS: f64 = 1e-6;
 /// ȳ).
 pub const FLOOR_PEAK_NM: f64 = 555.0;
 
-/// ∫ȳ dλ over the band, as [`cmf_areas`](crate::cie::cmf_areas) integrates it (the same operations in the same
+/// ∫ȳ dλ over the band, as [`cmf_areas`](crate::data::cie::cmf_areas) integrates it (the same operations in the same
 /// order, at compile time, so that the floor costs one division instead of a pass over the
 /// table).
 const YBAR_AREA: f64 = {
@@ -167,6 +167,6 @@ mod tests {
     /// The compile-time ∫ȳ is the run-time one to the bit.
     #[test]
     fn ybar_area_matches_the_table() {
-        assert_eq!(super::YBAR_AREA, crate::cie::cmf_areas()[1]);
+        assert_eq!(super::YBAR_AREA, crate::data::cie::cmf_areas()[1]);
     }
 }

@@ -28,10 +28,10 @@ use glam::DVec3;
 
 use super::lobes::Lobes;
 use super::{Spectral, BAND};
-use crate::cie;
-use crate::kernel::{n_slit_cycles, single_slit_cycles, sinpi};
-use crate::math::{ceil, floor, rint};
-use crate::quadrature::GL8;
+use crate::data::cie;
+use crate::num::kernel::{n_slit_cycles, single_slit_cycles, sinpi};
+use crate::num::math::{ceil, floor, rint};
+use crate::num::quadrature::GL8;
 use crate::Grating;
 
 /// Above this many orders in the band (d·|u|·(1/360 − 1/830) > 4096, so d·|u| > 2.6 mm), the
@@ -371,7 +371,7 @@ mod tests {
     fn dense_sums_match_the_order_walk() {
         // Measured worst 8.7e-8 relative (Exact, N = 1); the bound keeps a margin of 6×.
         const TOL: f64 = 5e-7;
-        use crate::cie::Illuminant;
+        use crate::data::cie::Illuminant;
         let s = Spectral::new(Illuminant::D65);
         for &(d, w, n) in &[
             (3.2e6, 1.6e6, 1000u32),

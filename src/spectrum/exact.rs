@@ -17,8 +17,8 @@ use glam::DVec3;
 use super::lobes::{Lobes, Row};
 use super::smooth_band::Limits;
 use super::{Spectral, BAND};
-use crate::math::{ceil, floor};
-use crate::quadrature::{GL4, GL8};
+use crate::num::math::{ceil, floor};
+use crate::num::quadrature::{GL4, GL8};
 use crate::{Grating, Slits};
 
 impl Spectral {
@@ -137,8 +137,8 @@ pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
 /// 2·i^k·j_k(ω) over [−1, 1] (j_k the spherical Bessel functions, `spherical_bessel`), so the
 /// cost does not depend on the number of lobes.
 fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3) {
-    use crate::kernel::sinpi;
-    use crate::math::rint;
+    use crate::num::kernel::sinpi;
+    use crate::num::math::rint;
     use core::f64::consts::PI;
     let terms = xs.len().min(8);
     let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
@@ -178,8 +178,8 @@ fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3)
 /// (sin 2πt, cos 2πt), from sin and cos of π·(t − round(t)) by the polynomial `sinpi`.
 #[inline]
 fn sincos_2pi(t: f64) -> (f64, f64) {
-    use crate::kernel::sinpi;
-    use crate::math::rint;
+    use crate::num::kernel::sinpi;
+    use crate::num::math::rint;
     let r = t - rint(t);
     let (s, c) = (sinpi(r), sinpi(0.5 - r.abs()));
     (2.0 * s * c, (c - s) * (c + s))
@@ -191,7 +191,7 @@ fn sincos_2pi(t: f64) -> (f64, f64) {
 /// MILLER_START, normalised by Σ_k (2k + 1)·j_k² = 1 and signed by the larger of the closed forms
 /// of j_0 and j_1.
 fn spherical_bessel(omega: f64, (sw, cw): (f64, f64), terms: usize) -> [f64; 8] {
-    use crate::math::sqrt;
+    use crate::num::math::sqrt;
     let (j0, j1) = (sw / omega, sw / (omega * omega) - cw / omega);
     let mut j = [0.0; 8];
     if omega >= terms as f64 {

@@ -7,9 +7,9 @@ use super::bounds;
 use super::rules::{gauss_legendre_rule, gl8, midpoint_rule};
 use super::strategy::GenericStrategyKind;
 use super::{saturate, GenericStrategy, Spectral, BAND, MAX_WAVELENGTHS};
-use crate::cie;
 use crate::color::Xyz;
-use crate::math::{ceil, floor};
+use crate::data::cie;
+use crate::num::math::{ceil, floor};
 use crate::{Peak, SpectralResponse, MAX_ORDERS};
 
 /// Where a model's order-0 lobe is seen, the paper's peak colours take the model's mean

@@ -6,10 +6,10 @@ use glam::DVec3;
 
 use super::rules::{gl3, gl4, gl8};
 use super::Spectral;
-use crate::cie::Illuminant;
-use crate::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
-use crate::math::{ceil, floor, rint};
-use crate::quadrature::GL8;
+use crate::data::cie::Illuminant;
+use crate::num::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
+use crate::num::math::{ceil, floor, rint};
+use crate::num::quadrature::GL8;
 use crate::Grating;
 
 /// Largest wavelength span of one 4-point Gauss-Legendre piece in the peak searches' treatment
@@ -64,7 +64,7 @@ impl<'a> Lobes<'a> {
     /// F_N at phase x.
     #[inline]
     pub(super) fn n_slit(&self, x: f64) -> f64 {
-        crate::kernel::n_slit_cycles(x, self.n_int)
+        crate::num::kernel::n_slit_cycles(x, self.n_int)
     }
 
     /// ∫ over [a, b] lobe by lobe, split at the 1 nm rows of the tables (8-point rule).
@@ -121,7 +121,7 @@ impl<'a> Lobes<'a> {
         for j in 0..lobes {
             let (mid, half) = ((j as f64 + 0.5) * width, 0.5 * width);
             for (xi, wi) in GL8.nodes.iter().zip(GL8.weights) {
-                sum += wi * half * crate::kernel::n_slit_cycles(mid + half * xi, self.n_int);
+                sum += wi * half * crate::num::kernel::n_slit_cycles(mid + half * xi, self.n_int);
             }
         }
         2.0 * sum
@@ -223,7 +223,7 @@ impl Row {
     /// The row that holds λ (the last one at 830 nm).
     #[inline]
     pub(super) fn new(illuminant: Illuminant, lambda_nm: f64) -> Row {
-        use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+        use crate::data::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
         let last = (LAST_NM - FIRST_NM) as usize - 1;
         let s = (lambda_nm - FIRST_NM as f64).max(0.0);
         let i = (s as usize).min(last);
@@ -248,7 +248,7 @@ impl Row {
     /// E·cmf·env·norm at λ in this row.
     #[inline]
     fn weight(&self, l: &Lobes<'_>, lambda: f64) -> DVec3 {
-        use crate::cie_data::FIRST_NM;
+        use crate::data::cie_data::FIRST_NM;
         let t = (lambda - FIRST_NM as f64) - self.start;
         let e = (self.e0 + t * self.de) * l.s.envelope_norm(lambda);
         (self.c0 + self.dc * t) * e
@@ -267,8 +267,8 @@ impl Row {
     /// `Lobes::envelope_at` at x for an x whose wavelength lies in this row.
     #[inline]
     pub(super) fn envelope_at(&self, l: &Lobes<'_>, x: f64) -> DVec3 {
-        use crate::cie_data::FIRST_NM;
-        use crate::kernel::single_slit_cycles;
+        use crate::data::cie_data::FIRST_NM;
+        use crate::num::kernel::single_slit_cycles;
         let lambda = l.q / x;
         let t = (lambda - FIRST_NM as f64) - self.start;
         let e = (self.e0 + t * self.de) * l.s.envelope_norm(lambda);

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::{Spectral, BAND, MAX_WAVELENGTHS};
 use crate::color::Xyz;
-use crate::math::floor;
+use crate::num::math::floor;
 use crate::Grating;
 
 impl Spectral {

@@ -15,8 +15,8 @@
 
 use glam::DVec3;
 
-use crate::cie::Illuminant;
-use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+use crate::data::cie::Illuminant;
+use crate::data::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
 
 /// Width of a fixed piece, nm (a multiple of D65's 5 nm nodes; the band is 16 pieces, the last
 /// one 20 nm).
@@ -26,7 +26,7 @@ pub(super) const PIECES: usize = 16;
 /// Rows of the tables.
 const ROWS: usize = (LAST_NM - FIRST_NM) as usize + 1;
 
-/// The 4-point Gauss-Legendre nodes on [−1, 1] (as in `crate::quadrature::GL4`).
+/// The 4-point Gauss-Legendre nodes on [−1, 1] (as in `crate::num::quadrature::GL4`).
 const T: [f64; 4] = [
     -0.8611363115940526,
     -0.33998104358485626,
@@ -131,9 +131,9 @@ fn weights_of(illuminant: Illuminant) -> &'static Weights {
 /// The whole pieces inside [l0, l1] (nm): the first index and one past the last (empty when
 /// none).
 pub(super) fn whole_pieces(l0: f64, l1: f64) -> (usize, usize) {
-    let first = crate::math::ceil((l0 - FIRST_NM as f64) / PIECE_NM).max(0.0);
+    let first = crate::num::math::ceil((l0 - FIRST_NM as f64) / PIECE_NM).max(0.0);
     // A piece p is whole when its upper bound is at most l1.
-    let mut last = crate::math::floor((l1 - FIRST_NM as f64) / PIECE_NM).max(0.0);
+    let mut last = crate::num::math::floor((l1 - FIRST_NM as f64) / PIECE_NM).max(0.0);
     if l1 >= LAST_NM as f64 {
         last = PIECES as f64;
     }
@@ -167,7 +167,7 @@ pub(super) fn integrate<F: Fn(f64) -> f64 + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cie;
+    use crate::data::cie;
 
     /// The weights integrate W·K exactly for cubic K: against a row-by-row 8-point rule of the
     /// tables' own interpolation (`cie::power_and_cmf`), for K = 1, λ and (λ − 500)³, every
@@ -176,7 +176,7 @@ mod tests {
 
     #[test]
     fn weights_integrate_cubics_exactly() {
-        use crate::quadrature::GL8;
+        use crate::num::quadrature::GL8;
         let mut worst = 0.0f64;
         for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
             let ks: [&dyn Fn(f64) -> f64; 3] = [&|_| 1.0, &|l| l, &|l| {

@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::{Spectral, BAND};
-use crate::cie;
 use crate::color::Xyz;
+use crate::data::cie;
 use crate::Grating;
 
 impl Spectral {

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::lobes::Lobes;
 use super::{Spectral, BAND};
-use crate::math::{ceil, floor, sqrt};
+use crate::num::math::{ceil, floor, sqrt};
 use crate::{Grating, Slits};
 
 /// Lobes integrated exactly on each side of a peak by `PeakSearch { refine: true }`.

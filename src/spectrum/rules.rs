@@ -1,11 +1,11 @@
 //! Quadrature rules over wavelength or phase on XYZ-valued integrands: the midpoint rule and the
-//! crate's Gauss-Legendre rules ([`crate::quadrature`]) in the accumulating form the spectral
+//! crate's Gauss-Legendre rules ([`crate::num::quadrature`]) in the accumulating form the spectral
 //! integrators use.
 
 use glam::DVec3;
 
 use super::{BAND, MAX_WAVELENGTHS};
-use crate::quadrature;
+use crate::num::quadrature;
 
 /// The midpoint rule with `k` (at least 1) wavelengths over the band.
 pub(super) fn midpoint_rule(k: u32, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
@@ -30,7 +30,7 @@ pub(super) fn gauss_legendre_rule(k: u32, f: &dyn Fn(f64) -> DVec3) -> DVec3 {
     acc
 }
 
-/// The crate's Gauss-Legendre rules ([`crate::quadrature`]) accumulating into `acc`, the form
+/// The crate's Gauss-Legendre rules ([`crate::num::quadrature`]) accumulating into `acc`, the form
 /// the spectral integrators pass around as piece rules.
 #[inline]
 pub(super) fn gl8(a: f64, b: f64, acc: &mut DVec3, f: &dyn Fn(f64) -> DVec3) {

@@ -28,10 +28,10 @@ use glam::DVec3;
 use super::order0::{piece_bounds, PIECES};
 use super::smooth_band::{piece_points, piece_rule, Limits};
 use super::Spectral;
-use crate::cie::Illuminant;
-use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
-use crate::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
-use crate::math::rint;
+use crate::data::cie::Illuminant;
+use crate::data::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+use crate::num::kernel::{intensity_ratio_flat, single_slit_cycles, sinpi};
+use crate::num::math::rint;
 use crate::{Grating, Slits};
 use core::f64::consts::PI;
 

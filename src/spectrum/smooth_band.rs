@@ -20,9 +20,9 @@ use glam::DVec3;
 
 use super::order0::{self, piece_bounds, PIECES};
 use super::Spectral;
-use crate::cie::Illuminant;
-use crate::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
-use crate::kernel::intensity_ratio_flat;
+use crate::data::cie::Illuminant;
+use crate::data::cie_data::{CIE1931_2DEG, D65, FIRST_NM, ILLUMINANT_A, LAST_NM};
+use crate::num::kernel::intensity_ratio_flat;
 use crate::Grating;
 
 /// Rows of the tables.
@@ -135,7 +135,7 @@ const T32: [f64; 32] = [
     0.9987954562051724,
 ];
 
-/// The 8-point Gauss-Legendre rule (as `crate::quadrature::GL8`) on each half of a row for the
+/// The 8-point Gauss-Legendre rule (as `crate::num::quadrature::GL8`) on each half of a row for the
 /// weights: a row's quadratic W times a Chebyshev polynomial of degree ≤ 31 over 1/15 of the
 /// piece is integrated to rounding (checked in `tests` against the rule on each quarter; on
 /// whole rows it left 3·10⁻¹¹).
@@ -415,7 +415,7 @@ mod tests {
 
     #[test]
     fn weights_integrate_the_highest_degree_exactly() {
-        let gl8 = crate::quadrature::GL8; // on each quarter of a row
+        let gl8 = crate::num::quadrature::GL8; // on each quarter of a row
         let mut worst = 0.0f64;
         for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
             let w32 = weights_of(ill).w32;
@@ -437,7 +437,7 @@ mod tests {
                     for (c, h) in [0.125, 0.375, 0.625, 0.875].map(|f| (a + f, 0.125)) {
                         for (t, w) in gl8.nodes.iter().zip(gl8.weights) {
                             let l = c + h * t;
-                            let (e, cmf) = crate::cie::power_and_cmf(ill, l);
+                            let (e, cmf) = crate::data::cie::power_and_cmf(ill, l);
                             want += DVec3::from_array(cmf) * (e * cheb(l) * h * w);
                         }
                     }

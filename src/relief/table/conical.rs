@@ -22,7 +22,7 @@ use super::{
 };
 #[cfg(feature = "alloc")]
 use crate::error::{Error, Requirement};
-use crate::math;
+use crate::num::math;
 use crate::relief::Polarised;
 
 /// The largest |β| node of a conical table (the solvers need cos θi > 0).

@@ -6,7 +6,7 @@ use alloc::vec::Vec;
 
 use super::{EfficiencyTable, Storage};
 use crate::error::{positive, Error, Requirement};
-use crate::math;
+use crate::num::math;
 use crate::relief::scalar::{ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER};
 
 /// The most nodes of one axis (sin θi or λ) a table may have.

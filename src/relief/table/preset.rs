@@ -1,11 +1,11 @@
 //! The crate's rigorous presets (feature `presets`): the four tables of
-//! `src/efficiency_presets_data.rs` as static [`EfficiencyTable`]s.
+//! `src/data/efficiency_presets_data.rs` as static [`EfficiencyTable`]s.
 
 use core::fmt;
 use core::str::FromStr;
 
 use super::{EfficiencyTable, Storage};
-use crate::efficiency_presets_data as data;
+use crate::data::efficiency_presets_data as data;
 use crate::ParseError;
 
 /// The crate's rigorous efficiency presets (`docs/efficiency_tables.md`, "The shipped

@@ -1,0 +1,307 @@
+//! The order weights the grating BSDF delegates to (pbrt-v4's pattern of a BxDF that delegates
+//! to its distribution): for one (wo, λ), which orders are candidates, the weight of each, the
+//! choice of one and its probability, each order's efficiency for the pair (wo, wi), and the
+//! order part of the sample weight's bound. `eval`, `pdf`, `sample` (and their four-wavelength
+//! forms), the weight bound and the albedo are written once against [`OrderWeights`], for
+//! both efficiency models:
+//!
+//! * [`AmplitudeWeights`]: the amplitude reading (`orders.rs`): w_m = S(π·ρ·m) + ε·U_m for
+//!   finite N, S(π·ρ·m) for N = ∞; the lobe carries ρ²·S(π·ρ·x) itself, so the order's factor
+//!   in f is 1.
+//! * [`TabulatedWeights`]: a table's η_m(−wo.x, −wo.y, λ) of every stored candidate (a
+//!   classical table ignores the second argument); the order's factor in f is
+//!   η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`), the lobe the
+//!   unit-integral (N·d/λ)·F_N·g.
+//!
+//! The model-level [`OrderSource`] builds the weights of a query; each public method matches
+//! on it once and runs the generic body, so the amplitude path never carries the tabulated
+//! model's buffer of [`MAX_TABULATED_ORDERS`] efficiencies on its stack.
+
+use glam::DVec3;
+
+use super::efficiency::Tabulated;
+#[cfg(feature = "relief")]
+use super::efficiency::{eta, MAX_TABULATED_ORDERS};
+use super::orders::{candidate_range, AmplitudeOrders, Candidates};
+#[cfg(feature = "relief")]
+use crate::num::math;
+#[cfg(feature = "relief")]
+use crate::relief::{EfficiencyTable, Polarised};
+use crate::Slits;
+
+/// The order weights of one (wo, λ): what the sampler, the density and the weight bound need.
+pub(super) trait OrderWeights {
+    /// Σ w over the candidates.
+    fn total(&self) -> f64;
+    /// The weight w_m of order m (0 outside the candidates).
+    fn weight(&self, m: i64) -> f64;
+    /// Chooses an order from `uc` in [0, 1): the order and its probability w_m/Σ w.
+    fn choose(&self, uc: f64) -> (i64, f64);
+    /// The factor of order m's lobe in f for the pair (wo, wi) at λ: 1 for the amplitude
+    /// reading (its lobe carries ρ²·S), η̃_m for a table.
+    fn lobe_factor(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64;
+    /// The efficiency of order m for delta lobes (N = ∞): η_m = ρ²·S(π·ρ·m) for the amplitude
+    /// reading, η̃_m for a table.
+    fn delta_efficiency(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64;
+    /// The order part of the bound of f·cos θi/pdf (the rest is the period proxy's bound B_N
+    /// and the groove proxy's sup g/q_v): ρ²·Σ w·max_m(U_m/w_m) (amplitude, finite N),
+    /// ρ²·Σ w (amplitude, N = ∞) and Σ η·(1 + 10⁻¹²) (a table: η̃ ≤ η_m(−wo.x)).
+    fn order_bound(&self) -> f64;
+}
+
+/// The amplitude reading's weights for one (wo, λ): the grating's precomputed weights and the
+/// candidates.
+pub(super) struct AmplitudeWeights<'a> {
+    pub dist: &'a AmplitudeOrders,
+    pub c: Candidates,
+}
+
+impl OrderWeights for AmplitudeWeights<'_> {
+    #[inline(always)]
+    fn total(&self) -> f64 {
+        self.c.total
+    }
+
+    #[inline(always)]
+    fn weight(&self, m: i64) -> f64 {
+        if m < self.c.lo || m > self.c.hi {
+            return 0.0;
+        }
+        self.dist.candidate_weight(&self.c, m)
+    }
+
+    #[inline(always)]
+    fn choose(&self, uc: f64) -> (i64, f64) {
+        self.dist.choose(&self.c, uc)
+    }
+
+    #[inline(always)]
+    fn lobe_factor(&self, _m: i64, _wi: DVec3, _lambda_nm: f64) -> f64 {
+        1.0
+    }
+
+    #[inline(always)]
+    fn delta_efficiency(&self, m: i64, _wi: DVec3, _lambda_nm: f64) -> f64 {
+        // The true order m, not the i32 a sample reports: beyond 2³¹ the two differ.
+        self.dist.efficiency(m)
+    }
+
+    fn order_bound(&self) -> f64 {
+        let rho = self.dist.rho();
+        match self.dist.slits() {
+            Slits::Infinite => rho * rho * self.c.total,
+            Slits::Finite(_) => rho * rho * self.c.total * self.dist.worst_envelope_ratio(&self.c),
+        }
+    }
+}
+
+/// A tabulated model's weights for one (wo, λ): η_m(−wo.x, λ) of every stored order (one cell
+/// search, a stack buffer, no allocation), the candidates clipped to the table and Σ η.
+#[cfg(feature = "relief")]
+pub(super) struct TabulatedWeights<'a> {
+    table: &'a EfficiencyTable,
+    buf: [Polarised; MAX_TABULATED_ORDERS],
+    first: i64,
+    lo: i64,
+    hi: i64,
+    total: f64,
+}
+
+#[cfg(feature = "relief")]
+impl<'a> TabulatedWeights<'a> {
+    /// η_m(−wo.x, λ) of the candidate orders [lo, hi] of `t`; `None` when they carry nothing.
+    pub(super) fn new(
+        table: &'a Tabulated,
+        wo: DVec3,
+        lambda_nm: f64,
+        (lo, hi): (i64, i64),
+    ) -> Option<TabulatedWeights<'a>> {
+        let table = table.table();
+        let first = i64::from(*table.orders().start());
+        let last = i64::from(*table.orders().end());
+        let count = ((last - first + 1) as usize).min(MAX_TABULATED_ORDERS);
+        let mut o = TabulatedWeights {
+            table,
+            buf: [Polarised::default(); MAX_TABULATED_ORDERS],
+            first,
+            lo: lo.max(first),
+            hi: hi.min(first + count as i64 - 1),
+            total: 0.0,
+        };
+        table.efficiencies_conical(-wo.x, -wo.y, lambda_nm, &mut o.buf[..count]);
+        let mut total = 0.0;
+        for m in o.lo..=o.hi {
+            total += o.weight(m);
+        }
+        o.total = total;
+        (total > 0.0 && total.is_finite()).then_some(o)
+    }
+
+    /// η̃_m = min(w_m, η_m(−wi.x, −wi.y, λ)) with w_m = η_m(−wo.x, −wo.y, λ) this query's
+    /// weight.
+    #[inline]
+    fn eta_pair(&self, m: i64, wi: (f64, f64), lambda_nm: f64) -> f64 {
+        let w = self.weight(m);
+        if w == 0.0 {
+            return 0.0;
+        }
+        w.min(eta(self.table, m, (-wi.0, -wi.1), lambda_nm))
+    }
+
+    /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x, and wi.y = −wo.y: the
+    /// groove lobe's centre v = 0): the albedo's integrand.
+    #[inline]
+    pub(super) fn eta_at_u(&self, m: i64, u: f64, wo: DVec3, lambda_nm: f64) -> f64 {
+        self.eta_pair(m, (u - wo.x, -wo.y), lambda_nm)
+    }
+}
+
+#[cfg(feature = "relief")]
+impl OrderWeights for TabulatedWeights<'_> {
+    #[inline]
+    fn total(&self) -> f64 {
+        self.total
+    }
+
+    #[inline]
+    fn weight(&self, m: i64) -> f64 {
+        if m < self.lo || m > self.hi {
+            return 0.0;
+        }
+        let e = self.buf[(m - self.first) as usize].unpolarised();
+        if e.is_finite() && e > 0.0 {
+            e
+        } else {
+            0.0
+        }
+    }
+
+    fn choose(&self, uc: f64) -> (i64, f64) {
+        let target = uc * self.total;
+        let mut acc = 0.0;
+        let mut last = self.lo;
+        for m in self.lo..=self.hi {
+            let w = self.weight(m);
+            if w > 0.0 {
+                last = m;
+                acc += w;
+                if target < acc {
+                    return (m, w / self.total);
+                }
+            }
+        }
+        (last, self.weight(last) / self.total)
+    }
+
+    #[inline]
+    fn lobe_factor(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eta_pair(m, (wi.x, wi.y), lambda_nm)
+    }
+
+    #[inline]
+    fn delta_efficiency(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eta_pair(m, (wi.x, wi.y), lambda_nm)
+    }
+
+    fn order_bound(&self) -> f64 {
+        // The relative 10⁻¹² covers the rounding of the weight's products and quotients.
+        self.total * (1.0 + 1e-12)
+    }
+}
+
+/// Without the feature `relief` there are no tables: the tabulated weights are uninhabited.
+#[cfg(not(feature = "relief"))]
+pub(super) struct TabulatedWeights<'a> {
+    never: core::convert::Infallible,
+    _table: core::marker::PhantomData<&'a ()>,
+}
+
+#[cfg(not(feature = "relief"))]
+impl<'a> TabulatedWeights<'a> {
+    pub(super) fn new(
+        table: &'a Tabulated,
+        _wo: DVec3,
+        _lambda_nm: f64,
+        _range: (i64, i64),
+    ) -> Option<TabulatedWeights<'a>> {
+        match *table {}
+    }
+
+    pub(super) fn eta_at_u(&self, _m: i64, _u: f64, _wo: DVec3, _lambda_nm: f64) -> f64 {
+        match self.never {}
+    }
+}
+
+#[cfg(not(feature = "relief"))]
+impl OrderWeights for TabulatedWeights<'_> {
+    fn total(&self) -> f64 {
+        match self.never {}
+    }
+    fn weight(&self, _m: i64) -> f64 {
+        match self.never {}
+    }
+    fn choose(&self, _uc: f64) -> (i64, f64) {
+        match self.never {}
+    }
+    fn lobe_factor(&self, _m: i64, _wi: DVec3, _lambda_nm: f64) -> f64 {
+        match self.never {}
+    }
+    fn delta_efficiency(&self, _m: i64, _wi: DVec3, _lambda_nm: f64) -> f64 {
+        match self.never {}
+    }
+    fn order_bound(&self) -> f64 {
+        match self.never {}
+    }
+}
+
+/// Where a grating's order weights come from: the amplitude reading's precomputed weights, or
+/// a table (with the grating's N, for the candidate range).
+// The amplitude variant holds its weight tables inline (2.2 kB, as the BSDF always has): boxing
+// them would need `alloc` and put an indirection on every sample's path.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum OrderSource {
+    Amplitude(AmplitudeOrders),
+    // Uninhabited without the feature `relief` (no table exists): never built there.
+    #[cfg_attr(not(feature = "relief"), allow(dead_code))]
+    Tabulated {
+        table: Tabulated,
+        slits: Slits,
+    },
+}
+
+impl OrderSource {
+    /// The factor of the lobe of the order owning the phase `x` in f for the pair (wo, wi)
+    /// at λ, without building the weights of every order: 1 for the amplitude reading, η̃_m
+    /// for a table (0 where either reading is 0 or the phase is not finite).
+    #[inline(always)]
+    pub(super) fn lobe_factor(&self, x: f64, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+        match self {
+            OrderSource::Amplitude(_) => 1.0,
+            #[cfg(not(feature = "relief"))]
+            OrderSource::Tabulated { table, .. } => {
+                let _ = (x, wo, wi, lambda_nm);
+                match *table {}
+            }
+            #[cfg(feature = "relief")]
+            OrderSource::Tabulated { table, .. } => {
+                let m = math::rint(x);
+                if !m.is_finite() {
+                    return 0.0;
+                }
+                let (t, m) = (table.table(), m as i64);
+                let e = eta(t, m, (-wo.x, -wo.y), lambda_nm);
+                if e == 0.0 {
+                    return 0.0;
+                }
+                e.min(eta(t, m, (-wi.x, -wi.y), lambda_nm))
+            }
+        }
+    }
+
+    /// The candidate orders' range for wo (`inv_step` = d/λ), for a table's weights.
+    #[inline]
+    pub(super) fn range(slits: Slits, wo: DVec3, inv_step: f64) -> Option<(i64, i64)> {
+        candidate_range(slits, wo, inv_step)
+    }
+}
