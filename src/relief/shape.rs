@@ -46,6 +46,7 @@ pub const MAX_SAMPLES: usize = 4096;
 /// assert_eq!(f.power(3, 0.02, 1000.0), f.power(3 + j, 0.02, 1000.0));
 /// # Ok::<(), diffraction::Error>(())
 /// ```
+#[cfg(feature = "alloc")]
 pub(crate) const QUADRATURE_NODES: usize = 4096;
 /// The most recurrence steps one Bessel value of a sinusoid may take before Debye's expansions
 /// are used (their accuracy there is below 10⁻¹¹ of the local amplitude, `src/num/bessel.rs`): bounds
