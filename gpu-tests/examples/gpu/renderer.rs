@@ -170,16 +170,9 @@ impl run::Renderer for GpuRenderer {
         let s = &scene.settings;
         let samples = s.width as f64 * s.height as f64 * s.spp as f64 * frames as f64;
         let pilot = budget::pilot(scene, &scene.camera, true);
-        let shadow_rays: f64 = scene.lights.iter().map(|l| l.samples as f64).sum();
         let mut est = Estimate::default();
         let passes = if self.reference { 2.0 } else { 1.0 };
-        budget::tracing(
-            &mut est,
-            samples * passes,
-            &pilot,
-            scene.objects.len(),
-            shadow_rays,
-        );
+        budget::tracing(&mut est, samples * passes, &pilot, scene.objects.len());
         let mut tables = Vec::new();
         for g in scene.materials.iter().filter_map(|m| m.grating.as_ref()) {
             if !tables.contains(&g.model.integrand()) {
