@@ -1,5 +1,5 @@
-//! One solve at a fixed truncation: lamellar (TE + TM, classical) and conical, at 41 and 81
-//! harmonics, one staircased sinusoid, and the C method on the foil and blazed600 gratings
+//! One solve at a fixed truncation: lamellar (TE + TM, classical; s + p, conical) at 41, 81 and
+//! 121 harmonics (the cases of tests/data/nannos_timing.csv), one staircased sinusoid, and the C method on the foil and blazed600 gratings
 //! (compare with `python_ref/cmethod_cases.py --time`, the same solves in Python).
 #![allow(missing_docs)]
 
@@ -13,8 +13,18 @@ fn solves(c: &mut Criterion) {
         ..Options::default()
     })
     .unwrap();
-    let lamellar = Grating {
-        period_nm: 740.0,
+    let sinusoid = Grating {
+        period_nm: 1000.0,
+        profile: Profile::Sinusoid { depth_nm: 150.0 },
+        metal: Metal::AG,
+        cover: None,
+    };
+    // The lamellar cases of tests/data/nannos_timing.csv (`python_ref/conical.py --timing`, the
+    // same solves in nannos, both polarisations): 1000 nm, 120 nm deep, duty 0.5 on aluminium at
+    // 550 nm, θ = 30° at φ = 0 (classical) and φ = 60°; 1600 nm, 50 nm deep on silver at 450 nm,
+    // θ = 60°, φ = 30°.
+    let al = Grating {
+        period_nm: 1000.0,
         profile: Profile::Lamellar {
             duty: 0.5,
             depth_nm: 120.0,
@@ -22,24 +32,31 @@ fn solves(c: &mut Criterion) {
         metal: Metal::AL,
         cover: None,
     };
-    let sinusoid = Grating {
-        period_nm: 1000.0,
-        profile: Profile::Sinusoid { depth_nm: 150.0 },
+    let ag = Grating {
+        period_nm: 1600.0,
+        profile: Profile::Lamellar {
+            duty: 0.5,
+            depth_nm: 50.0,
+        },
         metal: Metal::AG,
         cover: None,
     };
-    let classical = Incidence::new(0.5, 0.0, 550.0).unwrap();
-    let conical = Incidence::new(0.5, 0.8, 550.0).unwrap();
+    let deg = |t: f64, p: f64, l: f64| Incidence::new(t.to_radians(), p.to_radians(), l).unwrap();
+    let cases = [
+        ("classical_al", &al, deg(30.0, 0.0, 550.0)),
+        ("conical_al", &al, deg(30.0, 60.0, 550.0)),
+        ("conical_ag", &ag, deg(60.0, 30.0, 450.0)),
+    ];
     let mut group = c.benchmark_group("fmm");
     group.sample_size(10);
-    for nh in [41, 81] {
-        group.bench_function(format!("lamellar_classical_{nh}"), |b| {
-            b.iter(|| solver.solve_at(&lamellar, classical, nh).unwrap())
-        });
-        group.bench_function(format!("lamellar_conical_{nh}"), |b| {
-            b.iter(|| solver.solve_at(&lamellar, conical, nh).unwrap())
-        });
+    for nh in [41, 81, 121] {
+        for (name, g, at) in &cases {
+            group.bench_function(format!("lamellar_{name}_{nh}"), |b| {
+                b.iter(|| solver.solve_at(g, *at, nh).unwrap())
+            });
+        }
     }
+    let classical = Incidence::classical(0.5, 550.0).unwrap();
     group.bench_function("sinusoid_classical_41_8_slabs", |b| {
         b.iter(|| solver.solve_at(&sinusoid, classical, 41).unwrap())
     });
