@@ -17,11 +17,12 @@ W="--width 320 --spp 16"
 rows=()
 for s in fig4a fig4b fig5a fig5b fig6 $S/baselines/compare.toml; do rows+=("raytrace $s $W"); done
 for s in fig4a fig4b fig5a fig5b fig6; do rows+=("raytrace $s $W --filter footprint"); done
-for s in fig4a fig4b fig5a fig5b fig6 cd_area_light $S/presets/cd_preset.toml; do
+for s in fig4a fig4b fig5a fig5b fig6 cd_area_light $S/presets/cd_preset.toml $S/presets/cd_rainbow.toml; do
     rows+=("pathtrace $s $W --integrator path")
 done
 for s in fig4a fig4b fig5a fig5b fig6 cd_area_light; do rows+=("pathtrace $s $W --integrator whitted"); done
 rows+=("pathtrace $S/presets/cd_preset.toml --width 80 --spp 4 --integrator whitted")
+rows+=("pathtrace $S/presets/cd_rainbow.toml --width 40 --spp 1 --integrator whitted")
 rows+=("pathtrace $D/area_lights_exact.toml --integrator path")
 rows+=("pathtrace $D/area_lights_exact.toml --width 8 --spp 1 --integrator whitted --budget 1000")
 rows+=("raytrace $D/work_limits_multiply.toml --width 4 --height 4 --spp 1 --max-depth 4 --budget 1000")

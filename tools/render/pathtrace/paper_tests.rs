@@ -134,6 +134,45 @@ fn cd_preset_renders_with_both_integrators() {
     }
 }
 
+/// `cd_rainbow` is built as its comments say: the lamp's mirror image in the disc's plane falls
+/// on the clear inner ring (inside the data area's inner edge), the centre of the arcs; a point
+/// of the data area straight behind it, at 0.35 from the centre, sees the first order at a
+/// visible wavelength (λ = d·|s|, s the in-plane part of wi + wo, radial there); and both
+/// integrators render the scene to finite pixels.
+#[test]
+fn cd_rainbow_mirrors_the_lamp_inside_the_data_area() {
+    let mut scene =
+        scene::load::<Radiometric>(&scenes_dir().join("presets/cd_rainbow.toml")).unwrap();
+    let (lamp, eye) = (scene.lights[0].position, scene.camera.position);
+    // The data area's plane (objects[1]: the disc translated to y = 0.012).
+    let y0 = 0.012;
+    let t = (lamp.y - y0) / ((lamp.y - y0) + (eye.y - y0));
+    let mirror = lamp + (eye - lamp) * t;
+    let toward = |p: DVec3| Ray::new(eye, p - eye);
+    let first_hit = |ray: &Ray| {
+        (scene.objects.iter().enumerate())
+            .filter_map(|(i, o)| o.intersect(ray, f64::INFINITY, i).map(|h| (h.t, i)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|(_, i)| i)
+    };
+    let ring = DVec3::new(mirror.x, y0, mirror.z);
+    assert_eq!(first_hit(&toward(ring)), Some(2), "mirror point {mirror}");
+    // Behind the centre (−z), on the data area.
+    let p = DVec3::new(0.0, y0, -0.35);
+    assert_eq!(first_hit(&toward(p)), Some(1));
+    let s = (lamp - p).normalize() + (eye - p).normalize();
+    assert!(s.x.abs() < 1e-12, "s is radial (along z) there: {s}");
+    let lambda = 1600.0 * s.z.abs();
+    assert!((380.0..780.0).contains(&lambda), "{lambda} nm");
+    scene.settings.width = 8;
+    scene.settings.height = 6;
+    scene.settings.spp = 1;
+    for integrator in [Integrator::Path, Integrator::Whitted] {
+        let img = integrator.render(&scene, &scene.camera, None);
+        assert!(img.pixels.iter().all(|c| c.is_finite()), "{integrator:?}");
+    }
+}
+
 /// An `efficiency` that is neither a preset nor `amplitude` is refused at that field with the
 /// accepted names (case-sensitive, as `Preset`'s `FromStr`), with or without `period_nm`; a
 /// missing period is reported as such only for the amplitude reading.

@@ -558,7 +558,7 @@ fn the_estimates_stay_within_five_times_the_measured_time() {
         },
         |_| false,
     );
-    assert_eq!(checked.len(), 18);
+    assert_eq!(checked.len(), 20);
 }
 
 /// A fresh temporary directory holding `name` with `src`: (directory, file).
