@@ -141,7 +141,7 @@ pub(crate) fn solve_raw(
     let (nr, ki) = g.metal.index(lambda);
     let eps_m = c64::new(nr, ki) * c64::new(nr, ki);
     let lossless = ki == 0.0 && eps_m.re > 0.0;
-    let n_c = g.cover.map_or(1.0, |c| c.index);
+    let n_c = g.cover_n(lambda);
     let eps_c = n_c * n_c;
     let step = lambda / d;
     let mut media = vec![n_c];
@@ -316,7 +316,7 @@ pub(crate) fn solve_raw(
 /// The first harmonic count of the C method's convergence loop: the propagating orders with
 /// margin, max(21, 4·n·d/λ + 11) (as python_ref's).
 pub(crate) fn first_harmonics(g: &Grating, inc: &Incidence) -> usize {
-    let n_c = g.cover.map_or(1.0, |c| c.index);
+    let n_c = g.cover_n(inc.wavelength_nm);
     odd((MIN_HARMONICS as f64).max(4.0 * n_c * g.period_nm / inc.wavelength_nm + 11.0))
 }
 

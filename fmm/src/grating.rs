@@ -76,13 +76,65 @@ pub enum Profile {
     Sampled(Vec<f64>),
 }
 
+/// Largest Sellmeier coefficient `b` of a cover accepted.
+pub const MAX_SELLMEIER_B: f64 = 10.0;
+/// Largest Sellmeier pole `c` of a cover accepted, µm² (a pole at 1 µm).
+pub const MAX_SELLMEIER_C_UM2: f64 = 1.0;
+
+/// The real refractive index of a cover: a constant, or a one-term Sellmeier dispersion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CoverIndex {
+    /// The same index at every wavelength, in (1, [`MAX_COVER_INDEX`]].
+    Constant(f64),
+    /// n(λ)² = 1 + b·λ²/(λ² − c), λ in µm: `b` in (0, [`MAX_SELLMEIER_B`]], `c_um2` in
+    /// [0, [`MAX_SELLMEIER_C_UM2`]]. A solve needs n(λ) in (1, [`MAX_COVER_INDEX`]] at its
+    /// wavelength (not near or below the pole λ = √c): else an error names `cover.index`.
+    Sellmeier {
+        /// The oscillator strength.
+        b: f64,
+        /// The pole, µm².
+        c_um2: f64,
+    },
+}
+
+impl CoverIndex {
+    /// Polycarbonate: N. Sultanova, S. Kasarova and I. Nikolov, "Dispersion properties of
+    /// optical polymers", Acta Physica Polonica A 116, 585 (2009), fitted over 0.437-1.052 µm
+    /// (extrapolated below)
+    /// (n = 1.642 at 360 nm, 1.589 at 550 nm, 1.570 at 830 nm); `python_ref/fmm.py`'s and the
+    /// presets' cover.
+    pub const POLYCARBONATE: CoverIndex = CoverIndex::Sellmeier {
+        b: 1.4182,
+        c_um2: 0.021304,
+    };
+
+    /// The index at `lambda_nm` (NaN at or below a Sellmeier pole; [`Grating`]'s solves refuse
+    /// that by name).
+    #[must_use]
+    pub fn at(&self, lambda_nm: f64) -> f64 {
+        match *self {
+            CoverIndex::Constant(n) => n,
+            CoverIndex::Sellmeier { b, c_um2 } => {
+                let l2 = (lambda_nm * 1e-3) * (lambda_nm * 1e-3);
+                let d = l2 - c_um2;
+                if d > 0.0 {
+                    (1.0 + b * l2 / d).sqrt()
+                } else {
+                    f64::NAN
+                }
+            }
+        }
+    }
+}
+
 /// A dielectric cover over the grating (a CD's or DVD's polycarbonate, a foil's lacquer): light
 /// enters it from air through a flat surface, is diffracted by the grating inside it, and leaves
 /// through the surface again. The cover is thick (incoherent: powers add, not amplitudes).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cover {
-    /// Real refractive index, in (1, [`MAX_COVER_INDEX`]] (polycarbonate ≈ 1.58).
-    pub index: f64,
+    /// Real refractive index, constant or dispersive ([`CoverIndex::POLYCARBONATE`]), in
+    /// (1, [`MAX_COVER_INDEX`]] at every solved wavelength.
+    pub index: CoverIndex,
     /// Thickness, nm, at least [`MIN_COVER_THICKNESS_NM`] (a CD's is 1.2 mm).
     pub thickness_nm: f64,
 }
@@ -302,13 +354,27 @@ impl Grating {
             }
         }
         if let Some(c) = &self.cover {
-            check_range(
-                "cover.index",
-                c.index,
-                1.0,
-                MAX_COVER_INDEX,
-                "finite, in (1, 4]",
-            )?;
+            match c.index {
+                CoverIndex::Constant(n) => {
+                    check_range("cover.index", n, 1.0, MAX_COVER_INDEX, "finite, in (1, 4]")?;
+                }
+                CoverIndex::Sellmeier { b, c_um2 } => {
+                    check_range(
+                        "cover.index.b",
+                        b,
+                        0.0,
+                        MAX_SELLMEIER_B,
+                        "finite, in (0, 10]",
+                    )?;
+                    if !(c_um2.is_finite() && (0.0..=MAX_SELLMEIER_C_UM2).contains(&c_um2)) {
+                        return Err(Error::invalid(
+                            "cover.index.c_um2",
+                            c_um2,
+                            "finite, in [0, 1] µm²",
+                        ));
+                    }
+                }
+            }
             if !(c.thickness_nm.is_finite()
                 && c.thickness_nm >= MIN_COVER_THICKNESS_NM
                 && c.thickness_nm <= 1e9)
@@ -321,6 +387,27 @@ impl Grating {
             }
         }
         Ok(())
+    }
+
+    /// The cover's index at `lambda_nm`, checked: in (1, [`MAX_COVER_INDEX`]] (an error names
+    /// `cover.index`); 1 without a cover.
+    pub(crate) fn cover_index_at(&self, lambda_nm: f64) -> Result<f64, Error> {
+        match &self.cover {
+            None => Ok(1.0),
+            Some(c) => check_range(
+                "cover.index",
+                c.index.at(lambda_nm),
+                1.0,
+                MAX_COVER_INDEX,
+                "finite, in (1, 4] at the solve's wavelength (a dispersive cover: not at or near its pole)",
+            ),
+        }
+    }
+
+    /// The cover's index at `lambda_nm` (1 without a cover), after [`Grating::cover_index_at`]
+    /// has accepted it.
+    pub(crate) fn cover_n(&self, lambda_nm: f64) -> f64 {
+        self.cover.map_or(1.0, |c| c.index.at(lambda_nm))
     }
 
     /// The profile's depth (peak to valley), nm.

@@ -39,9 +39,9 @@ mod surface;
 
 pub use error::Error;
 pub use grating::{
-    Cover, Grating, Incidence, Level, Profile, FOURIER_SAMPLES, MAX_ASPECT, MAX_COVER_INDEX,
-    MAX_DEPTH_NM, MAX_PERIOD_NM, MAX_SAMPLES, MAX_SLABS, MAX_THETA, MIN_COVER_THICKNESS_NM,
-    WAVELENGTH_RANGE_NM,
+    Cover, CoverIndex, Grating, Incidence, Level, Profile, FOURIER_SAMPLES, MAX_ASPECT,
+    MAX_COVER_INDEX, MAX_DEPTH_NM, MAX_PERIOD_NM, MAX_SAMPLES, MAX_SELLMEIER_B,
+    MAX_SELLMEIER_C_UM2, MAX_SLABS, MAX_THETA, MIN_COVER_THICKNESS_NM, WAVELENGTH_RANGE_NM,
 };
 pub use solver::{
     CoverPasses, Extrapolation, Method, Options, Order, Solution, Solver, DEFAULT_MAX_HARMONICS,

@@ -166,6 +166,12 @@ pub struct TableSpec {
     pub abs_beta: Vec<f64>,
     /// Intervals narrower than this in |β| are not bisected; default 0.02.
     pub min_beta_step: f64,
+    /// A classical table on these nodes, (s, λ nm), each axis strictly increasing with 2 to
+    /// [`MAX_TABLE_NODES`] nodes: no refinement (steps 1 and 3 of the module docs are skipped,
+    /// `tolerance` is not enforced) and the held-out error is measured at the random
+    /// validation points inside the nodes' span (e.g. to re-solve a shipped table on its own
+    /// grid). `None` (the default): the grid is made and refined.
+    pub fixed_nodes: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Default for TableSpec {
@@ -184,6 +190,7 @@ impl Default for TableSpec {
             threads: 0,
             abs_beta: Vec::new(),
             min_beta_step: 0.02,
+            fixed_nodes: None,
         }
     }
 }
@@ -303,6 +310,9 @@ pub struct BuildReport {
     pub solves: usize,
     /// Refinement rounds.
     pub rounds: usize,
+    /// Whether the nodes were given ([`TableSpec::fixed_nodes`]): no refinement, `tolerance`
+    /// not enforced.
+    pub fixed_grid: bool,
     /// Wall time of the build, seconds.
     pub seconds: f64,
 }
@@ -399,6 +409,35 @@ fn check_spec(spec: &TableSpec, period_nm: f64) -> Result<(), TableError> {
             spec.min_beta_step,
             Requirement::Positive,
         ));
+    }
+    if let Some((s, l)) = &spec.fixed_nodes {
+        if !spec.abs_beta.is_empty() {
+            return Err(invalid(
+                "abs_beta",
+                spec.abs_beta.len() as f64,
+                Requirement::Count { min: 0, max: 0 },
+            ));
+        }
+        let count = Requirement::Count {
+            min: 2,
+            max: MAX_TABLE_NODES,
+        };
+        for (name, nodes, lo, hi) in [
+            ("fixed_nodes.0", s, -0.99999, 0.99999),
+            ("fixed_nodes.1", l, 100.0, 20_000.0),
+        ] {
+            if !(2..=MAX_TABLE_NODES).contains(&nodes.len()) {
+                return Err(invalid(name, nodes.len() as f64, count));
+            }
+            for (i, &x) in nodes.iter().enumerate() {
+                if !(lo..=hi).contains(&x) {
+                    return Err(invalid(name, x, Requirement::Within { min: lo, max: hi }));
+                }
+                if i > 0 && x <= nodes[i - 1] {
+                    return Err(invalid(name, x, Requirement::StrictlyIncreasing));
+                }
+            }
+        }
     }
     if !spec.abs_beta.is_empty() {
         let within = Requirement::Within {
@@ -530,7 +569,11 @@ pub fn build_table<S: OrderSolver>(
         start: Instant::now(),
     };
     let conical = !spec.abs_beta.is_empty();
-    let (mut s, mut l) = initial_grid(spec, d);
+    let fixed = spec.fixed_nodes.is_some();
+    let (mut s, mut l) = match &spec.fixed_nodes {
+        Some((s, l)) => (s.clone(), l.clone()),
+        None => initial_grid(spec, d),
+    };
     let mut b = if conical {
         spec.abs_beta.clone()
     } else {
@@ -567,7 +610,7 @@ pub fn build_table<S: OrderSolver>(
         // every (s, |β|) line, along |β| on every (s, λ) line; with the axis and interval
         // each one checks.
         let mut checks: Vec<(Point, usize, usize)> = Vec::new();
-        for &beta in &b {
+        for &beta in if fixed { &[][..] } else { &b[..] } {
             for &lam in &l {
                 for i in 0..s.len() - 1 {
                     checks.push(((mid(&s, i), beta, lam), 0, i));
@@ -632,8 +675,12 @@ pub fn build_table<S: OrderSolver>(
         };
         if !any_split {
             // The random validation points (step 4).
-            let (s0, s1) = spec.sin_theta_range;
-            let (l0, l1) = spec.lambda_range_nm;
+            let (s0, s1, l0, l1) = if fixed {
+                (s[0], s[s.len() - 1], l[0], l[l.len() - 1])
+            } else {
+                let ((s0, s1), (l0, l1)) = (spec.sin_theta_range, spec.lambda_range_nm);
+                (s0, s1, l0, l1)
+            };
             let (b0, b1) = (b[0], b[b.len() - 1]);
             let pts: Vec<Point> = (0..spec.validation_points)
                 .map(|_| {
@@ -705,9 +752,13 @@ pub fn build_table<S: OrderSolver>(
                 unresolved_intervals: unresolved,
                 solves: cache.solves,
                 rounds: round,
+                fixed_grid: fixed,
                 seconds: cache.start.elapsed().as_secs_f64(),
             },
         };
+        if fixed {
+            return Ok(candidate);
+        }
         if !split.iter().flatten().any(|&x| x) {
             if error > spec.tolerance {
                 // Only intervals at the minimum width are left: not reachable on this grid.

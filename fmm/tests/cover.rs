@@ -2,7 +2,9 @@
 //! the incoherent sum of all passes.
 
 use diffraction::relief::Metal;
-use diffraction_fmm::{Cover, CoverPasses, Grating, Incidence, Options, Profile, Solver};
+use diffraction_fmm::{
+    Cover, CoverIndex, CoverPasses, Grating, Incidence, Options, Profile, Solver,
+};
 use num_complex::Complex64;
 
 /// The solve evaluates the same closed forms, to rounding.
@@ -29,7 +31,7 @@ fn flat_metal_under_a_cover_single_and_multiple_passes() {
         profile: Profile::Flat,
         metal: Metal::AL,
         cover: Some(Cover {
-            index: n_c,
+            index: CoverIndex::Constant(n_c),
             thickness_nm: 1.2e6,
         }),
     };
@@ -76,7 +78,7 @@ fn trapped_light_returns_in_the_multiple_pass_sum() {
         },
         metal: Metal::AL,
         cover: Some(Cover {
-            index: 1.58,
+            index: CoverIndex::Constant(1.58),
             thickness_nm: 6e5,
         }),
     };

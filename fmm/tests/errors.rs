@@ -1,7 +1,7 @@
 //! Bad input gets a typed error naming the parameter and value; every solve is bounded.
 
 use diffraction::relief::Metal;
-use diffraction_fmm::{Cover, Error, Grating, Incidence, Options, Profile, Solver};
+use diffraction_fmm::{Cover, CoverIndex, Error, Grating, Incidence, Options, Profile, Solver};
 
 fn lamellar(period_nm: f64, depth_nm: f64) -> Grating {
     Grating {
@@ -65,7 +65,7 @@ fn bad_inputs_have_exact_messages() {
     );
     let g = Grating {
         cover: Some(Cover {
-            index: 1.58,
+            index: CoverIndex::Constant(1.58),
             thickness_nm: 100.0,
         }),
         ..lamellar(1000.0, 50.0)
@@ -76,7 +76,7 @@ fn bad_inputs_have_exact_messages() {
     );
     let g = Grating {
         cover: Some(Cover {
-            index: f64::NAN,
+            index: CoverIndex::Constant(f64::NAN),
             thickness_nm: 1e6,
         }),
         ..lamellar(1000.0, 50.0)
@@ -84,6 +84,41 @@ fn bad_inputs_have_exact_messages() {
     assert_eq!(
         message(s.solve(&g, inc)),
         "cover.index = NaN: must be finite, in (1, 4]"
+    );
+    // A dispersive cover: its coefficients checked on their own, its index at the solve's
+    // wavelength (polycarbonate's pole is at 146 nm).
+    let sellmeier = |b: f64, c_um2: f64| Grating {
+        cover: Some(Cover {
+            index: CoverIndex::Sellmeier { b, c_um2 },
+            thickness_nm: 1e6,
+        }),
+        ..lamellar(1000.0, 50.0)
+    };
+    assert_eq!(
+        message(s.solve(&sellmeier(-1.0, 0.02), inc)),
+        "cover.index.b = -1: must be finite, in (0, 10]"
+    );
+    assert_eq!(
+        message(s.solve(&sellmeier(1.4, f64::INFINITY), inc)),
+        "cover.index.c_um2 = inf: must be finite, in [0, 1] µm²"
+    );
+    let near_pole = Incidence::new(0.3, 0.0, 150.0).unwrap();
+    let g = Grating {
+        cover: Some(Cover {
+            index: CoverIndex::POLYCARBONATE,
+            thickness_nm: 1e6,
+        }),
+        ..lamellar(100.0, 10.0)
+    };
+    assert!(
+        message(s.solve(&g, near_pole)).starts_with("cover.index = 5.26"),
+        "{}",
+        message(s.solve(&g, near_pole))
+    );
+    let below_pole = Incidence::new(0.3, 0.0, 120.0).unwrap();
+    assert_eq!(
+        message(s.solve(&g, below_pole)),
+        "cover.index = NaN: must be finite, in (1, 4] at the solve's wavelength (a dispersive cover: not at or near its pole)"
     );
     assert_eq!(
         message(Incidence::new(f64::NAN, 0.0, 550.0)),

@@ -58,6 +58,31 @@ fn bad_flags_are_named_with_exit_code_2() {
             "--tolerance",
         ),
         (with(&["--period", "1000", "--cover", "glass"]), "--cover"),
+        (
+            with(&["--period", "1000", "--solve-tolerance", "0"]),
+            "--solve-tolerance",
+        ),
+        (
+            with(&["--period", "1000", "--max-harmonics", "2000"]),
+            "--max-harmonics",
+        ),
+        (
+            with(&["--period", "1000", "--validation", "0"]),
+            "--validation",
+        ),
+        (
+            with(&[
+                "--period",
+                "1000",
+                "--nodes-of",
+                "x.json",
+                "--tolerance",
+                "0.01",
+            ]),
+            "--nodes-of",
+        ),
+        // A directory (and so a FIFO or a device) is refused before it is opened.
+        (with(&["--period", "1000", "--nodes-of", "/"]), "--nodes-of"),
         (with(&["--period", "1000", "--nk", "1.2"]), "--nk"),
         (
             with(&["--period", "1000", "--nk", "1.2,7"]),
@@ -211,6 +236,72 @@ fn a_failed_build_writes_nothing_and_keeps_an_existing_file() {
         .count();
     assert_eq!(leftovers, 0);
     std::fs::remove_file(&out).unwrap();
+}
+
+/// `--nodes-of`: the table is solved on the given file's own grid (2 × 2 here, shallow, cheap):
+/// the nodes come back as they were, with no `tolerance` claimed and the random points' error
+/// stored; a file the library's loader refuses is named.
+#[test]
+fn nodes_of_a_table_are_solved_as_given() {
+    let nodes = temp("nodes.json");
+    std::fs::write(
+        &nodes,
+        concat!(
+            r#"{"format": "diffraction-efficiency-table", "version": 1, "name": "t","#,
+            r#" "grating": {"profile": "lamellar", "period_nm": 1000.0, "metal": "Al"},"#,
+            r#" "sin_theta_i": [0.1, 0.3], "lambda_nm": [500.0, 600.0],"#,
+            r#" "order_min": 0, "order_max": 0,"#,
+            r#" "te": [[[0.5, 0.5], [0.5, 0.5]]], "tm": [[[0.5, 0.5], [0.5, 0.5]]],"#,
+            r#" "solver": {"method": "x"}, "sha256": "0"}"#
+        ),
+    )
+    .unwrap();
+    let out = temp("from-nodes.json");
+    let args = |nodes: &str| {
+        [
+            "--period",
+            "1000",
+            "--profile",
+            "lamellar",
+            "--depth",
+            "20",
+            "--duty",
+            "0.5",
+            "--metal",
+            "Al",
+            "--validation",
+            "3",
+            "--nodes-of",
+            nodes,
+            "--out",
+            out.to_str().unwrap(),
+        ]
+        .map(String::from)
+    };
+    let (code, err) = run(&args(nodes.to_str().unwrap()).each_ref().map(String::as_str));
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let t: diffraction::relief::EfficiencyTable = serde_json::from_str(&text).unwrap();
+    assert_eq!(t.sin_theta_i().collect::<Vec<_>>(), [0.1, 0.3]);
+    assert_eq!(t.lambda_nm().collect::<Vec<_>>(), [500.0, 600.0]);
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(v["validation"]["tolerance"].is_null(), "{text}");
+    assert_eq!(v["validation"]["interpolation_points"], 3);
+    assert!(v["validation"]["achieved_abs_error"].as_f64().unwrap() < 0.05);
+    std::fs::remove_file(&out).unwrap();
+    std::fs::write(
+        &nodes,
+        r#"{"format": "diffraction-efficiency-table", "version": 1.0}"#,
+    )
+    .unwrap();
+    let (code, err) = run(&args(nodes.to_str().unwrap()).each_ref().map(String::as_str));
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("error: --nodes-of") && err.contains("version"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    std::fs::remove_file(&nodes).unwrap();
 }
 
 /// Expensive: a rigorous build (minutes on the shared 2-core machine). Run with `--ignored`.

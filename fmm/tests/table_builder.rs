@@ -188,7 +188,29 @@ fn json_reads_back_through_the_library_loader() {
 #[test]
 fn bad_specs_name_the_field() {
     let solver = foil();
-    let cases: [(&str, TableSpec); 5] = [
+    let cases: [(&str, TableSpec); 8] = [
+        (
+            "fixed_nodes.0",
+            TableSpec {
+                fixed_nodes: Some((vec![0.1, 0.1], vec![400.0, 500.0])),
+                ..spec(1e-2)
+            },
+        ),
+        (
+            "fixed_nodes.1",
+            TableSpec {
+                fixed_nodes: Some((vec![-0.5, 0.5], vec![400.0])),
+                ..spec(1e-2)
+            },
+        ),
+        (
+            "abs_beta",
+            TableSpec {
+                fixed_nodes: Some((vec![-0.5, 0.5], vec![400.0, 500.0])),
+                abs_beta: vec![0.0, 0.5],
+                ..spec(1e-2)
+            },
+        ),
         (
             "tolerance",
             TableSpec {
@@ -422,4 +444,54 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
             assert!((e.te - f.te).abs() <= 1e-6 && (e.tm - f.tm).abs() <= 1e-6);
         }
     }
+}
+
+/// Given nodes are kept as they are (no refinement, whatever the tolerance), solved once each
+/// (the mirror symmetry halving them), and the held-out error is measured at the random points
+/// alone, inside the nodes' span: exactly the largest error there, as a direct check finds.
+#[test]
+fn fixed_nodes_are_solved_as_given_and_their_error_measured() {
+    let solver = foil();
+    let s_nodes = vec![
+        -0.9, -0.72, -0.54, -0.36, -0.18, 0.0, 0.18, 0.36, 0.54, 0.72, 0.9,
+    ];
+    let l_nodes = vec![400.0, 475.0, 550.0, 625.0, 700.0];
+    let spec = TableSpec {
+        tolerance: 1e-6,
+        validation_points: 40,
+        fixed_nodes: Some((s_nodes.clone(), l_nodes.clone())),
+        ..spec(1e-6)
+    };
+    let built = build_table(&solver, &spec, &mut |_| {}).expect("a fixed grid is not refined");
+    let r = &built.report;
+    assert_eq!(
+        (built.sin_theta_i.clone(), built.lambda_nm.clone()),
+        (s_nodes, l_nodes)
+    );
+    assert!(r.fixed_grid);
+    assert_eq!(r.rounds, 1);
+    assert_eq!(r.held_out_points, 40);
+    // 55 nodes, 5 of them on s = 0 (their own mirror): 30 solved; and the 40 random points.
+    assert_eq!(r.solves, 30 + 40, "{r:?}");
+    assert!(r.achieved_abs_error > spec.tolerance, "{r:?}");
+    assert_eq!(r.achieved_abs_error, r.random_points_max);
+    let json = built.to_json(&TableMeta {
+        name: "fixed".into(),
+        description: "fixed nodes".into(),
+        profile: "sinusoid".into(),
+        period_nm: 1000.0,
+        depth_nm: 100.0,
+        duty: None,
+        blaze_deg: None,
+        metal: "Al".into(),
+        cover: "none".into(),
+        symmetric: true,
+        method: "synthetic".into(),
+        harmonics: None,
+        convergence: "exact".into(),
+        cover_model: None,
+        command: "test".into(),
+    });
+    assert!(json.contains(r#""tolerance":null"#), "{json}");
+    assert!(json.contains("fixed nodes, not refined"));
 }

@@ -22,13 +22,16 @@ use std::time::Instant;
 
 use diffraction::relief::Metal;
 use diffraction_fmm::table::{build_table, Progress, Rigorous, TableError, TableMeta, TableSpec};
-use diffraction_fmm::{Cover, CoverPasses, Grating, Options, Profile, Solver};
+use diffraction_fmm::{
+    Cover, CoverIndex, CoverPasses, Extrapolation, Grating, Options, Profile, Solver,
+};
 
 const USAGE: &str =
     "usage: grating-table (--lines-per-mm N | --period NM) --profile lamellar|sinusoid|sawtooth
        [--depth NM] [--duty F] [--blaze DEG] (--metal Al|Ag|Au|Cu|Cr | --nk N,K)
        [--cover none|polycarbonate] [--cover-passes multiple|single] [--tolerance ABS]
        [--lambda MIN,MAX] [--sin-max S] [--abs-beta B0,B1,...] [--max-solves N] [--threads N] [--name NAME]
+       [--nodes-of TABLE] [--validation N] [--solve-tolerance ABS] [--max-harmonics N] [--description TEXT]
        [--keep-best] --out FILE
 
   --depth      ridge height (lamellar) or peak-to-valley depth (sinusoid), nm
@@ -40,11 +43,15 @@ const USAGE: &str =
   --abs-beta   a conical table (version 2): its starting |beta| nodes, increasing in [0, 0.99999]
                (beta: the incident direction cosine along the grooves; default: a classical table)
   --max-solves bound on rigorous solves (default 20000)
+  --nodes-of   solve at the (s, lambda) nodes of this classical table file instead: no refinement, no
+               --tolerance; the held-out error at --validation random points is measured and stored
+  --validation random held-out points (default 64)
+  --solve-tolerance  each solve's convergence tolerance, absolute per order (default 1e-3)
+  --max-harmonics    each solve's harmonic cap (default 401, at most 1601)
   --keep-best  if the tolerance is not reached, write the best table anyway (exit 1)";
 
-/// Polycarbonate, constant: n at 589 nm of Sultanova et al. 2009 (python_ref/fmm.py's Sellmeier
-/// fit), and a CD's 1.2 mm. The solver's cover index does not depend on wavelength.
-const POLYCARBONATE_INDEX: f64 = 1.585;
+/// Polycarbonate: Sultanova et al. 2009's Sellmeier fit ([`CoverIndex::POLYCARBONATE`], as
+/// python_ref/fmm.py and the presets), and a CD's 1.2 mm.
 const POLYCARBONATE_THICKNESS_NM: f64 = 1.2e6;
 
 /// A bad flag: the message names it; exit code 2.
@@ -66,6 +73,10 @@ struct Args {
     cover: bool,
     passes: CoverPasses,
     spec: TableSpec,
+    nodes_of: Option<PathBuf>,
+    solve_tolerance: f64,
+    max_harmonics: usize,
+    description: Option<String>,
     name: Option<String>,
     keep_best: bool,
     out: PathBuf,
@@ -108,6 +119,11 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
     let mut passes = CoverPasses::Multiple;
     let mut spec = TableSpec::default();
     let mut name = None;
+    let mut nodes_of = None;
+    let mut tolerance_given = false;
+    let mut solve_tolerance = diffraction_fmm::DEFAULT_TOLERANCE;
+    let mut max_harmonics = diffraction_fmm::DEFAULT_MAX_HARMONICS;
+    let mut description = None;
     let mut keep_best = false;
     let mut out = None;
     let mut i = 0;
@@ -182,7 +198,31 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
                     return Err(bad(flag, v, "must be in [1e-6, 0.5]"));
                 }
                 spec.tolerance = x;
+                tolerance_given = true;
             }
+            "--solve-tolerance" => {
+                let x = number(flag, v)?;
+                if !(1e-8..=0.1).contains(&x) {
+                    return Err(bad(flag, v, "must be in [1e-8, 0.1]"));
+                }
+                solve_tolerance = x;
+            }
+            "--max-harmonics" => {
+                max_harmonics = v
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|n| (21..=diffraction_fmm::MAX_HARMONICS).contains(n))
+                    .ok_or_else(|| bad(flag, v, "expected an integer in [21, 1601]"))?;
+            }
+            "--validation" => {
+                spec.validation_points = v
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|n| (1..=100_000).contains(n))
+                    .ok_or_else(|| bad(flag, v, "expected an integer in [1, 100000]"))?;
+            }
+            "--nodes-of" => nodes_of = Some(PathBuf::from(v)),
+            "--description" => description = Some(v.to_string()),
             "--lambda" => {
                 let (a, b) = pair(flag, v)?;
                 if !(a >= 100.0 && b <= 20_000.0 && b > a) {
@@ -296,6 +336,11 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
         }
     }
     let out = out.ok_or_else(|| Bad("--out: required".into()))?;
+    if nodes_of.is_some() && (tolerance_given || !spec.abs_beta.is_empty()) {
+        return Err(Bad(
+            "--nodes-of: takes the table's own grid; not with --tolerance or --abs-beta".into(),
+        ));
+    }
     Ok(Args {
         period_nm,
         profile,
@@ -307,6 +352,10 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
         cover: cover == "polycarbonate",
         passes,
         spec,
+        nodes_of,
+        solve_tolerance,
+        max_harmonics,
+        description,
         name,
         keep_best,
         out,
@@ -332,7 +381,7 @@ fn grating(a: &Args) -> Grating {
         profile,
         metal: a.metal,
         cover: a.cover.then_some(Cover {
-            index: POLYCARBONATE_INDEX,
+            index: CoverIndex::POLYCARBONATE,
             thickness_nm: POLYCARBONATE_THICKNESS_NM,
         }),
     }
@@ -362,6 +411,9 @@ fn meta(a: &Args, g: &Grating, solver: &Solver) -> TableMeta {
     if a.cover {
         description.push_str(", under polycarbonate");
     }
+    if let Some(d) = &a.description {
+        description.clone_from(d);
+    }
     let o = solver.options();
     TableMeta {
         name,
@@ -378,18 +430,54 @@ fn meta(a: &Args, g: &Grating, solver: &Solver) -> TableMeta {
         harmonics: None,
         convergence: format!(
             "every solve: the harmonic count raised x1.5 until two successive steps agree to {:e} \
-             ({:?} extrapolation in 1/N), cap {}",
-            o.tolerance, o.extrapolation, o.max_harmonics
+             ({}), cap {}",
+            o.tolerance,
+            match o.extrapolation {
+                Extrapolation::Richardson =>
+                    "TM, and conical solves, extrapolated in 1/N (Richardson): three successive extrapolations agree",
+                Extrapolation::Off => "no extrapolation",
+            },
+            o.max_harmonics
         ),
         cover_model: a.cover.then(|| {
             format!(
-                "flat polycarbonate cover, n = {POLYCARBONATE_INDEX} (constant), {} mm, incoherent, {:?} passes",
+                "flat polycarbonate cover (Sultanova 2009 Sellmeier: n^2 = 1 + 1.4182 l^2/(l^2 - 0.021304), l in um), \
+                 {} mm, incoherent, {:?} passes",
                 POLYCARBONATE_THICKNESS_NM / 1e6,
                 o.cover_passes
             )
         }),
         command: a.command.clone(),
     }
+}
+
+/// Largest table file `--nodes-of` reads.
+const MAX_NODES_FILE_BYTES: u64 = 16 << 20;
+
+/// The (s, λ) nodes of a classical table file: a regular file (checked before it is opened, so
+/// a FIFO or a device is refused without blocking) of at most [`MAX_NODES_FILE_BYTES`], read
+/// by the library's bounded JSON reader.
+fn read_nodes(path: &PathBuf) -> Result<(Vec<f64>, Vec<f64>), String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file".into());
+    }
+    let max = MAX_NODES_FILE_BYTES;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(max + 1).read_to_end(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > max {
+        return Err(format!("more than {max} bytes"));
+    }
+    let text = String::from_utf8(bytes).map_err(|_| "not UTF-8".to_string())?;
+    let table: diffraction::relief::EfficiencyTable =
+        serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    if table.is_conical() {
+        return Err("a conical table (version 2): --nodes-of takes a classical one".into());
+    }
+    Ok((table.sin_theta_i().collect(), table.lambda_nm().collect()))
 }
 
 /// Writes `text` to a temporary file beside `out`, then renames it over `out`.
@@ -446,8 +534,19 @@ fn main() -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    if let Some(path) = &args.nodes_of {
+        match read_nodes(path) {
+            Ok(nodes) => args.spec.fixed_nodes = Some(nodes),
+            Err(msg) => {
+                eprintln!("grating-table: error: --nodes-of {}: {msg}", path.display());
+                return ExitCode::from(2);
+            }
+        }
+    }
     let options = Options {
         cover_passes: args.passes,
+        tolerance: args.solve_tolerance,
+        max_harmonics: args.max_harmonics,
         ..Options::default()
     };
     let solver = match Solver::new(options) {
@@ -461,7 +560,11 @@ fn main() -> ExitCode {
     let rigorous = Rigorous {
         grating: g,
         solver,
-        accept_unconverged: 0.25 * args.spec.tolerance,
+        accept_unconverged: if args.nodes_of.is_some() {
+            args.solve_tolerance
+        } else {
+            0.25 * args.spec.tolerance
+        },
     };
     let t0 = Instant::now();
     let mut last = Instant::now();

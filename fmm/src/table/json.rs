@@ -314,19 +314,45 @@ impl BuiltTable {
                     ("tm", Value::Float(max_sum(&self.tm))),
                 ]),
             ),
-            ("method", Value::Str(
-                "held-out rigorous solves at the midpoints of every interval of the final grid and at random points, \
+            (
+                "method",
+                Value::Str(if r.fixed_grid {
+                    "held-out rigorous solves at random points inside the given grid (fixed nodes, not refined), \
                  against the library's interpolation (relief::EfficiencyTable); largest absolute error over every order \
-                 and both polarisations".into(),
-            )),
-            ("tolerance", Value::Float(r.tolerance)),
+                 and both polarisations".into()
+                } else {
+                    "held-out rigorous solves at the midpoints of every interval of the final grid and at random points, \
+                 against the library's interpolation (relief::EfficiencyTable); largest absolute error over every order \
+                 and both polarisations".into()
+                }),
+            ),
+            (
+                "tolerance",
+                if r.fixed_grid {
+                    Value::Null
+                } else {
+                    Value::Float(r.tolerance)
+                },
+            ),
             ("achieved_abs_error", Value::Float(r.achieved_abs_error)),
-            ("interpolation_abs_error_max", Value::Float(r.achieved_abs_error)),
+            (
+                "interpolation_abs_error_max",
+                Value::Float(r.achieved_abs_error),
+            ),
             ("interpolation_abs_error_p95", Value::Float(r.abs_error_p95)),
-            ("interpolation_abs_error_median", Value::Float(r.abs_error_median)),
+            (
+                "interpolation_abs_error_median",
+                Value::Float(r.abs_error_median),
+            ),
             ("interpolation_points", Value::Int(r.held_out_points as i64)),
-            ("random_points_abs_error_max", Value::Float(r.random_points_max)),
-            ("unresolved_intervals", Value::Int(r.unresolved_intervals as i64)),
+            (
+                "random_points_abs_error_max",
+                Value::Float(r.random_points_max),
+            ),
+            (
+                "unresolved_intervals",
+                Value::Int(r.unresolved_intervals as i64),
+            ),
             ("unconverged_points", Value::Int(r.unconverged.0 as i64)),
             ("unconverged_max_change", Value::Float(r.unconverged.1)),
             ("rounds", Value::Int(r.rounds as i64)),

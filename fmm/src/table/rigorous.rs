@@ -89,7 +89,7 @@ impl OrderSolver for Rigorous {
 const RAYLEIGH_NUDGE: f64 = 1e-9;
 
 fn off_rayleigh(g: &Grating, s: f64, beta: f64, lambda_nm: f64) -> f64 {
-    let media = [1.0, g.cover.map_or(1.0, |c| c.index)];
+    let media = [1.0, g.cover_n(lambda_nm)];
     let ratio = lambda_nm / g.period_nm;
     let on_line = |s: f64| {
         let m_max = ((media[1] + 1.0) / ratio).ceil().min(1e5) as i64;
@@ -142,9 +142,12 @@ impl Mapped {
         let (er, ei) = ((n * n - k * k - beta * beta) / c, 2.0 * n * k / c);
         let (np, kp) = sqrt_upper(er, ei);
         let metal = diffraction::relief::Metal::custom(np, kp).map_err(|e| e.to_string())?;
-        let cover = g.cover.map(|cv| crate::Cover {
-            index: ((cv.index * cv.index - beta * beta) / c).sqrt(),
-            ..cv
+        let cover = g.cover.map(|cv| {
+            let n = cv.index.at(lambda_nm);
+            crate::Cover {
+                index: crate::CoverIndex::Constant(((n * n - beta * beta) / c).sqrt()),
+                ..cv
+            }
         });
         Ok(Grating {
             metal,
