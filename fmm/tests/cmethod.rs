@@ -11,7 +11,7 @@ use diffraction_fmm::{
 };
 use num_complex::Complex64 as C;
 use support::{
-    CMETHOD_SMOOTH_ENERGY_TOLERANCE, FOIL_PRESET_TOLERANCE, FRESNEL_TOLERANCE,
+    PresetTable, CMETHOD_SMOOTH_ENERGY_TOLERANCE, FOIL_PRESET_TOLERANCE, FRESNEL_TOLERANCE,
     PERTURBATION_TOLERANCE,
 };
 
@@ -445,43 +445,13 @@ fn preset_foil_at_its_nodes() {
         metal: Metal::AL,
         cover: None,
     };
-    let path = format!(
-        "{}/../data/efficiencies/foil.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let nums = |k: &str| -> Vec<f64> {
-        v[k].as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect()
-    };
-    let (s_nodes, l_nodes) = (nums("sin_theta_i"), nums("lambda_nm"));
-    let order_min = v["order_min"].as_i64().unwrap() as i32;
-    let d = g.period_nm;
-    let mut nodes = Vec::new();
-    for (j, &l) in l_nodes.iter().enumerate() {
-        for (i, &s) in s_nodes.iter().enumerate() {
-            let near_line = (-20..=20).any(|m| ((s + m as f64 * l / d).abs() - 1.0).abs() < 1e-3);
-            if s.abs() <= 0.95 && !near_line {
-                nodes.push((j, i));
-            }
-        }
-    }
+    let table = PresetTable::read("foil");
     let (mut worst, mut count) = (0.0f64, 0);
-    for &(j, i) in nodes.iter().step_by(5) {
-        let inc = Incidence::classical(s_nodes[i], l_nodes[j]).unwrap();
+    for &(j, i) in table.nodes(g.period_nm, 0.0, |_| 1.0).iter().step_by(5) {
+        let inc = Incidence::classical(table.sin_theta_i[i], table.lambda_nm[j]).unwrap();
         let sol = solver.solve(&g, inc).unwrap();
-        for (pol, key) in [(true, "te"), (false, "tm")] {
-            for (k, row) in v[key].as_array().unwrap().iter().enumerate() {
-                let table = row[j][i].as_f64().unwrap();
-                let m = order_min + k as i32;
-                let got = sol.order(m).map_or(0.0, |o| if pol { o.te } else { o.tm });
-                worst = worst.max((got - table).abs());
-            }
-        }
+        let got = |m: i32| sol.order(m).map_or((0.0, 0.0), |o| (o.te, o.tm));
+        worst = worst.max(table.worst_at((j, i), got));
         count += 1;
     }
     println!("foil: {count} nodes, worst |η − table| = {worst:.2e}");

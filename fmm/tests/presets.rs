@@ -9,7 +9,7 @@ mod support;
 use diffraction::relief::Metal;
 use diffraction_fmm::table::{OrderSolver, Rigorous};
 use diffraction_fmm::{Cover, CoverIndex, CoverPasses, Grating, Options, Profile, Solver};
-use support::REPRODUCTION_TOLERANCE;
+use support::{PresetTable, REPRODUCTION_TOLERANCE};
 
 fn covered(period_nm: f64, duty: f64, depth_nm: f64) -> Grating {
     Grating {
@@ -35,56 +35,26 @@ fn solver() -> Solver {
 }
 
 /// Largest |η − table| over every order and both polarisations at every `stride`-th node with
-/// |s| ≤ 0.95 off the Rayleigh lines (and λ ≥ `lambda_min`), and the nodes compared.
+/// |s| ≤ 0.95 off the Rayleigh lines (and λ ≥ `lambda_min`), and the nodes compared; solved as
+/// the table builder solves (a solve that reaches the cap is kept at it).
 fn worst_at_nodes(name: &str, g: &Grating, stride: usize, lambda_min: f64) -> (f64, usize) {
-    let path = format!(
-        "{}/../data/efficiencies/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let nums = |k: &str| -> Vec<f64> {
-        v[k].as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect()
-    };
-    let (s_nodes, l_nodes) = (nums("sin_theta_i"), nums("lambda_nm"));
-    let order_min = v["order_min"].as_i64().unwrap() as i32;
-    let d = g.period_nm;
-    let mut nodes = Vec::new();
-    for (j, &l) in l_nodes.iter().enumerate() {
-        for (i, &s) in s_nodes.iter().enumerate() {
-            let n = g.cover.map_or(1.0, |c| c.index.at(l));
-            let near_line = (-40..=40).any(|m| {
-                let a = (s + m as f64 * l / d).abs();
-                (a - 1.0).abs() < 1e-3 || (a - n).abs() < 1e-3
-            });
-            if s.abs() <= 0.95 && l >= lambda_min && !near_line {
-                nodes.push((j, i));
-            }
-        }
-    }
-    // As the table builder solves (a solve that reaches the cap is kept at it).
+    let table = PresetTable::read(name);
     let rigorous = Rigorous {
         grating: g.clone(),
         solver: solver(),
         accept_unconverged: 2.5e-4,
     };
-    let mut worst = 0.0f64;
-    let mut count = 0;
-    for &(j, i) in nodes.iter().step_by(stride) {
+    let cover = |l: f64| g.cover.map_or(1.0, |c| c.index.at(l));
+    let (mut worst, mut count) = (0.0f64, 0);
+    for &(j, i) in table
+        .nodes(g.period_nm, lambda_min, cover)
+        .iter()
+        .step_by(stride)
+    {
         let o = rigorous
-            .solve(s_nodes[i], l_nodes[j])
+            .solve(table.sin_theta_i[i], table.lambda_nm[j])
             .expect("a solve at the node");
-        for (te, key) in [(true, "te"), (false, "tm")] {
-            for (k, row) in v[key].as_array().unwrap().iter().enumerate() {
-                let table = row[j][i].as_f64().unwrap();
-                let (a, b) = o.get(order_min + k as i32);
-                worst = worst.max(((if te { a } else { b }) - table).abs());
-            }
-        }
+        worst = worst.max(table.worst_at((j, i), |m| o.get(m)));
         count += 1;
     }
     (worst, count)

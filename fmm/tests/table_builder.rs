@@ -73,6 +73,27 @@ fn build(solver: &Scalar, spec: &TableSpec) -> diffraction_fmm::table::BuiltTabl
     }
 }
 
+/// The descriptive fields of a synthetic table file.
+fn meta(name: &str) -> TableMeta {
+    TableMeta {
+        name: name.into(),
+        description: "synthetic".into(),
+        profile: "sinusoid".into(),
+        period_nm: 1000.0,
+        depth_nm: 100.0,
+        duty: None,
+        blaze_deg: None,
+        metal: "Al".into(),
+        cover: "none".into(),
+        symmetric: true,
+        method: "synthetic".into(),
+        harmonics: None,
+        convergence: "closed form".into(),
+        cover_model: None,
+        command: "cargo test".into(),
+    }
+}
+
 fn spec(tolerance: f64) -> TableSpec {
     TableSpec {
         lambda_range_nm: (400.0, 700.0),
@@ -145,21 +166,9 @@ fn json_reads_back_through_the_library_loader() {
     let solver = foil();
     let built = build(&solver, &spec(1e-2));
     let meta = TableMeta {
-        name: "foil-scalar".into(),
         description: "scalar model of the foil, for the test".into(),
-        profile: "sinusoid".into(),
-        period_nm: 1000.0,
-        depth_nm: 100.0,
-        duty: None,
-        blaze_deg: None,
-        metal: "Al".into(),
-        cover: "none".into(),
-        symmetric: true,
         method: "scalar relief model".into(),
-        harmonics: None,
-        convergence: "closed form".into(),
-        cover_model: None,
-        command: "cargo test".into(),
+        ..meta("foil-scalar")
     };
     let text = built.to_json(&meta);
     // For checking the file with python_ref/efficiency_table.py::read_json (its sha256 too).
@@ -413,24 +422,7 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
         worst <= FRESH_POINTS_MARGIN * tolerance,
         "fresh max {worst}"
     );
-    let meta = TableMeta {
-        name: "conical".into(),
-        description: "synthetic".into(),
-        profile: "sinusoid".into(),
-        period_nm: 1000.0,
-        depth_nm: 100.0,
-        duty: None,
-        blaze_deg: None,
-        metal: "Al".into(),
-        cover: "none".into(),
-        symmetric: true,
-        method: "synthetic".into(),
-        harmonics: None,
-        convergence: "closed form".into(),
-        cover_model: None,
-        command: "cargo test".into(),
-    };
-    let text = built.to_json(&meta);
+    let text = built.to_json(&meta("conical"));
     let read: EfficiencyTable = serde_json::from_str(&text).unwrap();
     assert!(read.is_conical());
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
@@ -475,23 +467,7 @@ fn fixed_nodes_are_solved_as_given_and_their_error_measured() {
     assert_eq!(r.solves, 30 + 40, "{r:?}");
     assert!(r.achieved_abs_error > spec.tolerance, "{r:?}");
     assert_eq!(r.achieved_abs_error, r.random_points_max);
-    let json = built.to_json(&TableMeta {
-        name: "fixed".into(),
-        description: "fixed nodes".into(),
-        profile: "sinusoid".into(),
-        period_nm: 1000.0,
-        depth_nm: 100.0,
-        duty: None,
-        blaze_deg: None,
-        metal: "Al".into(),
-        cover: "none".into(),
-        symmetric: true,
-        method: "synthetic".into(),
-        harmonics: None,
-        convergence: "exact".into(),
-        cover_model: None,
-        command: "test".into(),
-    });
+    let json = built.to_json(&meta("fixed"));
     assert!(json.contains(r#""tolerance":null"#), "{json}");
     assert!(json.contains("fixed nodes, not refined"));
 }

@@ -47,7 +47,7 @@ const USAGE: &str =
                --tolerance; the held-out error at --validation random points is measured and stored
   --validation random held-out points (default 64)
   --solve-tolerance  each solve's convergence tolerance, absolute per order (default 1e-3)
-  --max-harmonics    each solve's harmonic cap (default 401, at most 1601)
+  --max-harmonics    each solve's harmonic cap (default 801, at most 1601)
   --keep-best  if the tolerance is not reached, write the best table anyway (exit 1)";
 
 /// Polycarbonate: Sultanova et al. 2009's Sellmeier fit ([`CoverIndex::POLYCARBONATE`], as

@@ -129,3 +129,78 @@ pub fn rigorous_cases() -> Vec<Case> {
     }
     cases
 }
+
+/// A committed preset table, `data/efficiencies/NAME.json`, as written.
+pub struct PresetTable {
+    json: serde_json::Value,
+    /// The s nodes.
+    pub sin_theta_i: Vec<f64>,
+    /// The λ nodes, nm.
+    pub lambda_nm: Vec<f64>,
+    order_min: i32,
+}
+
+impl PresetTable {
+    pub fn read(name: &str) -> PresetTable {
+        let path = format!(
+            "{}/../data/efficiencies/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let nums = |k: &str| -> Vec<f64> {
+            json[k]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        };
+        let (sin_theta_i, lambda_nm) = (nums("sin_theta_i"), nums("lambda_nm"));
+        let order_min = json["order_min"].as_i64().unwrap() as i32;
+        PresetTable {
+            json,
+            sin_theta_i,
+            lambda_nm,
+            order_min,
+        }
+    }
+
+    /// The nodes (λ index j, s index i) with |s| ≤ 0.95 and λ ≥ `lambda_min`, at least 1e-3
+    /// from every Rayleigh line |s + mλ/d| = n, n = 1 and `cover_index(λ)`.
+    pub fn nodes(
+        &self,
+        period_nm: f64,
+        lambda_min: f64,
+        cover_index: impl Fn(f64) -> f64,
+    ) -> Vec<(usize, usize)> {
+        let mut nodes = Vec::new();
+        for (j, &l) in self.lambda_nm.iter().enumerate() {
+            let n = cover_index(l);
+            for (i, &s) in self.sin_theta_i.iter().enumerate() {
+                let near_line = (-40..=40).any(|m| {
+                    let a = (s + m as f64 * l / period_nm).abs();
+                    (a - 1.0).abs() < 1e-3 || (a - n).abs() < 1e-3
+                });
+                if s.abs() <= 0.95 && l >= lambda_min && !near_line {
+                    nodes.push((j, i));
+                }
+            }
+        }
+        nodes
+    }
+
+    /// The largest |η − table| at node (j, i) over every stored order and both polarisations,
+    /// `solved(m)` giving (TE, TM) of order m (0 where it does not propagate).
+    pub fn worst_at(&self, (j, i): (usize, usize), solved: impl Fn(i32) -> (f64, f64)) -> f64 {
+        let mut worst = 0.0f64;
+        for (te, key) in [(true, "te"), (false, "tm")] {
+            for (k, row) in self.json[key].as_array().unwrap().iter().enumerate() {
+                let table = row[j][i].as_f64().unwrap();
+                let (a, b) = solved(self.order_min + k as i32);
+                worst = worst.max(((if te { a } else { b }) - table).abs());
+            }
+        }
+        worst
+    }
+}
