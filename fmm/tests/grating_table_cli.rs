@@ -15,6 +15,20 @@ fn run(args: &[&str]) -> (i32, String) {
     )
 }
 
+/// A shallow lamellar Al grating of period 1000 nm: cheap solves.
+const SHALLOW_LAMELLAR: [&str; 10] = [
+    "--period",
+    "1000",
+    "--profile",
+    "lamellar",
+    "--depth",
+    "20",
+    "--duty",
+    "0.5",
+    "--metal",
+    "Al",
+];
+
 fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("grating-table-{}-{name}", std::process::id()))
 }
@@ -203,24 +217,11 @@ fn a_failed_build_writes_nothing_and_keeps_an_existing_file() {
     std::fs::write(&out, "previous").unwrap();
     let o = out.to_str().unwrap();
     // Two solves cannot make a table: the budget error, exit 1, the old file untouched.
-    let (code, err) = run(&[
-        "--period",
-        "1000",
-        "--profile",
-        "lamellar",
-        "--depth",
-        "20",
-        "--duty",
-        "0.5",
-        "--metal",
-        "Al",
-        "--lambda",
-        "500,600",
-        "--max-solves",
-        "2",
-        "--out",
-        o,
-    ]);
+    let args: Vec<&str> = SHALLOW_LAMELLAR
+        .into_iter()
+        .chain(["--lambda", "500,600", "--max-solves", "2", "--out", o])
+        .collect();
+    let (code, err) = run(&args);
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("max_solves"), "{err}");
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "previous");
@@ -257,28 +258,18 @@ fn nodes_of_a_table_are_solved_as_given() {
     )
     .unwrap();
     let out = temp("from-nodes.json");
-    let args = |nodes: &str| {
-        [
-            "--period",
-            "1000",
-            "--profile",
-            "lamellar",
-            "--depth",
-            "20",
-            "--duty",
-            "0.5",
-            "--metal",
-            "Al",
-            "--validation",
-            "3",
-            "--nodes-of",
-            nodes,
-            "--out",
-            out.to_str().unwrap(),
-        ]
-        .map(String::from)
+    let out_path = out.to_str().unwrap().to_string();
+    let args = |nodes: &str| -> Vec<String> {
+        SHALLOW_LAMELLAR
+            .into_iter()
+            .chain(["--validation", "3", "--nodes-of", nodes, "--out", &out_path])
+            .map(String::from)
+            .collect()
     };
-    let (code, err) = run(&args(nodes.to_str().unwrap()).each_ref().map(String::as_str));
+    let (code, err) = run(&args(nodes.to_str().unwrap())
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>());
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(&out).unwrap();
     let t: diffraction::relief::EfficiencyTable = serde_json::from_str(&text).unwrap();
@@ -294,7 +285,10 @@ fn nodes_of_a_table_are_solved_as_given() {
         r#"{"format": "diffraction-efficiency-table", "version": 1.0}"#,
     )
     .unwrap();
-    let (code, err) = run(&args(nodes.to_str().unwrap()).each_ref().map(String::as_str));
+    let (code, err) = run(&args(nodes.to_str().unwrap())
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>());
     assert_eq!(code, 2, "{err}");
     assert!(
         err.contains("error: --nodes-of") && err.contains("version"),
