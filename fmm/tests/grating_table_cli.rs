@@ -305,26 +305,20 @@ fn a_small_table_is_written_and_loads() {
     let out = temp("small.json");
     let o = out.to_str().unwrap();
     // A shallow lamellar Al grating over a narrow range: a few hundred cheap solves.
-    let (code, err) = run(&[
-        "--lines-per-mm",
-        "1000",
-        "--profile",
-        "lamellar",
-        "--depth",
-        "20",
-        "--duty",
-        "0.5",
-        "--metal",
-        "Al",
-        "--lambda",
-        "500,600",
-        "--sin-max",
-        "0.5",
-        "--tolerance",
-        "0.02",
-        "--out",
-        o,
-    ]);
+    let args: Vec<&str> = SHALLOW_LAMELLAR
+        .into_iter()
+        .chain([
+            "--lambda",
+            "500,600",
+            "--sin-max",
+            "0.5",
+            "--tolerance",
+            "0.02",
+            "--out",
+            o,
+        ])
+        .collect();
+    let (code, err) = run(&args);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("ETA"), "{err}");
     let text = std::fs::read_to_string(&out).unwrap();
