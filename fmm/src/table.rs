@@ -170,7 +170,8 @@ pub struct TableSpec {
     /// [`MAX_TABLE_NODES`] nodes: no refinement (steps 1 and 3 of the module docs are skipped,
     /// `tolerance` is not enforced) and the held-out error is measured at the random
     /// validation points inside the nodes' span (e.g. to re-solve a shipped table on its own
-    /// grid). `None` (the default): the grid is made and refined.
+    /// grid); `validation_points` must then be at least 1. `None` (the default): the grid is
+    /// made and refined.
     pub fixed_nodes: Option<(Vec<f64>, Vec<f64>)>,
 }
 
@@ -411,6 +412,10 @@ fn check_spec(spec: &TableSpec, period_nm: f64) -> Result<(), TableError> {
         ));
     }
     if let Some((s, l)) = &spec.fixed_nodes {
+        // The random points are a fixed grid's only held-out check.
+        if spec.validation_points == 0 {
+            return Err(invalid("validation_points", 0.0, Requirement::AtLeastOne));
+        }
         if !spec.abs_beta.is_empty() {
             return Err(invalid(
                 "abs_beta",

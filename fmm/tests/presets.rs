@@ -62,7 +62,7 @@ fn worst_at_nodes(name: &str, g: &Grating, stride: usize, lambda_min: f64) -> (f
 
 #[test]
 fn cd_preset_is_what_this_solver_makes() {
-    let (worst, count) = worst_at_nodes("cd", &covered(1600.0, 0.3125, 110.0), 59, 360.0);
+    let (worst, count) = worst_at_nodes("cd", &covered(1600.0, 0.3125, 110.0), 131, 360.0);
     println!("cd: {count} nodes, worst |η − table| = {worst:.2e}");
     assert!(worst < REPRODUCTION_TOLERANCE, "{worst}");
 }
@@ -70,7 +70,7 @@ fn cd_preset_is_what_this_solver_makes() {
 #[test]
 fn dvd_preset_is_what_this_solver_makes() {
     let g = covered(740.0, 0.32 / 0.74, 105.0);
-    let (worst, count) = worst_at_nodes("dvd", &g, 59, 360.0);
+    let (worst, count) = worst_at_nodes("dvd", &g, 131, 360.0);
     println!("dvd: {count} nodes, worst |η − table| = {worst:.2e}");
     assert!(worst < REPRODUCTION_TOLERANCE, "{worst}");
 }
@@ -85,7 +85,7 @@ fn blazed600_preset_is_what_this_solver_makes() {
         metal: Metal::AL,
         cover: None,
     };
-    let (worst, count) = worst_at_nodes("blazed600", &g, 25, 600.0);
+    let (worst, count) = worst_at_nodes("blazed600", &g, 40, 600.0);
     println!("blazed600: {count} nodes, worst |η − table| = {worst:.2e}");
     assert!(worst < REPRODUCTION_TOLERANCE, "{worst}");
 }

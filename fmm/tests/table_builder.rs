@@ -197,7 +197,15 @@ fn json_reads_back_through_the_library_loader() {
 #[test]
 fn bad_specs_name_the_field() {
     let solver = foil();
-    let cases: [(&str, TableSpec); 8] = [
+    let cases: [(&str, TableSpec); 9] = [
+        (
+            "validation_points",
+            TableSpec {
+                fixed_nodes: Some((vec![-0.5, 0.5], vec![400.0, 500.0])),
+                validation_points: 0,
+                ..spec(1e-2)
+            },
+        ),
         (
             "fixed_nodes.0",
             TableSpec {
