@@ -53,7 +53,9 @@ fn change(a: &Values, b: &Values) -> f64 {
 /// For each node: the counts and the plain values at each.
 fn sequence(g: &Grating, solver: &Solver, s: f64, lambda: f64) -> Vec<(usize, Values)> {
     let inc = Incidence::classical(s, lambda).expect("a valid node");
-    let n_c = CoverIndex::POLYCARBONATE.at(lambda);
+    let n_c = CoverIndex::POLYCARBONATE
+        .at(lambda)
+        .expect("above the pole");
     let mut n = odd((MIN_HARMONICS as f64).max(4.0 * n_c * g.period_nm / lambda + 11.0));
     let mut out = Vec::new();
     while n <= CAP {

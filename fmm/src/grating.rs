@@ -108,20 +108,22 @@ impl CoverIndex {
         c_um2: 0.021304,
     };
 
-    /// The index at `lambda_nm` (NaN at or below a Sellmeier pole; [`Grating`]'s solves refuse
-    /// that by name).
+    /// The index at `lambda_nm`; `None` where a Sellmeier index is undefined (λ not finite and
+    /// positive, or at or below its pole λ = √c; [`Grating`]'s solves refuse that naming
+    /// `cover.index`). A Constant is returned as it is. Evaluated as
+    /// n² = 1 + b / (1 − c/λ²), finite for every λ above the pole (1 + b as λ grows without bound).
     #[must_use]
-    pub fn at(&self, lambda_nm: f64) -> f64 {
+    pub fn at(&self, lambda_nm: f64) -> Option<f64> {
         match *self {
-            CoverIndex::Constant(n) => n,
+            CoverIndex::Constant(n) => Some(n),
             CoverIndex::Sellmeier { b, c_um2 } => {
-                let l2 = (lambda_nm * 1e-3) * (lambda_nm * 1e-3);
-                let d = l2 - c_um2;
-                if d > 0.0 {
-                    (1.0 + b * l2 / d).sqrt()
-                } else {
-                    f64::NAN
+                if !(lambda_nm.is_finite() && lambda_nm > 0.0) {
+                    return None;
                 }
+                let l_um = lambda_nm * 1e-3;
+                // c/λ² in two divisions: no overflow of λ² for large λ.
+                let q = 1.0 - c_um2 / l_um / l_um;
+                (q > 0.0).then(|| (1.0 + b / q).sqrt())
             }
         }
     }
@@ -396,7 +398,7 @@ impl Grating {
             None => Ok(1.0),
             Some(c) => check_range(
                 "cover.index",
-                c.index.at(lambda_nm),
+                c.index.at(lambda_nm).unwrap_or(f64::NAN),
                 1.0,
                 MAX_COVER_INDEX,
                 "finite, in (1, 4] at the solve's wavelength (a dispersive cover: not at or near its pole)",
@@ -405,9 +407,11 @@ impl Grating {
     }
 
     /// The cover's index at `lambda_nm` (1 without a cover), after [`Grating::cover_index_at`]
-    /// has accepted it.
+    /// has accepted it (NaN where it would not have).
     pub(crate) fn cover_n(&self, lambda_nm: f64) -> f64 {
-        self.cover.map_or(1.0, |c| c.index.at(lambda_nm))
+        self.cover
+            .map_or(Some(1.0), |c| c.index.at(lambda_nm))
+            .unwrap_or(f64::NAN)
     }
 
     /// The profile's depth (peak to valley), nm.

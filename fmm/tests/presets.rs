@@ -44,7 +44,10 @@ fn worst_at_nodes(name: &str, g: &Grating, stride: usize, lambda_min: f64) -> (f
         solver: solver(),
         accept_unconverged: 2.5e-4,
     };
-    let cover = |l: f64| g.cover.map_or(1.0, |c| c.index.at(l));
+    let cover = |l: f64| {
+        g.cover
+            .map_or(1.0, |c| c.index.at(l).expect("above the pole"))
+    };
     let (mut worst, mut count) = (0.0f64, 0);
     for &(j, i) in table
         .nodes(g.period_nm, lambda_min, cover)

@@ -142,13 +142,18 @@ impl Mapped {
         let (er, ei) = ((n * n - k * k - beta * beta) / c, 2.0 * n * k / c);
         let (np, kp) = sqrt_upper(er, ei);
         let metal = diffraction::relief::Metal::custom(np, kp).map_err(|e| e.to_string())?;
-        let cover = g.cover.map(|cv| {
-            let n = cv.index.at(lambda_nm);
-            crate::Cover {
-                index: crate::CoverIndex::Constant(((n * n - beta * beta) / c).sqrt()),
-                ..cv
+        let cover = match g.cover {
+            None => None,
+            Some(cv) => {
+                let n = cv.index.at(lambda_nm).ok_or_else(|| {
+                    format!("cover.index: undefined at lambda_nm = {lambda_nm} (a Sellmeier pole)")
+                })?;
+                Some(crate::Cover {
+                    index: crate::CoverIndex::Constant(((n * n - beta * beta) / c).sqrt()),
+                    ..cv
+                })
             }
-        });
+        };
         Ok(Grating {
             metal,
             cover,
