@@ -84,6 +84,13 @@ fn every_module_validates() {
             "{f} missing"
         );
     }
+    // The sampler's defensive share is the CPU's.
+    #[cfg(feature = "relief")]
+    {
+        let share = diffraction::grating_bsdf::TABULATED_DEFENSIVE_SHARE;
+        let line = format!("const DIFFRACTION_DEFENSIVE_SHARE: f32 = {share:?};");
+        assert!(TABULATED_WGSL.contains(&line), "{line}");
+    }
 }
 
 /// (size, member offsets) of the WGSL struct `name`.
@@ -211,7 +218,7 @@ fn the_bsdf_upload_matches_the_model() {
 
 /// The packed efficiency table (src/gpu/tabulated.rs): the header, the nodes, and per order and
 /// node q = η·cos θi/cos θm (η the table's value at the node) or −1 where the order does not
-/// propagate (cos² θm ≤ 10⁻⁶), for every preset; a second table follows the first at the
+/// propagate (cos² θm ≤ 10⁻⁶), then each node's η for the sampler's proposal, for every preset; a second table follows the first at the
 /// offset `push` returns, and a tabulated `GpuBsdf` carries the unit lobe's constants.
 #[cfg(feature = "presets")]
 #[test]
@@ -240,10 +247,11 @@ fn the_efficiency_tables_pack_as_documented() {
                 k as f32,
                 v as f32,
                 0.0,
-                0.0
+                (v + 2 * k * n_l * n_s) as f32
             ]
         );
-        assert_eq!(w.len(), v + 2 * k * n_l * n_s);
+        assert_eq!(w.len(), v + 3 * k * n_l * n_s);
+        let eta_plane = v + 2 * k * n_l * n_s;
         for (i, &s) in sin.iter().enumerate() {
             assert_eq!(w[8 + i] as f64, s);
         }
@@ -269,6 +277,14 @@ fn the_efficiency_tables_pack_as_documented() {
                             "{p:?} m={m} s={s} λ={l}: {q} vs {want}"
                         );
                     }
+                    // The proposal's node efficiency: the table's own value at the node (the
+                    // presets' node sums stay below 1, so no normalisation).
+                    let node = w[eta_plane + (o * n_l + j) * n_s + i] as f64;
+                    let want = e.unpolarised();
+                    assert!(
+                        (node - want).abs() <= ORDER_ROW_F32 * want,
+                        "{p:?} m={m} s={s} λ={l}: node {node} vs {want}"
+                    );
                     values += 1;
                 }
             }

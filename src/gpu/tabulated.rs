@@ -24,7 +24,7 @@ const GRAZING_CORNER: f64 = 1e-6;
 /// let t = Preset::Cd.table();
 /// let words = pack_efficiency_table(t);
 /// let (n_s, n_l, k) = (t.sin_theta_i().len(), t.lambda_nm().len(), t.order_count());
-/// assert_eq!(words.len(), 8 + n_s + n_l + 2 * k * n_l * n_s);
+/// assert_eq!(words.len(), 8 + n_s + n_l + 3 * k * n_l * n_s);
 /// assert_eq!((words[0], words[3], words[4]), (1600.0, -8.0, 17.0));
 /// # }
 /// ```
@@ -34,7 +34,8 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
     let lam: Vec<f64> = table.lambda_nm().collect();
     let (n_s, n_l, count) = (sin.len(), lam.len(), table.order_count());
     let values = EFFICIENCY_HEADER_WORDS + n_s + n_l;
-    let mut w = Vec::with_capacity(values + 2 * count * n_l * n_s);
+    let nodes = count * n_l * n_s;
+    let mut w = Vec::with_capacity(values + 3 * nodes);
     let d = table.period_nm();
     w.extend_from_slice(&[
         d as f32,
@@ -44,7 +45,7 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
         count as f32,
         values as f32,
         0.0,
-        0.0,
+        (values + 2 * nodes) as f32,
     ]);
     w.extend(sin.iter().map(|&s| s as f32));
     w.extend(lam.iter().map(|&l| l as f32));
@@ -66,6 +67,15 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
             }
         }
     }
+    // The sampler's proposal reads the stored values themselves (`EfficiencyTable`'s
+    // unpolarised (TE + TM)/2), flattened as the q's; of a conical table its β = 0 plane, the
+    // plane the q's above read (the first of each order's slice).
+    let slice = n_s * n_l * table.abs_beta().len().max(1);
+    for k in 0..count {
+        for at in 0..n_l * n_s {
+            w.push(table.stored_unpolarised(k * slice + at) as f32);
+        }
+    }
     w
 }
 
@@ -81,9 +91,11 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
 /// | `o + 1`, `o + 2` | n_s, n_λ: the node counts of sin θi and λ |
 /// | `o + 3`, `o + 4` | the first stored order and the number of orders K |
 /// | `o + 5` | V: the offset of the values from `o` (8 + n_s + n_λ) |
-/// | `o + 6`, `o + 7` | 0 (reserved for a further axis) |
+/// | `o + 6` | 0 (reserved for a further axis) |
+/// | `o + 7` | P: the offset of the node efficiencies from `o` (V + 2·K·n_λ·n_s) |
 /// | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
 /// | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
+/// | `o + P ..` | the stored unpolarised η = (TE + TM)/2 at `o + P + (k·n_λ + j)·n_s + i`, what the sampler's nearest-node proposal reads |
 ///
 /// q = η·cos θi/cos θm at the node (what the CPU interpolates), or −1 where the order does not
 /// propagate there (cos² θm ≤ 10⁻⁶, the CPU's grazing corner: such a corner never enters the

@@ -7,8 +7,9 @@
 // The table is the model's `table` word offset.
 
 // One query's interpolation cell (the CPU's `Cell`): s = sin(theta_i) and lambda clamped to
-// the grid, cos(theta_i), the corners' bilinear weights and the flat index j * n_s + i of
-// corner 0; ok = false at grazing incidence (every order 0).
+// the grid, cos(theta_i), the corners' bilinear weights, the flat index j * n_s + i of
+// corner 0 and that of the nearest node (ties to the upper node); ok = false at grazing
+// incidence (every order 0).
 struct DiffractionEtaCell {
     s: f32,
     lambda_nm: f32,
@@ -16,9 +17,14 @@ struct DiffractionEtaCell {
     ok: bool,
     w: vec4<f32>,
     index: u32,
+    near: u32,
     n_s: u32,
     n_l: u32,
 }
+
+// The defensive share of the sampler's order proposal: the CPU's
+// `grating_bsdf::TABULATED_DEFENSIVE_SHARE`.
+const DIFFRACTION_DEFENSIVE_SHARE: f32 = 0.1;
 
 // The index i of the grid interval [x_i, x_i+1] holding x among the n nodes from word first:
 // the first node above x minus 1, clamped to [0, n - 2] (numpy's searchsorted, as the CPU).
@@ -60,6 +66,7 @@ fn diffraction_eta_cell(t: u32, s_in: f32, lambda_in: f32) -> DiffractionEtaCell
     c.ok = c.cos_i > 0.0;
     c.w = vec4<f32>((1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty);
     c.index = j * n_s + i;
+    c.near = c.index + select(0u, 1u, tx >= 0.5) + select(0u, n_s, ty >= 0.5);
     c.n_s = n_s;
     c.n_l = n_l;
     return c;
@@ -170,17 +177,69 @@ fn diffraction_bsdf_tabulated_candidates(b: DiffractionBsdf, wo_x: f32, lambda_n
     return vec2<i32>(max(c.x, first), min(c.y, first + count - 1));
 }
 
-// The sum of eta_m(-wo.x, lambda) over the candidates lo..=hi at the cell (factors k).
-fn diffraction_eta_total(t: u32, c: DiffractionEtaCell, k: vec2<f32>, lo: i32, hi: i32) -> f32 {
-    var total = 0.0;
-    for (var m = lo; m <= hi; m++) {
-        total += diffraction_eta_at(t, c, k, m);
-    }
-    return total;
+// The sampler's order proposal at wo's cell (the CPU's `NodeProposal` and order weights):
+// the candidates trimmed to the orders that propagate at the query, and
+// P(m) = scale * eta^_m + floor, eta^ the nearest node's stored unpolarised efficiencies,
+// scale = (1 - share)/sum eta^ and floor = share/K (0 and 1/K where the sum is 0); hi < lo when
+// no candidate propagates.
+struct DiffractionEtaProposal {
+    lo: i32,
+    hi: i32,
+    scale: f32,
+    floor: f32,
 }
 
-// pdf = P(m) * q(r) * (d/lambda) * q_v(v) * cos(theta_i), P(m) = eta_m(-wo.x) over the
-// candidates' sum: the density of `diffraction_bsdf_tabulated_sample`.
+// Whether order m propagates at the cell's query: the test of `diffraction_eta_raw`.
+fn diffraction_eta_propagates(t: u32, c: DiffractionEtaCell, m: i32) -> bool {
+    let d = diffraction_efficiency_tables[t];
+    return c.ok && abs(c.s + f32(m) * c.lambda_nm / d) < 1.0;
+}
+
+// The nearest node's stored unpolarised efficiency of the stored order m.
+fn diffraction_eta_node(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
+    let k = u32(m - i32(diffraction_efficiency_tables[t + 3u]));
+    return diffraction_efficiency_tables[t + u32(diffraction_efficiency_tables[t + 7u])
+                                         + k * c.n_l * c.n_s + c.near];
+}
+
+fn diffraction_eta_proposal(t: u32, c: DiffractionEtaCell, range: vec2<i32>) -> DiffractionEtaProposal {
+    var p: DiffractionEtaProposal;
+    p.lo = range.x;
+    p.hi = range.y;
+    while p.lo <= p.hi && !diffraction_eta_propagates(t, c, p.lo) {
+        p.lo += 1;
+    }
+    while p.hi >= p.lo && !diffraction_eta_propagates(t, c, p.hi) {
+        p.hi -= 1;
+    }
+    if p.hi < p.lo {
+        return p;
+    }
+    var total = 0.0;
+    for (var m = p.lo; m <= p.hi; m++) {
+        total += diffraction_eta_node(t, c, m);
+    }
+    let k = f32(p.hi - p.lo + 1);
+    if total > 0.0 {
+        p.scale = (1.0 - DIFFRACTION_DEFENSIVE_SHARE) / total;
+        p.floor = DIFFRACTION_DEFENSIVE_SHARE / k;
+    } else {
+        p.scale = 0.0;
+        p.floor = 1.0 / k;
+    }
+    return p;
+}
+
+// P(m) of the proposal p (0 outside its orders).
+fn diffraction_eta_weight(t: u32, c: DiffractionEtaCell, p: DiffractionEtaProposal, m: i32) -> f32 {
+    if m < p.lo || m > p.hi {
+        return 0.0;
+    }
+    return p.scale * diffraction_eta_node(t, c, m) + p.floor;
+}
+
+// pdf = P(m) * q(r) * (d/lambda) * q_v(v) * cos(theta_i) with the proposal's P(m): the
+// density of `diffraction_bsdf_tabulated_sample`.
 fn diffraction_bsdf_tabulated_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>,
                                   lambda_nm: f32) -> f32 {
     if b.groove >= 2u || wo.z <= 0.0 || wi.z <= 0.0 || lambda_nm <= 0.0 {
@@ -191,32 +250,31 @@ fn diffraction_bsdf_tabulated_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f3
         return 0.0;
     }
     let c = diffraction_eta_cell(b.table, -wo.x, lambda_nm);
-    if !c.ok {
+    let p = diffraction_eta_proposal(b.table, c, range);
+    if p.hi < p.lo {
         return 0.0;
     }
-    let k = diffraction_eta_scale(b.table, c);
-    let total = diffraction_eta_total(b.table, c, k, range.x, range.y);
-    return diffraction_bsdf_tabulated_density(b, c, k, range, total, wo, wi, lambda_nm);
+    return diffraction_bsdf_tabulated_density(b, c, p, wo, wi, lambda_nm);
 }
 
-// The pdf from wo's cell c, its factors k, the candidates and their total.
-fn diffraction_bsdf_tabulated_density(b: DiffractionBsdf, c: DiffractionEtaCell, k: vec2<f32>,
-                                      range: vec2<i32>, total: f32, wo: vec3<f32>, wi: vec3<f32>,
+// The pdf from wo's cell c and its proposal p.
+fn diffraction_bsdf_tabulated_density(b: DiffractionBsdf, c: DiffractionEtaCell,
+                                      p: DiffractionEtaProposal, wo: vec3<f32>, wi: vec3<f32>,
                                       lambda_nm: f32) -> f32 {
     let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
     let m = i32(round(x));
-    if m < range.x || m > range.y {
+    let w = diffraction_eta_weight(b.table, c, p, m);
+    if !(w > 0.0) {
         return 0.0;
     }
-    let w = diffraction_eta_at(b.table, c, k, m);
-    return diffraction_bsdf_density(b, w, total, x, wi.y + wo.y, wi.z, lambda_nm);
+    return diffraction_bsdf_density(b, w, 1.0, x, wi.y + wo.y, wi.z, lambda_nm);
 }
 
-// `Bsdf::sample` of a tabulated model from xi in [0, 1)^3: the order by eta_m(-wo.x, lambda)
-// among the candidates (the first m of positive weight whose running sum exceeds xi.x times
-// the total, the last such m if none), then the amplitude model's direction; f and pdf from
-// the direction itself (the values of `diffraction_bsdf_tabulated_f` and `_pdf` there, with
-// wo's interpolation cell computed once).
+// `Bsdf::sample` of a tabulated model from xi in [0, 1)^3: the order by the proposal (the
+// first m whose running sum of P exceeds xi.x, the last one if none: the CPU's choice), then
+// the amplitude model's direction; f and pdf from the direction itself (the values of
+// `diffraction_bsdf_tabulated_f` and `_pdf` there, with wo's interpolation cell computed
+// once).
 fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_nm: f32,
                                      xi: vec3<f32>) -> DiffractionBsdfSample {
     var out: DiffractionBsdfSample;
@@ -228,38 +286,24 @@ fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_n
         return out;
     }
     let c = diffraction_eta_cell(b.table, -wo.x, lambda_nm);
-    if !c.ok {
+    let p = diffraction_eta_proposal(b.table, c, range);
+    if p.hi < p.lo {
         return out;
     }
-    let k = diffraction_eta_scale(b.table, c);
-    let total = diffraction_eta_total(b.table, c, k, range.x, range.y);
-    if !(total > 0.0) {
-        return out;
-    }
-    let goal = xi.x * total;
     var acc = 0.0;
-    var m = range.x;
-    var last = range.x;
-    var found = false;
-    for (var o = range.x; o <= range.y && !found; o++) {
-        let w = diffraction_eta_at(b.table, c, k, o);
-        if w > 0.0 {
-            last = o;
-            acc += w;
-            if goal < acc {
-                m = o;
-                found = true;
-            }
+    var m = p.hi;
+    for (var o = p.lo; o <= p.hi; o++) {
+        acc += diffraction_eta_weight(b.table, c, p, o);
+        if xi.x < acc {
+            m = o;
+            break;
         }
-    }
-    if !found {
-        m = last;
     }
     let wi = diffraction_bsdf_direction(b, wo, m, xi.y, xi.z, lambda_nm);
     if !(wi.z > 0.0) {
         return out;
     }
-    let pdf = diffraction_bsdf_tabulated_density(b, c, k, range, total, wo, wi, lambda_nm);
+    let pdf = diffraction_bsdf_tabulated_density(b, c, p, wo, wi, lambda_nm);
     if !(pdf > 0.0) {
         return out;
     }
@@ -267,9 +311,14 @@ fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_n
     // wo from the same cell: the value `diffraction_eta` gives.
     let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
     let owner = i32(round(x));
+    let first = i32(diffraction_efficiency_tables[b.table + 3u]);
+    let count = i32(diffraction_efficiency_tables[b.table + 4u]);
+    var e = 0.0;
+    if c.ok && owner >= first && owner < first + count {
+        e = diffraction_eta_at(b.table, c, diffraction_eta_scale(b.table, c), owner);
+    }
     out.wi = wi;
-    out.f = diffraction_bsdf_tabulated_lobe(b, diffraction_eta_at(b.table, c, k, owner), owner, wo,
-                                            wi, lambda_nm);
+    out.f = diffraction_bsdf_tabulated_lobe(b, e, owner, wo, wi, lambda_nm);
     out.pdf = pdf;
     out.order = m;
     out.valid = 1u;

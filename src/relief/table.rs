@@ -9,11 +9,54 @@ use alloc::vec::Vec;
 use super::scalar::Polarised;
 use crate::num::math;
 
+/// Runs `$body` with `$sin, $bet, $lam, $te, $tm` bound to the table's axes and values (f32 or
+/// f64 slices), once per storage type.
+macro_rules! with_arrays {
+    ($table:expr, |$sin:ident, $bet:ident, $lam:ident, $te:ident, $tm:ident| $body:expr) => {
+        match &$table.storage {
+            Storage::Static {
+                sin_theta_i: $sin,
+                abs_beta: $bet,
+                lambda_nm: $lam,
+                te: $te,
+                tm: $tm,
+            } => {
+                let ($sin, $bet, $lam, $te, $tm): (&[f32], &[f32], &[f32], &[f32], &[f32]) =
+                    (*$sin, *$bet, *$lam, *$te, *$tm);
+                $body
+            }
+            #[cfg(feature = "alloc")]
+            Storage::Owned {
+                sin_theta_i: $sin,
+                abs_beta: $bet,
+                lambda_nm: $lam,
+                te: $te,
+                tm: $tm,
+            } => {
+                let ($sin, $bet, $lam, $te, $tm): (&[f64], &[f64], &[f64], &[f64], &[f64]) = (
+                    $sin.as_slice(),
+                    $bet.as_slice(),
+                    $lam.as_slice(),
+                    $te.as_slice(),
+                    $tm.as_slice(),
+                );
+                $body
+            }
+        }
+    };
+}
+
 mod conical;
 #[cfg(feature = "alloc")]
 mod load;
 #[cfg(feature = "presets")]
 mod preset;
+mod proposal;
+mod unit;
+
+pub(crate) use proposal::NodeProposal;
+
+use unit::UnitCells;
 
 pub use conical::MAX_TABLE_ABS_BETA;
 #[cfg(feature = "presets")]
@@ -61,6 +104,8 @@ pub struct EfficiencyTable {
     order_min: i32,
     order_count: usize,
     storage: Storage,
+    /// The cells whose queries need no normalisation (`unit.rs`), computed on first use.
+    unit: UnitCells,
 }
 
 /// The nodes and values: static f32 data of the presets, or owned f64 data of user tables.
@@ -123,6 +168,84 @@ struct Cell {
     l_c: [f64; 4],
     cos_c: [f64; 4],
     index: [usize; 4],
+    /// The cell's index j·(n_s − 1) + i, for [`UnitCells`].
+    cell: usize,
+    /// The flat index of the query's nearest node (the corner of largest weight; ties to the
+    /// upper node), for the sampler's proposal.
+    near: usize,
+}
+
+/// One query's interpolation cell, classical ([`Cell`]) or conical (`Cell3`).
+trait OrderCell {
+    /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
+    /// starting at `base` of `te` and `tm`.
+    fn order<T: Values + ?Sized>(
+        &self,
+        period_nm: f64,
+        m: i32,
+        base: usize,
+        te: &T,
+        tm: &T,
+    ) -> Polarised;
+    /// The cell's index among the table's cells.
+    fn index(&self) -> usize;
+    /// Whether order m propagates at the query: the test by which [`order`](Self::order)
+    /// returns 0 before reading any corner, with its operations.
+    fn propagates(&self, period_nm: f64, m: i32) -> bool;
+    /// The flat index of the query's nearest node in an order's slice.
+    fn near(&self) -> usize;
+}
+
+impl OrderCell for Cell {
+    #[inline]
+    fn order<T: Values + ?Sized>(
+        &self,
+        period_nm: f64,
+        m: i32,
+        base: usize,
+        te: &T,
+        tm: &T,
+    ) -> Polarised {
+        Cell::order(self, period_nm, m, base, te, tm)
+    }
+    #[inline]
+    fn index(&self) -> usize {
+        self.cell
+    }
+    #[inline]
+    fn propagates(&self, period_nm: f64, m: i32) -> bool {
+        (self.s + f64::from(m) * self.lambda_nm / period_nm).abs() < 1.0
+    }
+    #[inline]
+    fn near(&self) -> usize {
+        self.near
+    }
+}
+
+impl OrderCell for conical::Cell3 {
+    #[inline]
+    fn order<T: Values + ?Sized>(
+        &self,
+        period_nm: f64,
+        m: i32,
+        base: usize,
+        te: &T,
+        tm: &T,
+    ) -> Polarised {
+        conical::Cell3::order(self, period_nm, m, base, te, tm)
+    }
+    #[inline]
+    fn index(&self) -> usize {
+        self.cell
+    }
+    #[inline]
+    fn propagates(&self, period_nm: f64, m: i32) -> bool {
+        conical::Cell3::propagates(self, period_nm, m)
+    }
+    #[inline]
+    fn near(&self) -> usize {
+        self.near
+    }
 }
 
 /// The index i of the grid interval [x_i, x_{i+1}] holding `x` (clamped to the grid), as
@@ -180,6 +303,8 @@ impl Cell {
                 (j + 1) * n_s + i,
                 (j + 1) * n_s + i + 1,
             ],
+            cell: j * (n_s - 1) + i,
+            near: (j + usize::from(ty >= 0.5)) * n_s + i + usize::from(tx >= 0.5),
         })
     }
 
@@ -304,16 +429,7 @@ impl EfficiencyTable {
         if !self.orders().contains(&order) {
             return Polarised::default();
         }
-        let mut wanted = Polarised::default();
-        let (sum_te, sum_tm) = self.each(sin_theta_i, 0.0, lambda_nm, |m, e| {
-            if m == order {
-                wanted = e;
-            }
-        });
-        Polarised {
-            te: wanted.te * scale(sum_te),
-            tm: wanted.tm * scale(sum_tm),
-        }
+        self.one(order, sin_theta_i, 0.0, lambda_nm)
     }
 
     /// Every stored order's efficiencies at once, written to `out[k]` for order
@@ -355,39 +471,30 @@ impl EfficiencyTable {
     /// Calls `f(m, η_m)` for every stored order before the normalisation and returns the TE
     /// and TM sums; `beta` is read only by a conical table.
     fn each(&self, s: f64, beta: f64, lambda_nm: f64, f: impl FnMut(i32, Polarised)) -> (f64, f64) {
-        match &self.storage {
-            Storage::Static {
-                sin_theta_i,
-                abs_beta,
-                lambda_nm: lam,
-                te,
-                tm,
-            } => self.each_in(
-                *sin_theta_i,
-                *abs_beta,
-                *lam,
-                *te,
-                *tm,
-                (s, beta, lambda_nm),
-                f,
-            ),
-            #[cfg(feature = "alloc")]
-            Storage::Owned {
-                sin_theta_i,
-                abs_beta,
-                lambda_nm: lam,
-                te,
-                tm,
-            } => self.each_in(
-                sin_theta_i.as_slice(),
-                abs_beta.as_slice(),
-                lam.as_slice(),
-                te.as_slice(),
-                tm.as_slice(),
-                (s, beta, lambda_nm),
-                f,
-            ),
-        }
+        with_arrays!(self, |sin, bet, lam, te, tm| self.each_in(
+            sin,
+            bet,
+            lam,
+            te,
+            tm,
+            (s, beta, lambda_nm),
+            f
+        ))
+    }
+
+    /// Order `order`'s efficiencies (a stored order) after the normalisation: that order's
+    /// interpolation alone in a cell whose queries need no normalisation (`unit.rs`),
+    /// otherwise from the sum over every stored order; `beta` is read only by a conical table.
+    fn one(&self, order: i32, s: f64, beta: f64, lambda_nm: f64) -> Polarised {
+        with_arrays!(self, |sin, bet, lam, te, tm| self.one_in(
+            sin,
+            bet,
+            lam,
+            te,
+            tm,
+            order,
+            (s, beta, lambda_nm)
+        ))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -400,28 +507,59 @@ impl EfficiencyTable {
         te: &T,
         tm: &T,
         (s, beta, lambda_nm): (f64, f64, f64),
+        f: impl FnMut(i32, Polarised),
+    ) -> (f64, f64) {
+        let slice = sin.count() * bet.count().max(1) * lam.count();
+        if bet.count() > 0 {
+            match conical::Cell3::find(sin, bet, lam, s, beta, lambda_nm) {
+                Some(cell) => self.sum_cell(&cell, slice, te, tm, f),
+                None => (0.0, 0.0),
+            }
+        } else {
+            match Cell::find(sin, lam, s, lambda_nm) {
+                Some(cell) => self.sum_cell(&cell, slice, te, tm, f),
+                None => (0.0, 0.0),
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn one_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        bet: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+        order: i32,
+        (s, beta, lambda_nm): (f64, f64, f64),
+    ) -> Polarised {
+        let slice = sin.count() * bet.count().max(1) * lam.count();
+        let marks = || self.marks_in(sin, bet, lam, te, tm);
+        if bet.count() > 0 {
+            match conical::Cell3::find(sin, bet, lam, s, beta, lambda_nm) {
+                Some(cell) => self.one_cell(&cell, order, slice, te, tm, marks),
+                None => Polarised::default(),
+            }
+        } else {
+            match Cell::find(sin, lam, s, lambda_nm) {
+                Some(cell) => self.one_cell(&cell, order, slice, te, tm, marks),
+                None => Polarised::default(),
+            }
+        }
+    }
+
+    /// Every stored order of one cell through `f`, and the TE and TM sums.
+    #[inline]
+    fn sum_cell<C: OrderCell, T: Values + ?Sized>(
+        &self,
+        cell: &C,
+        slice: usize,
+        te: &T,
+        tm: &T,
         mut f: impl FnMut(i32, Polarised),
     ) -> (f64, f64) {
-        if bet.count() > 0 {
-            let Some(cell) = conical::Cell3::find(sin, bet, lam, s, beta, lambda_nm) else {
-                return (0.0, 0.0);
-            };
-            let slice = sin.count() * bet.count() * lam.count();
-            let (mut sum_te, mut sum_tm) = (0.0, 0.0);
-            let mut m = self.order_min;
-            for k in 0..self.order_count {
-                let e = cell.order(self.period_nm, m, k * slice, te, tm);
-                sum_te += e.te;
-                sum_tm += e.tm;
-                f(m, e);
-                m = m.wrapping_add(1);
-            }
-            return (sum_te, sum_tm);
-        }
-        let Some(cell) = Cell::find(sin, lam, s, lambda_nm) else {
-            return (0.0, 0.0);
-        };
-        let slice = sin.count() * lam.count();
         let (mut sum_te, mut sum_tm) = (0.0, 0.0);
         let mut m = self.order_min;
         for k in 0..self.order_count {
@@ -432,6 +570,52 @@ impl EfficiencyTable {
             m = m.wrapping_add(1);
         }
         (sum_te, sum_tm)
+    }
+
+    /// One stored order of one cell, normalised: alone where the cell is marked (the factor
+    /// is exactly 1 there), else from the sum over every order.
+    #[inline]
+    fn one_cell<C: OrderCell, T: Values + ?Sized>(
+        &self,
+        cell: &C,
+        order: i32,
+        slice: usize,
+        te: &T,
+        tm: &T,
+        marks: impl FnOnce() -> unit::Bits,
+    ) -> Polarised {
+        // `order` is stored: order − order_min is in 0..order_count.
+        let k = (i64::from(order) - i64::from(self.order_min)) as usize;
+        if self.unit.is_unit(cell.index(), marks) {
+            return cell.order(self.period_nm, order, k * slice, te, tm);
+        }
+        let mut wanted = Polarised::default();
+        let (sum_te, sum_tm) = self.sum_cell(cell, slice, te, tm, |m, e| {
+            if m == order {
+                wanted = e;
+            }
+        });
+        Polarised {
+            te: wanted.te * scale(sum_te),
+            tm: wanted.tm * scale(sum_tm),
+        }
+    }
+
+    /// The marks of every cell of the table (`unit.rs`).
+    fn marks_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        bet: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+    ) -> unit::Bits {
+        let slice = sin.count() * bet.count().max(1) * lam.count();
+        let (period, first, count) = (self.period_nm, self.order_min, self.order_count);
+        let cells = cell_count(sin, bet, lam);
+        unit::marks(period, first, count, slice, cells, te, tm, |c, buf| {
+            corners_of(sin, bet, lam, c, buf)
+        })
     }
 
     /// The table's sin θi nodes as f64 (the presets' f32 nodes widened exactly).
@@ -492,6 +676,57 @@ impl EfficiencyTable {
             ),
         }
     }
+}
+
+/// The number of interpolation cells of a grid (`bet` empty: classical).
+fn cell_count<T: Values + ?Sized>(sin: &T, bet: &T, lam: &T) -> usize {
+    (sin.count() - 1) * bet.count().saturating_sub(1).max(1) * (lam.count() - 1)
+}
+
+/// The corners of cell `c` (numbered as [`Cell`] and `Cell3` number theirs) with the formulas
+/// of their `find`, written to `buf`: their count (4 or 8).
+fn corners_of<T: Values + ?Sized>(
+    sin: &T,
+    bet: &T,
+    lam: &T,
+    c: usize,
+    buf: &mut [unit::Corner; 8],
+) -> usize {
+    let (n_s, n_b, n_l) = (sin.count(), bet.count(), lam.count());
+    let i = c % (n_s - 1);
+    let j = (c / (n_s - 1)) % (n_l - 1);
+    if n_b == 0 {
+        for (n, corner) in buf.iter_mut().take(4).enumerate() {
+            let (di, dj) = (n & 1, n >> 1);
+            let s = sin.at(i + di);
+            *corner = unit::Corner {
+                s,
+                b: 0.0,
+                alpha: s,
+                beta2: 0.0,
+                lambda_nm: lam.at(j + dj),
+                cos_i: math::sqrt(1.0 - s * s),
+                index: (j + dj) * n_s + i + di,
+            };
+        }
+        return 4;
+    }
+    let k = c / ((n_s - 1) * (n_l - 1));
+    for (n, corner) in buf.iter_mut().enumerate() {
+        let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
+        let (s, b) = (sin.at(i + di), bet.at(k + dk));
+        let cb = math::sqrt(1.0 - b * b);
+        *corner = unit::Corner {
+            s,
+            b,
+            alpha: s * cb,
+            beta2: b * b,
+            lambda_nm: lam.at(j + dj),
+            cos_i: cb * math::sqrt(1.0 - s * s),
+            index: ((k + dk) * n_l + (j + dj)) * n_s + (i + di),
+        };
+    }
+    8
 }
 
 /// Which axis of a table.

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use super::order_weights::{OrderSource, OrderWeights};
+use super::order_weights::OrderSource;
 use super::GratingBsdf;
 use crate::model::MIN_COS_THETA;
 use crate::num::kernel::single_slit_cycles;
@@ -101,7 +101,7 @@ impl GratingBsdf {
         // table's kinks).
         let tab = match self.orders {
             OrderSource::Amplitude(_) => None,
-            OrderSource::Tabulated { .. } => match self.tabulated_weights(wo, lambda_nm) {
+            OrderSource::Tabulated { .. } => match self.tabulated_etas(wo, lambda_nm) {
                 Some(o) => Some(o),
                 None => return Some(0.0),
             },
@@ -156,7 +156,7 @@ impl GratingBsdf {
                 ];
                 let mut rule: Option<MomentRule> = None;
                 for m in lo..=hi {
-                    if tab.as_ref().is_some_and(|o| o.weight(m) == 0.0) {
+                    if tab.as_ref().is_some_and(|o| o.eta_wo(m) == 0.0) {
                         // f = 0 on the period (η̃ ≤ η_m(−wo.x) = 0).
                         continue;
                     }
@@ -197,7 +197,7 @@ impl GratingBsdf {
             }
         }
         let cap = match &tab {
-            Some(o) => o.total().min(1.0),
+            Some(o) => o.total.min(1.0),
             None => rho,
         };
         Some(sum.clamp(0.0, cap))

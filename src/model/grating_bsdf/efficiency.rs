@@ -28,13 +28,17 @@
 //! within 10 % at azimuths 30-80°; `docs/efficiency_tables.md`, "Conical tables").
 //!
 //! **The sampler** of a tabulated model: the candidate orders are those of the amplitude model
-//! (periods meeting the disk's u-range), clipped to the table's orders; order m is chosen with
-//! P(m) = η_m(−wo.x, −wo.y, λ)/Σ η, every stored order's efficiency read once per call into a stack
-//! buffer of [`MAX_TABULATED_ORDERS`] entries (no allocation). No defensive share is needed: f
-//! vanishes wherever η_m(−wo.x, λ) does (the min), so P(m) > 0 wherever f > 0. The rest (u from
+//! (periods meeting the disk's u-range), clipped to the table's orders and to those that
+//! propagate at wo's table query (the query clamped to the grid, as the interpolation clamps
+//! it); order m is chosen with the nearest-node proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K, η̂ the
+//! stored efficiencies of the query's nearest node and δ =
+//! [`TABULATED_DEFENSIVE_SHARE`](super::TABULATED_DEFENSIVE_SHARE)
+//! (one cell search and one stored value per order: no interpolation, no allocation). f
+//! vanishes wherever η_m(−wo.x, λ) does (the min), and η_m(−wo.x, λ) vanishes for every order
+//! that does not propagate at the query, so P(m) ≥ δ/K > 0 wherever f > 0. The rest (u from
 //! the period proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and
-//! the weight f·cos θi/pdf = (η̃_m/η_m)·Σ η·N·F_N/q·g/q_v ≤ Σ η·B_N·sup g/q_v < 2π·1.53
-//! (B_N = 2·atan N for N ≥ 2, 1 for N = 1).
+//! the weight f·cos θi/pdf = (η̃_m/P(m))·N·F_N/q·g/q_v ≤ max_m(η_m/P(m))·B_N·sup g/q_v
+//! (B_N = 2·atan N for N ≥ 2, 1 for N = 1; `sample_weight_bound`).
 //!
 //! **The albedo** of a tabulated model integrates η̃_m(u)·ℓ_m over the disk period by period
 //! with the lobe-by-lobe rule (η̃ varies along u through −wi.x = wo.x − u and has the
@@ -66,8 +70,9 @@ use crate::Grating;
 #[cfg(feature = "presets")]
 use crate::Slits;
 
-/// The most orders a tabulated model's table may store: the sampler reads every order's
-/// efficiency for `wo` into a buffer of this many entries on the stack (no allocation). The
+/// The most orders a tabulated model's table may store: the albedo and the sample weight's
+/// bound read every order's efficiency for `wo` into a buffer of this many entries on the
+/// stack (no allocation). The
 /// shipped presets store 9-19; a baked scalar relief stores about 4·d/λ_min + 1 (d up to about
 /// 11 µm at 360 nm).
 #[cfg(feature = "relief")]

@@ -8,10 +8,13 @@
 //! * [`AmplitudeWeights`]: the amplitude reading (`orders.rs`): w_m = S(π·ρ·m) + ε·U_m for
 //!   finite N, S(π·ρ·m) for N = ∞; the lobe carries ρ²·S(π·ρ·x) itself, so the order's factor
 //!   in f is 1.
-//! * [`TabulatedWeights`]: a table's η_m(−wo.x, −wo.y, λ) of every stored candidate (a
-//!   classical table ignores the second argument); the order's factor in f is
-//!   η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`), the lobe the
-//!   unit-integral (N·d/λ)·F_N·g.
+//! * [`TabulatedWeights`]: the nearest-node proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K over the
+//!   candidates that propagate at wo's table query (η̂ the stored efficiencies of its nearest
+//!   node, [`TABULATED_DEFENSIVE_SHARE`] δ); the order's factor in f is
+//!   η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`; a classical
+//!   table ignores the second argument), interpolated for that order alone, the lobe the
+//!   unit-integral (N·d/λ)·F_N·g. [`TabulatedEtas`] holds every candidate's η_m(wo) for the
+//!   albedo's integrand.
 //!
 //! The model-level [`OrderSource`] builds the weights of a query; each public method matches
 //! on it once and runs the generic body, so the amplitude path never carries the tabulated
@@ -25,6 +28,8 @@ use super::efficiency::{eta, MAX_TABULATED_ORDERS};
 use super::orders::{candidate_range, AmplitudeOrders, Candidates};
 #[cfg(feature = "relief")]
 use crate::num::math;
+#[cfg(feature = "relief")]
+use crate::relief::NodeProposal;
 #[cfg(feature = "relief")]
 use crate::relief::{EfficiencyTable, Polarised};
 use crate::Slits;
@@ -45,7 +50,7 @@ pub(super) trait OrderWeights {
     fn delta_efficiency(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64;
     /// The order part of the bound of f·cos θi/pdf (the rest is the period proxy's bound B_N
     /// and the groove proxy's sup g/q_v): ρ²·Σ w·max_m(U_m/w_m) (amplitude, finite N),
-    /// ρ²·Σ w (amplitude, N = ∞) and Σ η·(1 + 10⁻¹²) (a table: η̃ ≤ η_m(−wo.x)).
+    /// ρ²·Σ w (amplitude, N = ∞) and max_m(η_m/P(m))·(1 + 10⁻¹²) (a table: η̃ ≤ η_m(−wo.x)).
     fn order_bound(&self) -> f64;
 }
 
@@ -95,21 +100,33 @@ impl OrderWeights for AmplitudeWeights<'_> {
     }
 }
 
-/// A tabulated model's weights for one (wo, λ): η_m(−wo.x, λ) of every stored order (one cell
-/// search, a stack buffer, no allocation), the candidates clipped to the table and Σ η.
+/// The defensive share δ of a tabulated model's order proposal (feature `relief`): the sampler
+/// chooses order m with P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K among the K candidate orders that
+/// propagate at wo, η̂ the stored efficiencies of wo's nearest table node (the WGSL sampler's
+/// `DIFFRACTION_DEFENSIVE_SHARE`). The share keeps P(m) ≥ δ/K wherever the interpolated η_m(wo) (and so
+/// f) can be positive, also for an order that propagates at the query but not at the node; a
+/// tenth costs at most a tenth of the proposal's match to η_m(wo).
+#[cfg(feature = "relief")]
+pub const TABULATED_DEFENSIVE_SHARE: f64 = 0.1;
+
+/// A tabulated model's weights for one (wo, λ): the nearest-node proposal of the candidate
+/// orders (one cell search, one stored value per order: no interpolation), P(m) = w_m with
+/// Σ w = 1; each order's factor η̃_m is interpolated for the one order a query needs.
 #[cfg(feature = "relief")]
 pub(super) struct TabulatedWeights<'a> {
     table: &'a EfficiencyTable,
-    buf: [Polarised; MAX_TABULATED_ORDERS],
-    first: i64,
-    lo: i64,
-    hi: i64,
-    total: f64,
+    proposal: NodeProposal,
+    wo: DVec3,
+    lambda_nm: f64,
+    /// P(m) = scale·η̂_m + floor: (1 − δ)/Σ η̂ and δ/K, or 0 and 1/K where Σ η̂ = 0.
+    scale: f64,
+    floor: f64,
 }
 
 #[cfg(feature = "relief")]
 impl<'a> TabulatedWeights<'a> {
-    /// η_m(−wo.x, λ) of the candidate orders [lo, hi] of `t`; `None` when they carry nothing.
+    /// The proposal of the candidate orders [lo, hi] for wo at λ; `None` when none of them is
+    /// stored and propagates at wo (every η_m(−wo.x, −wo.y, λ) is 0 there).
     pub(super) fn new(
         table: &'a Tabulated,
         wo: DVec3,
@@ -117,10 +134,130 @@ impl<'a> TabulatedWeights<'a> {
         (lo, hi): (i64, i64),
     ) -> Option<TabulatedWeights<'a>> {
         let table = table.table();
+        let proposal = table.node_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?;
+        let k = proposal.count() as f64;
+        let total = proposal.total();
+        let (scale, floor) = if total > 0.0 && total.is_finite() {
+            (
+                (1.0 - TABULATED_DEFENSIVE_SHARE) / total,
+                TABULATED_DEFENSIVE_SHARE / k,
+            )
+        } else {
+            (0.0, 1.0 / k)
+        };
+        Some(TabulatedWeights {
+            table,
+            proposal,
+            wo,
+            lambda_nm,
+            scale,
+            floor,
+        })
+    }
+
+    /// η̃_m = min(η_m(−wo.x, −wo.y, λ), η_m(−wi.x, −wi.y, λ)), 0 where the first is.
+    #[inline]
+    fn eta_pair(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
+        let wo = self.wo;
+        let e = eta(self.table, m, (-wo.x, -wo.y), lambda_nm);
+        if e == 0.0 {
+            return 0.0;
+        }
+        e.min(eta(self.table, m, (-wi.x, -wi.y), lambda_nm))
+    }
+}
+
+#[cfg(feature = "relief")]
+impl OrderWeights for TabulatedWeights<'_> {
+    #[inline]
+    fn total(&self) -> f64 {
+        1.0
+    }
+
+    #[inline]
+    fn weight(&self, m: i64) -> f64 {
+        let orders = self.proposal.orders();
+        if m < i64::from(*orders.start()) || m > i64::from(*orders.end()) {
+            return 0.0;
+        }
+        // m is a stored order (i32).
+        self.scale * self.table.node_efficiency(&self.proposal, m as i32) + self.floor
+    }
+
+    fn choose(&self, uc: f64) -> (i64, f64) {
+        let orders = self.proposal.orders();
+        let (lo, hi) = (i64::from(*orders.start()), i64::from(*orders.end()));
+        let mut acc = 0.0;
+        for m in lo..=hi {
+            let w = self.weight(m);
+            acc += w;
+            if uc < acc {
+                return (m, w);
+            }
+        }
+        (hi, self.weight(hi))
+    }
+
+    #[inline]
+    fn lobe_factor(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eta_pair(m, wi, lambda_nm)
+    }
+
+    #[inline]
+    fn delta_efficiency(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
+        self.eta_pair(m, wi, lambda_nm)
+    }
+
+    fn order_bound(&self) -> f64 {
+        // max_m η_m(wo)/P(m) (η̃ ≤ η_m(wo)), every order interpolated once; the relative
+        // 10⁻¹² covers the rounding of the weight's products and quotients.
+        let mut buf = [Polarised::default(); MAX_TABULATED_ORDERS];
+        let count = self.table.order_count().min(MAX_TABULATED_ORDERS);
+        let wo = self.wo;
+        self.table
+            .efficiencies_conical(-wo.x, -wo.y, self.lambda_nm, &mut buf[..count]);
+        let first = i64::from(*self.table.orders().start());
+        let orders = self.proposal.orders();
+        let mut worst = 0.0f64;
+        for m in i64::from(*orders.start())..=i64::from(*orders.end()) {
+            let e = buf[(m - first) as usize].unpolarised();
+            if e.is_finite() && e > 0.0 {
+                worst = worst.max(e / self.weight(m));
+            }
+        }
+        worst * (1.0 + 1e-12)
+    }
+}
+
+/// A tabulated model's efficiencies for one (wo, λ), for the albedo's integrand: η_m(−wo.x,
+/// −wo.y, λ) of every stored order (one cell search, a stack buffer, no allocation) and the
+/// candidates clipped to the table.
+#[cfg(feature = "relief")]
+pub(super) struct TabulatedEtas<'a> {
+    table: &'a EfficiencyTable,
+    buf: [Polarised; MAX_TABULATED_ORDERS],
+    first: i64,
+    lo: i64,
+    hi: i64,
+    /// Σ η_m(wo) over the candidates (at most 1).
+    pub total: f64,
+}
+
+#[cfg(feature = "relief")]
+impl<'a> TabulatedEtas<'a> {
+    /// η_m(−wo.x, −wo.y, λ) of the candidate orders [lo, hi] of `t`; `None` when they carry
+    /// nothing.
+    pub(super) fn new(
+        table: &'a Tabulated,
+        wo: DVec3,
+        lambda_nm: f64,
+        (lo, hi): (i64, i64),
+    ) -> Option<TabulatedEtas<'a>> {
+        let table = table.table();
         let first = i64::from(*table.orders().start());
         let last = i64::from(*table.orders().end());
         let count = ((last - first + 1) as usize).min(MAX_TABULATED_ORDERS);
-        let mut o = TabulatedWeights {
+        let mut o = TabulatedEtas {
             table,
             buf: [Polarised::default(); MAX_TABULATED_ORDERS],
             first,
@@ -129,42 +266,14 @@ impl<'a> TabulatedWeights<'a> {
             total: 0.0,
         };
         table.efficiencies_conical(-wo.x, -wo.y, lambda_nm, &mut o.buf[..count]);
-        let mut total = 0.0;
-        for m in o.lo..=o.hi {
-            total += o.weight(m);
-        }
-        o.total = total;
-        (total > 0.0 && total.is_finite()).then_some(o)
+        o.total = (o.lo..=o.hi).map(|m| o.eta_wo(m)).sum();
+        (o.total > 0.0 && o.total.is_finite()).then_some(o)
     }
 
-    /// η̃_m = min(w_m, η_m(−wi.x, −wi.y, λ)) with w_m = η_m(−wo.x, −wo.y, λ) this query's
-    /// weight.
+    /// η_m(−wo.x, −wo.y, λ), 0 outside the candidates and where it is not a finite positive
+    /// number.
     #[inline]
-    fn eta_pair(&self, m: i64, wi: (f64, f64), lambda_nm: f64) -> f64 {
-        let w = self.weight(m);
-        if w == 0.0 {
-            return 0.0;
-        }
-        w.min(eta(self.table, m, (-wi.0, -wi.1), lambda_nm))
-    }
-
-    /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x, and wi.y = −wo.y: the
-    /// groove lobe's centre v = 0): the albedo's integrand.
-    #[inline]
-    pub(super) fn eta_at_u(&self, m: i64, u: f64, wo: DVec3, lambda_nm: f64) -> f64 {
-        self.eta_pair(m, (u - wo.x, -wo.y), lambda_nm)
-    }
-}
-
-#[cfg(feature = "relief")]
-impl OrderWeights for TabulatedWeights<'_> {
-    #[inline]
-    fn total(&self) -> f64 {
-        self.total
-    }
-
-    #[inline]
-    fn weight(&self, m: i64) -> f64 {
+    pub(super) fn eta_wo(&self, m: i64) -> f64 {
         if m < self.lo || m > self.hi {
             return 0.0;
         }
@@ -176,36 +285,15 @@ impl OrderWeights for TabulatedWeights<'_> {
         }
     }
 
-    fn choose(&self, uc: f64) -> (i64, f64) {
-        let target = uc * self.total;
-        let mut acc = 0.0;
-        let mut last = self.lo;
-        for m in self.lo..=self.hi {
-            let w = self.weight(m);
-            if w > 0.0 {
-                last = m;
-                acc += w;
-                if target < acc {
-                    return (m, w / self.total);
-                }
-            }
+    /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x, and wi.y = −wo.y: the
+    /// groove lobe's centre v = 0): the albedo's integrand.
+    #[inline]
+    pub(super) fn eta_at_u(&self, m: i64, u: f64, wo: DVec3, lambda_nm: f64) -> f64 {
+        let w = self.eta_wo(m);
+        if w == 0.0 {
+            return 0.0;
         }
-        (last, self.weight(last) / self.total)
-    }
-
-    #[inline]
-    fn lobe_factor(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eta_pair(m, (wi.x, wi.y), lambda_nm)
-    }
-
-    #[inline]
-    fn delta_efficiency(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
-        self.eta_pair(m, (wi.x, wi.y), lambda_nm)
-    }
-
-    fn order_bound(&self) -> f64 {
-        // The relative 10⁻¹² covers the rounding of the weight's products and quotients.
-        self.total * (1.0 + 1e-12)
+        w.min(eta(self.table, m, (-(u - wo.x), wo.y), lambda_nm))
     }
 }
 
@@ -226,8 +314,32 @@ impl<'a> TabulatedWeights<'a> {
     ) -> Option<TabulatedWeights<'a>> {
         match *table {}
     }
+}
+
+/// Without the feature `relief`: uninhabited, as the weights.
+#[cfg(not(feature = "relief"))]
+pub(super) struct TabulatedEtas<'a> {
+    never: core::convert::Infallible,
+    _table: core::marker::PhantomData<&'a ()>,
+    pub total: f64,
+}
+
+#[cfg(not(feature = "relief"))]
+impl<'a> TabulatedEtas<'a> {
+    pub(super) fn new(
+        table: &'a Tabulated,
+        _wo: DVec3,
+        _lambda_nm: f64,
+        _range: (i64, i64),
+    ) -> Option<TabulatedEtas<'a>> {
+        match *table {}
+    }
 
     pub(super) fn eta_at_u(&self, _m: i64, _u: f64, _wo: DVec3, _lambda_nm: f64) -> f64 {
+        match self.never {}
+    }
+
+    pub(super) fn eta_wo(&self, _m: i64) -> f64 {
         match self.never {}
     }
 }

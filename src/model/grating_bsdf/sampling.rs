@@ -8,7 +8,9 @@ use core::f64::consts::PI;
 use glam::DVec3;
 
 use super::lobe::GrooveFactor;
-use super::order_weights::{AmplitudeWeights, OrderSource, OrderWeights, TabulatedWeights};
+use super::order_weights::{
+    AmplitudeWeights, OrderSource, OrderWeights, TabulatedEtas, TabulatedWeights,
+};
 use super::GratingBsdf;
 use crate::model::bsdf::{BsdfFlags, BsdfSample};
 use crate::model::MIN_COS_THETA;
@@ -126,6 +128,16 @@ impl GratingBsdf {
         };
         let range = OrderSource::range(*slits, wo, self.grating.period_nm() / lambda_nm)?;
         TabulatedWeights::new(table, wo, lambda_nm, range)
+    }
+
+    /// A tabulated model's efficiencies at wo for every candidate order, for the albedo
+    /// (`None` for the amplitude reading).
+    pub(super) fn tabulated_etas(&self, wo: DVec3, lambda_nm: f64) -> Option<TabulatedEtas<'_>> {
+        let OrderSource::Tabulated { table, slits } = &self.orders else {
+            return None;
+        };
+        let range = OrderSource::range(*slits, wo, self.grating.period_nm() / lambda_nm)?;
+        TabulatedEtas::new(table, wo, lambda_nm, range)
     }
 
     /// [`Bsdf::sample`] for a tabulated model. Not inlined, like

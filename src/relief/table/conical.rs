@@ -18,7 +18,7 @@ use super::{interval, scale, AxisName, EfficiencyTable, Values, GRAZING_CORNER};
 #[cfg(feature = "alloc")]
 use super::{
     load::{check_axis, check_period, SUM_TOLERANCE},
-    Storage, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
+    Storage, UnitCells, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
 };
 #[cfg(feature = "alloc")]
 use crate::error::{Error, Requirement};
@@ -42,6 +42,10 @@ pub(super) struct Cell3 {
     l_c: [f64; 8],
     cos_c: [f64; 8],
     index: [usize; 8],
+    /// The cell's index (k·(n_λ − 1) + j)·(n_s − 1) + i, for `UnitCells`.
+    pub(super) cell: usize,
+    /// The flat index of the query's nearest node (ties to the upper node).
+    pub(super) near: usize,
 }
 
 impl Cell3 {
@@ -92,6 +96,10 @@ impl Cell3 {
             l_c: [0.0; 8],
             cos_c: [0.0; 8],
             index: [0; 8],
+            cell: (k * (n_l - 1) + j) * (n_s - 1) + i,
+            near: ((k + usize::from(t[1] >= 0.5)) * n_l + j + usize::from(t[2] >= 0.5)) * n_s
+                + i
+                + usize::from(t[0] >= 0.5),
         };
         for c in 0..8 {
             let (di, dk, dj) = (c & 1, (c >> 1) & 1, (c >> 2) & 1);
@@ -106,6 +114,14 @@ impl Cell3 {
             cell.index[c] = ((k + dk) * n_l + (j + dj)) * n_s + (i + di);
         }
         Some(cell)
+    }
+
+    /// Whether order m propagates at the query (α_m² + β² < 1), with the operations of
+    /// [`order`](Self::order).
+    #[inline]
+    pub(super) fn propagates(&self, period_nm: f64, m: i32) -> bool {
+        let am = self.alpha + f64::from(m) * self.lambda_nm / period_nm;
+        1.0 - am * am - self.beta2 > 0.0
     }
 
     /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
@@ -188,16 +204,7 @@ impl EfficiencyTable {
         if !self.orders().contains(&order) {
             return Polarised::default();
         }
-        let mut wanted = Polarised::default();
-        let (sum_te, sum_tm) = self.each(alpha, beta, lambda_nm, |m, e| {
-            if m == order {
-                wanted = e;
-            }
-        });
-        Polarised {
-            te: wanted.te * scale(sum_te),
-            tm: wanted.tm * scale(sum_tm),
-        }
+        self.one(order, alpha, beta, lambda_nm)
     }
 
     /// Every stored order's efficiencies at (α, β, λ) at once, as
@@ -373,6 +380,7 @@ impl EfficiencyTable {
                 te,
                 tm,
             },
+            unit: UnitCells::new(),
         })
     }
 }

@@ -4,7 +4,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use super::{EfficiencyTable, Storage};
+use super::{EfficiencyTable, Storage, UnitCells};
 use crate::error::{positive, Error, Requirement};
 use crate::num::math;
 use crate::relief::scalar::{ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER};
@@ -211,6 +211,7 @@ impl EfficiencyTable {
                 te,
                 tm,
             },
+            unit: UnitCells::new(),
         })
     }
 

@@ -4,7 +4,7 @@
 use core::fmt;
 use core::str::FromStr;
 
-use super::{EfficiencyTable, Storage};
+use super::{EfficiencyTable, Storage, UnitCells};
 use crate::data::efficiency_presets_data as data;
 use crate::ParseError;
 
@@ -47,6 +47,7 @@ static CD: EfficiencyTable = EfficiencyTable {
         te: &data::CD_TE,
         tm: &data::CD_TM,
     },
+    unit: UnitCells::new(),
 };
 
 static DVD: EfficiencyTable = EfficiencyTable {
@@ -60,6 +61,7 @@ static DVD: EfficiencyTable = EfficiencyTable {
         te: &data::DVD_TE,
         tm: &data::DVD_TM,
     },
+    unit: UnitCells::new(),
 };
 
 static BLAZED600: EfficiencyTable = EfficiencyTable {
@@ -73,6 +75,7 @@ static BLAZED600: EfficiencyTable = EfficiencyTable {
         te: &data::BLAZED600_TE,
         tm: &data::BLAZED600_TM,
     },
+    unit: UnitCells::new(),
 };
 
 static FOIL: EfficiencyTable = EfficiencyTable {
@@ -86,6 +89,7 @@ static FOIL: EfficiencyTable = EfficiencyTable {
         te: &data::FOIL_TE,
         tm: &data::FOIL_TM,
     },
+    unit: UnitCells::new(),
 };
 
 /// The spellings [`Preset`]'s `FromStr` accepts.

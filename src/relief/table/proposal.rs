@@ -1,0 +1,137 @@
+//! The sampler's order proposal from a table: the stored efficiencies of the query's nearest
+//! node, over the candidate orders that propagate at the query. Reading it costs one cell
+//! search and one stored value per order (no interpolation, no square root), against the
+//! interpolation of every order that the exact weights η_m(query) need; the BSDF mixes it with
+//! a defensive share (`grating_bsdf`'s order weights), so that every order the query's
+//! interpolation can give a positive efficiency has a positive probability.
+
+use core::ops::RangeInclusive;
+
+use super::{conical, Cell, EfficiencyTable, OrderCell, Storage, Values};
+
+/// A query's nearest-node order proposal ([`EfficiencyTable::node_proposal`]): the nearest
+/// node, the candidate orders that propagate at the query (the query clamped to the grid, as
+/// the interpolation clamps it) and the sum of the node's stored unpolarised efficiencies over
+/// them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct NodeProposal {
+    node: usize,
+    slice: usize,
+    lo: i32,
+    hi: i32,
+    total: f64,
+}
+
+impl NodeProposal {
+    /// The candidate orders that propagate at the query: every order whose interpolated
+    /// efficiency there can be positive.
+    #[must_use]
+    pub fn orders(&self) -> RangeInclusive<i32> {
+        self.lo..=self.hi
+    }
+
+    /// How many orders [`orders`](Self::orders) holds (at least 1).
+    #[must_use]
+    pub fn count(&self) -> usize {
+        (i64::from(self.hi) - i64::from(self.lo) + 1) as usize
+    }
+
+    /// Σ of the nearest node's stored unpolarised efficiencies over [`orders`](Self::orders).
+    #[must_use]
+    pub fn total(&self) -> f64 {
+        self.total
+    }
+}
+
+impl EfficiencyTable {
+    /// The nearest-node proposal for the incident direction of travel (α, β) = (`alpha`,
+    /// `beta`) at `lambda_nm` among the candidate orders `candidates`: `None` where no
+    /// candidate stored order propagates at the query (then every interpolated efficiency of
+    /// the candidates is 0), or the query has no cell (non-finite, grazing, beyond the
+    /// incidence). A classical table ignores β.
+    pub(crate) fn node_proposal(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+        candidates: RangeInclusive<i64>,
+    ) -> Option<NodeProposal> {
+        let first = i64::from(self.order_min);
+        let last = first + self.order_count as i64 - 1;
+        let (lo, hi) = (
+            (*candidates.start()).max(first),
+            (*candidates.end()).min(last),
+        );
+        if hi < lo {
+            return None;
+        }
+        // In i32: the stored orders are.
+        let (lo, hi) = (lo as i32, hi as i32);
+        with_arrays!(self, |sin, bet, lam, te, tm| {
+            let slice = sin.count() * bet.count().max(1) * lam.count();
+            if bet.count() > 0 {
+                let cell = conical::Cell3::find(sin, bet, lam, alpha, beta, lambda_nm)?;
+                self.propose(&cell, (lo, hi), slice, te, tm)
+            } else {
+                let cell = Cell::find(sin, lam, alpha, lambda_nm)?;
+                self.propose(&cell, (lo, hi), slice, te, tm)
+            }
+        })
+    }
+
+    /// The nearest node's stored unpolarised efficiency (TE + TM)/2 of order `m` for the
+    /// proposal `p`; 0 outside its orders.
+    #[inline]
+    pub(crate) fn node_efficiency(&self, p: &NodeProposal, m: i32) -> f64 {
+        if m < p.lo || m > p.hi {
+            return 0.0;
+        }
+        // m − order_min is in 0..order_count: p's orders are stored ones.
+        let k = (i64::from(m) - i64::from(self.order_min)) as usize;
+        self.stored_unpolarised(k * p.slice + p.node)
+    }
+
+    /// The stored unpolarised efficiency (TE + TM)/2 at flat index `at` of the values (order
+    /// k's node n at k·slice + n): what the proposal reads, and what the GPU's packed table
+    /// holds for it.
+    #[inline]
+    pub(crate) fn stored_unpolarised(&self, at: usize) -> f64 {
+        with_arrays!(self, |_sin, _bet, _lam, te, tm| 0.5
+            * (te.at(at) + tm.at(at)))
+    }
+
+    /// The proposal of a query's cell: the stored orders `lo..=hi` trimmed to those that
+    /// propagate at the query (a contiguous run: α_m grows with m), and the node's sum.
+    fn propose<C: OrderCell, T: Values + ?Sized>(
+        &self,
+        cell: &C,
+        (mut lo, mut hi): (i32, i32),
+        slice: usize,
+        te: &T,
+        tm: &T,
+    ) -> Option<NodeProposal> {
+        while lo <= hi && !cell.propagates(self.period_nm, lo) {
+            lo += 1;
+        }
+        while hi >= lo && !cell.propagates(self.period_nm, hi) {
+            hi -= 1;
+        }
+        if hi < lo {
+            return None;
+        }
+        let node = cell.near();
+        let mut total = 0.0;
+        for m in lo..=hi {
+            let at = (i64::from(m) - i64::from(self.order_min)) as usize * slice + node;
+            // stored_unpolarised's operations.
+            total += 0.5 * (te.at(at) + tm.at(at));
+        }
+        Some(NodeProposal {
+            node,
+            slice,
+            lo,
+            hi,
+            total,
+        })
+    }
+}
