@@ -23,7 +23,7 @@
 //! [`BUDGET_S`] seconds of one core (or `--budget`'s). The estimate is deterministic (the same
 //! run, the same number). The path integrator's counts come from its own paths instead
 //! (`pathtrace/path.rs`'s `pilot`: Russian roulette and the sky end most of them at the first
-//! vertex). Against measured CPU time it is 0.96-2.9 times that of every shipped scene on both
+//! vertex). Against measured CPU time it is 1.10-4.10 times that of every shipped scene on both
 //! renderers and of the two reproducers of `tools/render/tests/data` (docs/work_budget.md, made
 //! by `tools/render/calibrate.sh`; the tests check every row stays within 5×).
 
@@ -58,9 +58,9 @@ pub const SHADOW_NS: f64 = 100.0;
 /// measured 516 ns), ns.
 pub const BSDF_NS: f64 = 600.0;
 /// One evaluation of a grating BSDF with tabulated efficiencies (a preset or a table file) by
-/// the path tracer at a vertex (`cd_preset`: 6.7 µs, the table read for every order at four
-/// wavelengths), ns.
-pub const BSDF_TABLE_NS: f64 = 8e3;
+/// the path tracer at a vertex (`cd_preset`: about 1 µs at four wavelengths, from
+/// `benches/bsdf.rs`'s 129 ns an `f` and 272 ns a `sample` + `pdf`; twice that), ns.
+pub const BSDF_TABLE_NS: f64 = 2e3;
 /// One colour table build at accuracy 10⁻³, ns (measured 4-8 ms a table in scenes of 16 and
 /// 256 gratings over d = 400 nm-99 µm and N = 10-10⁹; twice that for a margin).
 pub const TABLE_NS: f64 = 1.5e7;
@@ -94,12 +94,14 @@ pub enum Integrand {
 pub fn colour_ns(spectral: &Spectral, integrand: Integrand, colour: Colour) -> f64 {
     match integrand {
         Integrand::Grating(g) => grating_ns(spectral, &g, colour),
-        // Measured 0.7 ms a colour for the `cd` preset (d = 1600 nm, N = 34) by the peak search
-        // on a loaded machine; more orders cost more.
+        // The peak search: `cd_preset` and `cd_rainbow` (d = 1600 nm, N = 34) by the Whitted
+        // renderer took 0.27 and 0.26 of the time this constant's earlier 1.5 ms + 100 ns·d
+        // estimated, once a table's single order no longer interpolated every order; more
+        // orders cost more. The other rules' costs are the earlier upper bounds.
         Integrand::Tabulated(d) => match colour.generic().map(|g| g.kind()) {
             Some(GenericStrategyKind::Uniform { samples }) => 600.0 * samples as f64,
             Some(GenericStrategyKind::GaussLegendre { intervals }) => 4800.0 * intervals as f64,
-            Some(GenericStrategyKind::PeakSearch) | None => 1.5e6 + 100.0 * d,
+            Some(GenericStrategyKind::PeakSearch) | None => 4.5e5 + 30.0 * d,
             Some(_) => 6e6 + 400.0 * d,
         },
         Integrand::Thorman(d) | Integrand::Stam(d) => {
