@@ -50,9 +50,12 @@ mod conical;
 #[cfg(feature = "alloc")]
 mod load;
 #[cfg(feature = "presets")]
+mod nodes_q;
 mod preset;
 mod proposal;
 mod unit;
+
+use nodes_q::NodeQ;
 
 pub(crate) use proposal::NodeProposal;
 
@@ -106,6 +109,8 @@ pub struct EfficiencyTable {
     storage: Storage,
     /// The cells whose queries need no normalisation (`unit.rs`), computed on first use.
     unit: UnitCells,
+    /// The nodes' q's (`nodes_q.rs`), computed on first use.
+    q: NodeQ,
 }
 
 /// The nodes and values: static f32 data of the presets, or owned f64 data of user tables.
@@ -162,11 +167,10 @@ struct Cell {
     s: f64,
     lambda_nm: f64,
     cos_i: f64,
-    /// Per corner: bilinear weight, s and λ of the node, cos θi of the node, flat index j·n_s + i.
+    /// Per corner: bilinear weight, s and λ of the node, flat index j·n_s + i.
     w: [f64; 4],
     s_c: [f64; 4],
     l_c: [f64; 4],
-    cos_c: [f64; 4],
     index: [usize; 4],
     /// The cell's index j·(n_s − 1) + i, for [`UnitCells`].
     cell: usize,
@@ -178,14 +182,14 @@ struct Cell {
 /// One query's interpolation cell, classical ([`Cell`]) or conical (`Cell3`).
 trait OrderCell {
     /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
-    /// starting at `base` of `te` and `tm`.
+    /// starting at `base` of `te` and `tm` (or of the nodes' q's `q`, where kept).
     fn order<T: Values + ?Sized>(
         &self,
         period_nm: f64,
         m: i32,
         base: usize,
-        te: &T,
-        tm: &T,
+        values: (&T, &T),
+        q: Option<&[[f64; 2]]>,
     ) -> Polarised;
     /// The cell's index among the table's cells.
     fn index(&self) -> usize;
@@ -203,10 +207,10 @@ impl OrderCell for Cell {
         period_nm: f64,
         m: i32,
         base: usize,
-        te: &T,
-        tm: &T,
+        values: (&T, &T),
+        q: Option<&[[f64; 2]]>,
     ) -> Polarised {
-        Cell::order(self, period_nm, m, base, te, tm)
+        Cell::order(self, period_nm, m, base, values, q)
     }
     #[inline]
     fn index(&self) -> usize {
@@ -229,10 +233,10 @@ impl OrderCell for conical::Cell3 {
         period_nm: f64,
         m: i32,
         base: usize,
-        te: &T,
-        tm: &T,
+        values: (&T, &T),
+        q: Option<&[[f64; 2]]>,
     ) -> Polarised {
-        conical::Cell3::order(self, period_nm, m, base, te, tm)
+        conical::Cell3::order(self, period_nm, m, base, values, q)
     }
     #[inline]
     fn index(&self) -> usize {
@@ -252,17 +256,17 @@ impl OrderCell for conical::Cell3 {
 /// numpy's `searchsorted(side="right") - 1` clamped to [0, n - 2].
 fn interval<T: Values + ?Sized>(nodes: &T, x: f64) -> usize {
     let n = nodes.count();
-    let (mut lo, mut hi) = (0usize, n);
-    // Binary search for the first node above x.
-    while lo < hi {
-        let mid = (lo + hi) / 2;
-        if nodes.at(mid) <= x {
-            lo = mid + 1;
-        } else {
-            hi = mid;
-        }
+    // The count of nodes at or below x (the axis ascends), by halving without a data-dependent
+    // branch (a conditional move per step: no mispredicted jumps on the query's hot path).
+    let (mut base, mut size) = (0usize, n);
+    while size > 1 {
+        let half = size / 2;
+        let mid = base + half;
+        base = if nodes.at(mid) <= x { mid } else { base };
+        size -= half;
     }
-    lo.saturating_sub(1).min(n - 2)
+    let at_or_below = base + usize::from(nodes.at(base) <= x);
+    at_or_below.saturating_sub(1).min(n - 2)
 }
 
 impl Cell {
@@ -283,7 +287,6 @@ impl Cell {
         let (s0, s1, l0, l1) = (sin.at(i), sin.at(i + 1), lam.at(j), lam.at(j + 1));
         let tx = (s - s0) / (s1 - s0);
         let ty = (lambda_nm - l0) / (l1 - l0);
-        let (c0, c1) = (math::sqrt(1.0 - s0 * s0), math::sqrt(1.0 - s1 * s1));
         Some(Cell {
             s,
             lambda_nm,
@@ -296,7 +299,6 @@ impl Cell {
             ],
             s_c: [s0, s1, s0, s1],
             l_c: [l0, l0, l1, l1],
-            cos_c: [c0, c1, c0, c1],
             index: [
                 j * n_s + i,
                 j * n_s + i + 1,
@@ -309,15 +311,15 @@ impl Cell {
     }
 
     /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
-    /// starting at `base` of `te` and `tm`.
+    /// starting at `base` of `te` and `tm`, or of the nodes' q's where kept.
     #[inline]
     fn order<T: Values + ?Sized>(
         &self,
         period_nm: f64,
         m: i32,
         base: usize,
-        te: &T,
-        tm: &T,
+        (te, tm): (&T, &T),
+        q: Option<&[[f64; 2]]>,
     ) -> Polarised {
         let mf = f64::from(m);
         let sm = self.s + mf * self.lambda_nm / period_nm;
@@ -325,20 +327,34 @@ impl Cell {
             return Polarised::default();
         }
         // The corners where the order propagates, with their bilinear weights and
-        // q-factors cos θi,c/cos θm,c.
-        let (mut g, mut den) = ([0.0f64; 4], 0.0);
+        // q = η·cos θi,c/cos θm,c.
         let mut w = [0.0f64; 4];
+        let mut qc = [[0.0f64; 2]; 4];
+        let mut den = 0.0;
         for c in 0..4 {
             if self.w[c] <= 0.0 {
                 continue;
             }
-            // The same formula as the query's sin θm: at a node the two cancel exactly, which
-            // matters near a Rayleigh line (cos θm small).
-            let smc = self.s_c[c] + mf * self.l_c[c] / period_nm;
-            let cm2 = 1.0 - smc * smc;
-            if cm2 > GRAZING_CORNER {
+            let at = base + self.index[c];
+            let value = match q {
+                Some(q) => q[at],
+                None => {
+                    let cos_c = math::sqrt(1.0 - self.s_c[c] * self.s_c[c]);
+                    corner_q(
+                        self.s_c[c],
+                        0.0,
+                        self.l_c[c],
+                        cos_c,
+                        mf,
+                        period_nm,
+                        (te, tm),
+                        at,
+                    )
+                }
+            };
+            if value[0] != nodes_q::NOT_PROPAGATING {
                 w[c] = self.w[c];
-                g[c] = self.cos_c[c] / math::sqrt(cm2);
+                qc[c] = value;
                 den += self.w[c];
             }
         }
@@ -347,13 +363,13 @@ impl Cell {
         }
         // The weights renormalised before they multiply anything: a cell whose only
         // propagating corner has a tiny (even subnormal) weight gives that corner's q, never
-        // 0·∞ (each normalised weight is in [0, 1], each g at most 10³).
+        // 0·∞ (each normalised weight is in [0, 1]).
         let (mut num_te, mut num_tm) = (0.0, 0.0);
         for c in 0..4 {
             if w[c] > 0.0 {
-                let f = (w[c] / den) * g[c];
-                num_te += f * te.at(base + self.index[c]);
-                num_tm += f * tm.at(base + self.index[c]);
+                let f = w[c] / den;
+                num_te += f * qc[c][0];
+                num_tm += f * qc[c][1];
             }
         }
         let k = math::sqrt(1.0 - sm * sm) / self.cos_i;
@@ -361,6 +377,33 @@ impl Cell {
             te: num_te * k,
             tm: num_tm * k,
         }
+    }
+}
+
+/// The (q_TE, q_TM) of the node at flat index `at` for order m = `mf`: η·cos θi/cos θm, or
+/// [`nodes_q::NOT_PROPAGATING`] where cos² θm ≤ [`GRAZING_CORNER`]. The node is at α = `alpha`
+/// (s, or s′·√(1 − β²) conical), β² = `beta2`, λ = `lambda_nm`, with cos θi = `cos_i`; the
+/// operations are the query's for sin θm (at a node the two cancel exactly, which matters near
+/// a Rayleigh line, cos θm small), and the same whether the q's are kept or not.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn corner_q<T: Values + ?Sized>(
+    alpha: f64,
+    beta2: f64,
+    lambda_nm: f64,
+    cos_i: f64,
+    mf: f64,
+    period_nm: f64,
+    (te, tm): (&T, &T),
+    at: usize,
+) -> [f64; 2] {
+    let am = alpha + mf * lambda_nm / period_nm;
+    let cm2 = 1.0 - am * am - beta2;
+    if cm2 > GRAZING_CORNER {
+        let g = cos_i / math::sqrt(cm2);
+        [g * te.at(at), g * tm.at(at)]
+    } else {
+        [nodes_q::NOT_PROPAGATING; 2]
     }
 }
 
@@ -510,14 +553,15 @@ impl EfficiencyTable {
         f: impl FnMut(i32, Polarised),
     ) -> (f64, f64) {
         let slice = sin.count() * bet.count().max(1) * lam.count();
+        let q = self.q.get(|| self.q_in(sin, bet, lam, te, tm));
         if bet.count() > 0 {
             match conical::Cell3::find(sin, bet, lam, s, beta, lambda_nm) {
-                Some(cell) => self.sum_cell(&cell, slice, te, tm, f),
+                Some(cell) => self.sum_cell(&cell, slice, (te, tm), q, f),
                 None => (0.0, 0.0),
             }
         } else {
             match Cell::find(sin, lam, s, lambda_nm) {
-                Some(cell) => self.sum_cell(&cell, slice, te, tm, f),
+                Some(cell) => self.sum_cell(&cell, slice, (te, tm), q, f),
                 None => (0.0, 0.0),
             }
         }
@@ -537,14 +581,15 @@ impl EfficiencyTable {
     ) -> Polarised {
         let slice = sin.count() * bet.count().max(1) * lam.count();
         let marks = || self.marks_in(sin, bet, lam, te, tm);
+        let q = self.q.get(|| self.q_in(sin, bet, lam, te, tm));
         if bet.count() > 0 {
             match conical::Cell3::find(sin, bet, lam, s, beta, lambda_nm) {
-                Some(cell) => self.one_cell(&cell, order, slice, te, tm, marks),
+                Some(cell) => self.one_cell(&cell, order, slice, (te, tm), q, marks),
                 None => Polarised::default(),
             }
         } else {
             match Cell::find(sin, lam, s, lambda_nm) {
-                Some(cell) => self.one_cell(&cell, order, slice, te, tm, marks),
+                Some(cell) => self.one_cell(&cell, order, slice, (te, tm), q, marks),
                 None => Polarised::default(),
             }
         }
@@ -556,14 +601,14 @@ impl EfficiencyTable {
         &self,
         cell: &C,
         slice: usize,
-        te: &T,
-        tm: &T,
+        values: (&T, &T),
+        q: Option<&[[f64; 2]]>,
         mut f: impl FnMut(i32, Polarised),
     ) -> (f64, f64) {
         let (mut sum_te, mut sum_tm) = (0.0, 0.0);
         let mut m = self.order_min;
         for k in 0..self.order_count {
-            let e = cell.order(self.period_nm, m, k * slice, te, tm);
+            let e = cell.order(self.period_nm, m, k * slice, values, q);
             sum_te += e.te;
             sum_tm += e.tm;
             f(m, e);
@@ -580,17 +625,17 @@ impl EfficiencyTable {
         cell: &C,
         order: i32,
         slice: usize,
-        te: &T,
-        tm: &T,
+        values: (&T, &T),
+        q: Option<&[[f64; 2]]>,
         marks: impl FnOnce() -> unit::Bits,
     ) -> Polarised {
         // `order` is stored: order − order_min is in 0..order_count.
         let k = (i64::from(order) - i64::from(self.order_min)) as usize;
         if self.unit.is_unit(cell.index(), marks) {
-            return cell.order(self.period_nm, order, k * slice, te, tm);
+            return cell.order(self.period_nm, order, k * slice, values, q);
         }
         let mut wanted = Polarised::default();
-        let (sum_te, sum_tm) = self.sum_cell(cell, slice, te, tm, |m, e| {
+        let (sum_te, sum_tm) = self.sum_cell(cell, slice, values, q, |m, e| {
             if m == order {
                 wanted = e;
             }
@@ -598,6 +643,69 @@ impl EfficiencyTable {
         Polarised {
             te: wanted.te * scale(sum_te),
             tm: wanted.tm * scale(sum_tm),
+        }
+    }
+
+    /// The nodes' q's of every order (`nodes_q.rs`), with the corners' formulas of
+    /// [`Cell::find`] and `Cell3::find`; `None` for a table of more than
+    /// [`MAX_Q_VALUES`](nodes_q::MAX_Q_VALUES) values.
+    #[cfg_attr(not(feature = "std"), allow(dead_code))]
+    fn q_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        bet: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+    ) -> nodes_q::Computed {
+        #[cfg(feature = "std")]
+        {
+            let (n_s, n_b, n_l) = (sin.count(), bet.count().max(1), lam.count());
+            let slice = n_s * n_b * n_l;
+            if slice * self.order_count > nodes_q::MAX_Q_VALUES {
+                return None;
+            }
+            let mut q = std::vec::Vec::with_capacity(slice * self.order_count);
+            for k in 0..self.order_count {
+                let mf = f64::from(self.order_min) + k as f64;
+                for b in 0..n_b {
+                    // A classical table: β = 0 and the corner formulas of `Cell::find`.
+                    let (b2, cb) = match bet.count() {
+                        0 => (0.0, 1.0),
+                        _ => {
+                            let bn = bet.at(b);
+                            (bn * bn, math::sqrt(1.0 - bn * bn))
+                        }
+                    };
+                    for j in 0..n_l {
+                        for i in 0..n_s {
+                            let sn = sin.at(i);
+                            let (alpha, cos_i) = match bet.count() {
+                                0 => (sn, math::sqrt(1.0 - sn * sn)),
+                                _ => (sn * cb, cb * math::sqrt(1.0 - sn * sn)),
+                            };
+                            let at = k * slice + (b * n_l + j) * n_s + i;
+                            let l = lam.at(j);
+                            q.push(corner_q(
+                                alpha,
+                                b2,
+                                l,
+                                cos_i,
+                                mf,
+                                self.period_nm,
+                                (te, tm),
+                                at,
+                            ));
+                        }
+                    }
+                }
+            }
+            Some(q)
+        }
+        #[cfg(not(feature = "std"))]
+        {
+            let _ = (sin, bet, lam, te, tm);
+            None
         }
     }
 

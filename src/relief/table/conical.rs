@@ -14,11 +14,12 @@ use alloc::vec;
 #[cfg(feature = "alloc")]
 use alloc::vec::Vec;
 
-use super::{interval, scale, AxisName, EfficiencyTable, Values, GRAZING_CORNER};
+use super::nodes_q::NOT_PROPAGATING;
+use super::{corner_q, interval, scale, AxisName, EfficiencyTable, Values};
 #[cfg(feature = "alloc")]
 use super::{
     load::{check_axis, check_period, SUM_TOLERANCE},
-    Storage, UnitCells, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
+    NodeQ, Storage, UnitCells, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
 };
 #[cfg(feature = "alloc")]
 use crate::error::{Error, Requirement};
@@ -125,15 +126,16 @@ impl Cell3 {
     }
 
     /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
-    /// starting at `base`: the rule of the classical cell over the eight corners.
+    /// starting at `base` (or the nodes' q's, where kept): the rule of the classical cell over
+    /// the eight corners.
     #[inline]
     pub(super) fn order<T: Values + ?Sized>(
         &self,
         period_nm: f64,
         m: i32,
         base: usize,
-        te: &T,
-        tm: &T,
+        values: (&T, &T),
+        q: Option<&[[f64; 2]]>,
     ) -> Polarised {
         let mf = f64::from(m);
         let am = self.alpha + mf * self.lambda_nm / period_nm;
@@ -141,16 +143,28 @@ impl Cell3 {
         if cm2q <= 0.0 {
             return Polarised::default();
         }
-        let (mut g, mut w, mut den) = ([0.0f64; 8], [0.0f64; 8], 0.0);
+        let (mut qc, mut w, mut den) = ([[0.0f64; 2]; 8], [0.0f64; 8], 0.0);
         for c in 0..8 {
             if self.w[c] <= 0.0 {
                 continue;
             }
-            let amc = self.a_c[c] + mf * self.l_c[c] / period_nm;
-            let cm2 = 1.0 - amc * amc - self.b2_c[c];
-            if cm2 > GRAZING_CORNER {
+            let at = base + self.index[c];
+            let value = match q {
+                Some(q) => q[at],
+                None => corner_q(
+                    self.a_c[c],
+                    self.b2_c[c],
+                    self.l_c[c],
+                    self.cos_c[c],
+                    mf,
+                    period_nm,
+                    values,
+                    at,
+                ),
+            };
+            if value[0] != NOT_PROPAGATING {
                 w[c] = self.w[c];
-                g[c] = self.cos_c[c] / math::sqrt(cm2);
+                qc[c] = value;
                 den += self.w[c];
             }
         }
@@ -160,9 +174,9 @@ impl Cell3 {
         let (mut num_te, mut num_tm) = (0.0, 0.0);
         for c in 0..8 {
             if w[c] > 0.0 {
-                let f = (w[c] / den) * g[c];
-                num_te += f * te.at(base + self.index[c]);
-                num_tm += f * tm.at(base + self.index[c]);
+                let f = w[c] / den;
+                num_te += f * qc[c][0];
+                num_tm += f * qc[c][1];
             }
         }
         let k = math::sqrt(cm2q) / self.cos_i;
@@ -381,6 +395,7 @@ impl EfficiencyTable {
                 tm,
             },
             unit: UnitCells::new(),
+            q: NodeQ::new(),
         })
     }
 }

@@ -4,7 +4,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use super::{EfficiencyTable, Storage, UnitCells};
+use super::{EfficiencyTable, NodeQ, Storage, UnitCells};
 use crate::error::{positive, Error, Requirement};
 use crate::num::math;
 use crate::relief::scalar::{ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER};
@@ -212,6 +212,7 @@ impl EfficiencyTable {
                 tm,
             },
             unit: UnitCells::new(),
+            q: NodeQ::new(),
         })
     }
 

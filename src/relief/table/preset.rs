@@ -4,7 +4,7 @@
 use core::fmt;
 use core::str::FromStr;
 
-use super::{EfficiencyTable, Storage, UnitCells};
+use super::{EfficiencyTable, NodeQ, Storage, UnitCells};
 use crate::data::efficiency_presets_data as data;
 use crate::ParseError;
 
@@ -48,6 +48,7 @@ static CD: EfficiencyTable = EfficiencyTable {
         tm: &data::CD_TM,
     },
     unit: UnitCells::new(),
+    q: NodeQ::new(),
 };
 
 static DVD: EfficiencyTable = EfficiencyTable {
@@ -62,6 +63,7 @@ static DVD: EfficiencyTable = EfficiencyTable {
         tm: &data::DVD_TM,
     },
     unit: UnitCells::new(),
+    q: NodeQ::new(),
 };
 
 static BLAZED600: EfficiencyTable = EfficiencyTable {
@@ -76,6 +78,7 @@ static BLAZED600: EfficiencyTable = EfficiencyTable {
         tm: &data::BLAZED600_TM,
     },
     unit: UnitCells::new(),
+    q: NodeQ::new(),
 };
 
 static FOIL: EfficiencyTable = EfficiencyTable {
@@ -90,6 +93,7 @@ static FOIL: EfficiencyTable = EfficiencyTable {
         tm: &data::FOIL_TM,
     },
     unit: UnitCells::new(),
+    q: NodeQ::new(),
 };
 
 /// The spellings [`Preset`]'s `FromStr` accepts.

@@ -107,7 +107,8 @@ pub(super) fn marks<T: Values + ?Sized>(
         let mut buf = [Corner::default(); 8];
         for cell in 0..cells {
             let n = corners(cell, &mut buf);
-            if unit(period_nm, order_min, order_count, slice, &buf[..n], te, tm) {
+            let (b_te, b_tm) = bound(period_nm, order_min, order_count, slice, &buf[..n], te, tm);
+            if b_te <= UNIT_BOUND && b_tm <= UNIT_BOUND {
                 bits[cell / 64] |= 1 << (cell % 64);
             }
         }
@@ -127,23 +128,6 @@ pub(super) fn marks<T: Values + ?Sized>(
         );
         Bits()
     }
-}
-
-/// Whether the cell of corners `c` bounds Σ_m η_m by
-/// [`UNIT_BOUND`] for TE and TM.
-#[allow(clippy::too_many_arguments)]
-#[cfg_attr(not(feature = "std"), allow(dead_code))]
-fn unit<T: Values + ?Sized>(
-    period_nm: f64,
-    order_min: i32,
-    order_count: usize,
-    slice: usize,
-    c: &[Corner],
-    te: &T,
-    tm: &T,
-) -> bool {
-    let (b_te, b_tm) = bound(period_nm, order_min, order_count, slice, c, te, tm);
-    b_te <= UNIT_BOUND && b_tm <= UNIT_BOUND
 }
 
 /// The bound of Σ_m η_m over the cell of corners `c`, (TE, TM): ∞ where a corner is at
