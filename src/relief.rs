@@ -37,7 +37,7 @@ pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES};
-pub(crate) use table::NodeProposal;
+pub(crate) use table::CellProposal;
 #[cfg(feature = "presets")]
 pub use table::Preset;
 pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};

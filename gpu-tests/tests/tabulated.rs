@@ -295,10 +295,13 @@ fn device_samples(
 
 /// The sampler's order proposal for wo at λ, recomputed from the table's public reading: the
 /// candidates clipped to the stored orders and trimmed to those propagating at the clamped
-/// query, P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K with η̂ the table's value at the query's nearest node,
-/// and each P's device bound (the node value's rounding to f32, the K-term sum, the quotients
-/// and the product: (K + 8)·u relative). `None` where f32 may pick another node or trim
-/// another order (the query within 10⁻⁵ of a cell's midline or an order's Rayleigh line).
+/// query, P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K with η̂_m = Σ_c w_c·η_m,c the table's values at the
+/// cell's corners with the query's bilinear weights, and each P's device bound: each weight
+/// within 19u absolute (its two factors' errors, as in `eta_bound`, and the product), so
+/// η̂_m within 76u·max_c η_m,c plus its own roundings (the node values' to f32, the products
+/// and the sum: 6u·η̂_m); the total within the sum of those plus K·u of it; P through the
+/// quotients, the product and the sum (8u). `None` where f32 may trim another order (the query
+/// within 10⁻⁵ of an order's Rayleigh line).
 fn weights(t: &EfficiencyTable, wo: DVec3, l: f64) -> Option<Vec<(i64, f64, f64)>> {
     let d = t.period_nm();
     let step = l / d;
@@ -315,34 +318,53 @@ fn weights(t: &EfficiencyTable, wo: DVec3, l: f64) -> Option<Vec<(i64, f64, f64)
     let (i, j) = (interval(&sin, s), interval(&lam, lc));
     let tx = (s - sin[i]) / (sin[i + 1] - sin[i]);
     let ty = (lc - lam[j]) / (lam[j + 1] - lam[j]);
+    if (1.0 - s * s).sqrt() <= 0.0 {
+        return Some(Vec::new());
+    }
     let propagates = |m: i64| (s + m as f64 * lc / d).abs() < 1.0;
     let edge = (lo..=hi).any(|m| ((s + m as f64 * lc / d).abs() - 1.0).abs() < 1e-5);
-    if (tx - 0.5).abs() < 1e-5 || (ty - 0.5).abs() < 1e-5 || edge {
+    if edge {
         return None;
     }
-    let (sn, ln) = (
-        sin[i + usize::from(tx >= 0.5)],
-        lam[j + usize::from(ty >= 0.5)],
-    );
+    let corners = [
+        ((1.0 - tx) * (1.0 - ty), sin[i], lam[j]),
+        (tx * (1.0 - ty), sin[i + 1], lam[j]),
+        ((1.0 - tx) * ty, sin[i], lam[j + 1]),
+        (tx * ty, sin[i + 1], lam[j + 1]),
+    ];
     let orders: Vec<i64> = (lo..=hi).filter(|&m| propagates(m)).collect();
-    let node: Vec<f64> = orders
+    // (η̂_m, its bound)
+    let hat: Vec<(f64, f64)> = orders
         .iter()
-        .map(|&m| t.efficiency(m as i32, sn, ln).unpolarised())
+        .map(|&m| {
+            let (mut e, mut top) = (0.0, 0.0f64);
+            for &(w, sn, ln) in &corners {
+                let v = t.efficiency(m as i32, sn, ln).unpolarised();
+                top = top.max(v);
+                if w > 0.0 {
+                    e += w * v;
+                }
+            }
+            (e, 76.0 * U * top + 6.0 * U * e)
+        })
         .collect();
-    let total: f64 = node.iter().sum();
+    let total: f64 = hat.iter().map(|h| h.0).sum();
     let k = orders.len() as f64;
+    let dtotal: f64 = hat.iter().map(|h| h.1).sum::<f64>() + k * U * total;
     let share = diffraction::grating_bsdf::TABULATED_DEFENSIVE_SHARE;
     Some(
         orders
             .iter()
-            .zip(&node)
-            .map(|(&m, &e)| {
-                let p = if total > 0.0 {
-                    (1.0 - share) * e / total + share / k
+            .zip(&hat)
+            .map(|(&m, &(e, de))| {
+                if total > 0.0 {
+                    let p = (1.0 - share) * e / total + share / k;
+                    let dp =
+                        (1.0 - share) * (de / total + e * dtotal / (total * total)) + 8.0 * U * p;
+                    (m, p, dp)
                 } else {
-                    1.0 / k
-                };
-                (m, p, p * (k + 8.0) * U)
+                    (m, 1.0 / k, 8.0 * U / k)
+                }
             })
             .collect(),
     )

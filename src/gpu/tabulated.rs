@@ -95,7 +95,7 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
 /// | `o + 7` | P: the offset of the node efficiencies from `o` (V + 2·K·n_λ·n_s) |
 /// | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
 /// | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
-/// | `o + P ..` | the stored unpolarised η = (TE + TM)/2 at `o + P + (k·n_λ + j)·n_s + i`, what the sampler's nearest-node proposal reads |
+/// | `o + P ..` | the stored unpolarised η = (TE + TM)/2 at `o + P + (k·n_λ + j)·n_s + i`, what the sampler's cell proposal reads |
 ///
 /// q = η·cos θi/cos θm at the node (what the CPU interpolates), or −1 where the order does not
 /// propagate there (cos² θm ≤ 10⁻⁶, the CPU's grazing corner: such a corner never enters the

@@ -7,9 +7,8 @@
 // The table is the model's `table` word offset.
 
 // One query's interpolation cell (the CPU's `Cell`): s = sin(theta_i) and lambda clamped to
-// the grid, cos(theta_i), the corners' bilinear weights, the flat index j * n_s + i of
-// corner 0 and that of the nearest node (ties to the upper node); ok = false at grazing
-// incidence (every order 0).
+// the grid, cos(theta_i), the corners' bilinear weights and the flat index j * n_s + i of
+// corner 0; ok = false at grazing incidence (every order 0).
 struct DiffractionEtaCell {
     s: f32,
     lambda_nm: f32,
@@ -17,7 +16,6 @@ struct DiffractionEtaCell {
     ok: bool,
     w: vec4<f32>,
     index: u32,
-    near: u32,
     n_s: u32,
     n_l: u32,
 }
@@ -66,7 +64,6 @@ fn diffraction_eta_cell(t: u32, s_in: f32, lambda_in: f32) -> DiffractionEtaCell
     c.ok = c.cos_i > 0.0;
     c.w = vec4<f32>((1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty);
     c.index = j * n_s + i;
-    c.near = c.index + select(0u, 1u, tx >= 0.5) + select(0u, n_s, ty >= 0.5);
     c.n_s = n_s;
     c.n_l = n_l;
     return c;
@@ -177,9 +174,10 @@ fn diffraction_bsdf_tabulated_candidates(b: DiffractionBsdf, wo_x: f32, lambda_n
     return vec2<i32>(max(c.x, first), min(c.y, first + count - 1));
 }
 
-// The sampler's order proposal at wo's cell (the CPU's `NodeProposal` and order weights):
+// The sampler's order proposal at wo's cell (the CPU's `CellProposal` and order weights):
 // the candidates trimmed to the orders that propagate at the query, and
-// P(m) = scale * eta^_m + floor, eta^ the nearest node's stored unpolarised efficiencies,
+// P(m) = scale * eta^_m + floor, eta^_m = sum_c w_c * eta_m,c the corners' stored unpolarised
+// efficiencies with the cell's bilinear weights (corners of positive weight),
 // scale = (1 - share)/sum eta^ and floor = share/K (0 and 1/K where the sum is 0); hi < lo when
 // no candidate propagates.
 struct DiffractionEtaProposal {
@@ -195,11 +193,19 @@ fn diffraction_eta_propagates(t: u32, c: DiffractionEtaCell, m: i32) -> bool {
     return c.ok && abs(c.s + f32(m) * c.lambda_nm / d) < 1.0;
 }
 
-// The nearest node's stored unpolarised efficiency of the stored order m.
+// eta^_m of the stored order m: the corners' stored unpolarised efficiencies with the cell's
+// bilinear weights.
 fn diffraction_eta_node(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
     let k = u32(m - i32(diffraction_efficiency_tables[t + 3u]));
-    return diffraction_efficiency_tables[t + u32(diffraction_efficiency_tables[t + 7u])
-                                         + k * c.n_l * c.n_s + c.near];
+    let base = t + u32(diffraction_efficiency_tables[t + 7u]) + k * c.n_l * c.n_s + c.index;
+    let offsets = vec4<u32>(0u, 1u, c.n_s, c.n_s + 1u);
+    var e = 0.0;
+    for (var corner = 0; corner < 4; corner++) {
+        if c.w[corner] > 0.0 {
+            e += c.w[corner] * diffraction_efficiency_tables[base + offsets[corner]];
+        }
+    }
+    return e;
 }
 
 fn diffraction_eta_proposal(t: u32, c: DiffractionEtaCell, range: vec2<i32>) -> DiffractionEtaProposal {

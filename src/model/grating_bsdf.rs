@@ -29,7 +29,7 @@
 //! (`OrderEfficiency::Tabulated`, feature `relief`):
 //! f = η̃_m·ℓ_m(u, v) with ℓ_m = (N·d/λ)·F_N·g the order's unit-integral lobe and
 //! η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)) (unpolarised), exactly reciprocal; the sampler
-//! picks m from the stored efficiencies of wo's nearest table node with a defensive share
+//! picks m from the stored efficiencies of wo's table cell with a defensive share
 //! (the weight is then at most max_m(η_m/P(m))·B_N·sup g/q_v, B_N below), and the albedo
 //! is at most Σ_m η_m(−wo.x, λ) ≤ 1. Off the plane across the grooves (v ≠ 0) the tables are
 //! still read at sin θi = −wi.x: the classical-mount approximation. `efficiency.rs` has the

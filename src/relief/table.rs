@@ -57,7 +57,7 @@ mod unit;
 
 use nodes_q::NodeQ;
 
-pub(crate) use proposal::NodeProposal;
+pub(crate) use proposal::CellProposal;
 
 use unit::UnitCells;
 
@@ -174,9 +174,6 @@ struct Cell {
     index: [usize; 4],
     /// The cell's index j·(n_s − 1) + i, for [`UnitCells`].
     cell: usize,
-    /// The flat index of the query's nearest node (the corner of largest weight; ties to the
-    /// upper node), for the sampler's proposal.
-    near: usize,
 }
 
 /// One query's interpolation cell, classical ([`Cell`]) or conical (`Cell3`).
@@ -196,8 +193,8 @@ trait OrderCell {
     /// Whether order m propagates at the query: the test by which [`order`](Self::order)
     /// returns 0 before reading any corner, with its operations.
     fn propagates(&self, period_nm: f64, m: i32) -> bool;
-    /// The flat index of the query's nearest node in an order's slice.
-    fn near(&self) -> usize;
+    /// The corners' interpolation weights and flat indices in an order's slice.
+    fn corners(&self) -> (&[f64], &[usize]);
 }
 
 impl OrderCell for Cell {
@@ -221,8 +218,8 @@ impl OrderCell for Cell {
         (self.s + f64::from(m) * self.lambda_nm / period_nm).abs() < 1.0
     }
     #[inline]
-    fn near(&self) -> usize {
-        self.near
+    fn corners(&self) -> (&[f64], &[usize]) {
+        (&self.w, &self.index)
     }
 }
 
@@ -247,8 +244,8 @@ impl OrderCell for conical::Cell3 {
         conical::Cell3::propagates(self, period_nm, m)
     }
     #[inline]
-    fn near(&self) -> usize {
-        self.near
+    fn corners(&self) -> (&[f64], &[usize]) {
+        (&self.w, &self.index)
     }
 }
 
@@ -306,7 +303,6 @@ impl Cell {
                 (j + 1) * n_s + i + 1,
             ],
             cell: j * (n_s - 1) + i,
-            near: (j + usize::from(ty >= 0.5)) * n_s + i + usize::from(tx >= 0.5),
         })
     }
 

@@ -6,7 +6,7 @@
 /// sampler's Monte-Carlo mean, in standard errors. The albedo's own error (the quadrature across
 /// the bilinear table's kinks) is far below one standard error at the sample counts used
 /// (measured |z| ≤ 1.75 over the finite-N cases; at N = ∞ the weight varies with the order the
-/// nearest-node proposal picks, 1.8·10⁻³ relative worst); 4σ keeps the fixed-seed test robust
+/// cell proposal picks, 1.9·10⁻³ relative worst); 4σ keeps the fixed-seed test robust
 /// while a 10 % bias
 /// (hundreds of σ) fails it.
 pub const TAB_FURNACE_SIGMAS: f64 = 4.0;

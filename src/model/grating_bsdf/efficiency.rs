@@ -30,10 +30,11 @@
 //! **The sampler** of a tabulated model: the candidate orders are those of the amplitude model
 //! (periods meeting the disk's u-range), clipped to the table's orders and to those that
 //! propagate at wo's table query (the query clamped to the grid, as the interpolation clamps
-//! it); order m is chosen with the nearest-node proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K, η̂ the
-//! stored efficiencies of the query's nearest node and δ =
+//! it); order m is chosen with the cell proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K, η̂_m the
+//! stored efficiencies of the query's cell corners with its bilinear weights and δ =
 //! [`TABULATED_DEFENSIVE_SHARE`](super::TABULATED_DEFENSIVE_SHARE)
-//! (one cell search and one stored value per order: no interpolation, no allocation). f
+//! (one cell search and the corners' stored values: no q-factors, no square roots, no
+//! allocation). f
 //! vanishes wherever η_m(−wo.x, λ) does (the min), and η_m(−wo.x, λ) vanishes for every order
 //! that does not propagate at the query, so P(m) ≥ δ/K > 0 wherever f > 0. The rest (u from
 //! the period proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and

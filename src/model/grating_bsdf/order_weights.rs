@@ -8,9 +8,9 @@
 //! * [`AmplitudeWeights`]: the amplitude reading (`orders.rs`): w_m = S(π·ρ·m) + ε·U_m for
 //!   finite N, S(π·ρ·m) for N = ∞; the lobe carries ρ²·S(π·ρ·x) itself, so the order's factor
 //!   in f is 1.
-//! * [`TabulatedWeights`]: the nearest-node proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K over the
-//!   candidates that propagate at wo's table query (η̂ the stored efficiencies of its nearest
-//!   node, [`TABULATED_DEFENSIVE_SHARE`] δ); the order's factor in f is
+//! * [`TabulatedWeights`]: the cell proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K over the
+//!   candidates that propagate at wo's table query (η̂ the stored efficiencies of its cell's
+//!   corners with the query's bilinear weights, [`TABULATED_DEFENSIVE_SHARE`] δ); the order's factor in f is
 //!   η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`; a classical
 //!   table ignores the second argument), interpolated for that order alone, the lobe the
 //!   unit-integral (N·d/λ)·F_N·g. [`TabulatedEtas`] holds every candidate's η_m(wo) for the
@@ -29,7 +29,7 @@ use super::orders::{candidate_range, AmplitudeOrders, Candidates};
 #[cfg(feature = "relief")]
 use crate::num::math;
 #[cfg(feature = "relief")]
-use crate::relief::NodeProposal;
+use crate::relief::CellProposal;
 #[cfg(feature = "relief")]
 use crate::relief::{EfficiencyTable, Polarised};
 use crate::Slits;
@@ -102,20 +102,24 @@ impl OrderWeights for AmplitudeWeights<'_> {
 
 /// The defensive share δ of a tabulated model's order proposal (feature `relief`): the sampler
 /// chooses order m with P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K among the K candidate orders that
-/// propagate at wo, η̂ the stored efficiencies of wo's nearest table node (the WGSL sampler's
-/// `DIFFRACTION_DEFENSIVE_SHARE`). The share keeps P(m) ≥ δ/K wherever the interpolated η_m(wo) (and so
-/// f) can be positive, also for an order that propagates at the query but not at the node; a
-/// tenth costs at most a tenth of the proposal's match to η_m(wo).
+/// propagate at wo, η̂_m = Σ_c w_c·η_m,c the stored efficiencies of the corners of wo's table
+/// cell with the query's bilinear (trilinear) weights w_c (the WGSL sampler's
+/// `DIFFRACTION_DEFENSIVE_SHARE`). The share keeps P(m) ≥ δ/K wherever the interpolated
+/// η_m(wo) (and so f) can be positive, also for an order that propagates at the query but at
+/// none of the corners; a tenth costs at most a tenth of the proposal's match to η_m(wo). The
+/// proposal leaves out the interpolation's cos θi/cos θm factors (no square roots), so it
+/// follows η_m(wo) except near the orders' Rayleigh lines.
 #[cfg(feature = "relief")]
 pub const TABULATED_DEFENSIVE_SHARE: f64 = 0.1;
 
-/// A tabulated model's weights for one (wo, λ): the nearest-node proposal of the candidate
-/// orders (one cell search, one stored value per order: no interpolation), P(m) = w_m with
-/// Σ w = 1; each order's factor η̃_m is interpolated for the one order a query needs.
+/// A tabulated model's weights for one (wo, λ): the cell proposal of the candidate orders (one
+/// cell search, the corners' stored values: no interpolation of q, no square root),
+/// P(m) = w_m with Σ w = 1; each order's factor η̃_m is interpolated for the one order a query
+/// needs.
 #[cfg(feature = "relief")]
 pub(super) struct TabulatedWeights<'a> {
     table: &'a EfficiencyTable,
-    proposal: NodeProposal,
+    proposal: CellProposal,
     wo: DVec3,
     lambda_nm: f64,
     /// P(m) = scale·η̂_m + floor: (1 − δ)/Σ η̂ and δ/K, or 0 and 1/K where Σ η̂ = 0.
@@ -134,7 +138,7 @@ impl<'a> TabulatedWeights<'a> {
         (lo, hi): (i64, i64),
     ) -> Option<TabulatedWeights<'a>> {
         let table = table.table();
-        let proposal = table.node_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?;
+        let proposal = table.cell_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?;
         let k = proposal.count() as f64;
         let total = proposal.total();
         let (scale, floor) = if total > 0.0 && total.is_finite() {
@@ -181,7 +185,7 @@ impl OrderWeights for TabulatedWeights<'_> {
             return 0.0;
         }
         // m is a stored order (i32).
-        self.scale * self.table.node_efficiency(&self.proposal, m as i32) + self.floor
+        self.scale * self.table.cell_efficiency(&self.proposal, m as i32) + self.floor
     }
 
     fn choose(&self, uc: f64) -> (i64, f64) {

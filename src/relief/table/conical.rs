@@ -37,16 +37,14 @@ pub(super) struct Cell3 {
     lambda_nm: f64,
     cos_i: f64,
     /// Per corner: trilinear weight, α, β², λ and cos θi of the node, flat index in a slice.
-    w: [f64; 8],
+    pub(super) w: [f64; 8],
     a_c: [f64; 8],
     b2_c: [f64; 8],
     l_c: [f64; 8],
     cos_c: [f64; 8],
-    index: [usize; 8],
+    pub(super) index: [usize; 8],
     /// The cell's index (k·(n_λ − 1) + j)·(n_s − 1) + i, for `UnitCells`.
     pub(super) cell: usize,
-    /// The flat index of the query's nearest node (ties to the upper node).
-    pub(super) near: usize,
 }
 
 impl Cell3 {
@@ -98,9 +96,6 @@ impl Cell3 {
             cos_c: [0.0; 8],
             index: [0; 8],
             cell: (k * (n_l - 1) + j) * (n_s - 1) + i,
-            near: ((k + usize::from(t[1] >= 0.5)) * n_l + j + usize::from(t[2] >= 0.5)) * n_s
-                + i
-                + usize::from(t[0] >= 0.5),
         };
         for c in 0..8 {
             let (di, dk, dj) = (c & 1, (c >> 1) & 1, (c >> 2) & 1);

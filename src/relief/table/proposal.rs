@@ -1,28 +1,32 @@
-//! The sampler's order proposal from a table: the stored efficiencies of the query's nearest
-//! node, over the candidate orders that propagate at the query. Reading it costs one cell
-//! search and one stored value per order (no interpolation, no square root), against the
-//! interpolation of every order that the exact weights η_m(query) need; the BSDF mixes it with
-//! a defensive share (`grating_bsdf`'s order weights), so that every order the query's
-//! interpolation can give a positive efficiency has a positive probability.
+//! The sampler's order proposal from a table: the stored efficiencies of the query's cell
+//! corners, weighted by the query's bilinear (trilinear) weights, over the candidate orders that
+//! propagate at the query. Reading it costs one cell search and a few stored values per order
+//! (no q-factor, no square root), against the interpolation of every order that the exact
+//! weights η_m(query) need; the BSDF mixes it with a defensive share (`grating_bsdf`'s order
+//! weights), so that every order the query's interpolation can give a positive efficiency has
+//! a positive probability.
 
 use core::ops::RangeInclusive;
 
 use super::{conical, Cell, EfficiencyTable, OrderCell, Storage, Values};
 
-/// A query's nearest-node order proposal ([`EfficiencyTable::node_proposal`]): the nearest
-/// node, the candidate orders that propagate at the query (the query clamped to the grid, as
-/// the interpolation clamps it) and the sum of the node's stored unpolarised efficiencies over
-/// them.
+/// A query's order proposal ([`EfficiencyTable::cell_proposal`]): the cell's corners of
+/// positive weight, the candidate orders that propagate at the query (the query clamped to the
+/// grid, as the interpolation clamps it) and the sum of the corners' weighted stored
+/// unpolarised efficiencies over them.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct NodeProposal {
-    node: usize,
+pub(crate) struct CellProposal {
+    /// The query's cell corners of positive weight: weights and flat indices (`count` of them).
+    w: [f64; 8],
+    at: [usize; 8],
+    count: usize,
     slice: usize,
     lo: i32,
     hi: i32,
     total: f64,
 }
 
-impl NodeProposal {
+impl CellProposal {
     /// The candidate orders that propagate at the query: every order whose interpolated
     /// efficiency there can be positive.
     #[must_use]
@@ -36,7 +40,7 @@ impl NodeProposal {
         (i64::from(self.hi) - i64::from(self.lo) + 1) as usize
     }
 
-    /// Σ of the nearest node's stored unpolarised efficiencies over [`orders`](Self::orders).
+    /// Σ over [`orders`](Self::orders) of the weighted stored unpolarised efficiencies.
     #[must_use]
     pub fn total(&self) -> f64 {
         self.total
@@ -44,18 +48,18 @@ impl NodeProposal {
 }
 
 impl EfficiencyTable {
-    /// The nearest-node proposal for the incident direction of travel (α, β) = (`alpha`,
+    /// The proposal for the incident direction of travel (α, β) = (`alpha`,
     /// `beta`) at `lambda_nm` among the candidate orders `candidates`: `None` where no
     /// candidate stored order propagates at the query (then every interpolated efficiency of
     /// the candidates is 0), or the query has no cell (non-finite, grazing, beyond the
     /// incidence). A classical table ignores β.
-    pub(crate) fn node_proposal(
+    pub(crate) fn cell_proposal(
         &self,
         alpha: f64,
         beta: f64,
         lambda_nm: f64,
         candidates: RangeInclusive<i64>,
-    ) -> Option<NodeProposal> {
+    ) -> Option<CellProposal> {
         let first = i64::from(self.order_min);
         let last = first + self.order_count as i64 - 1;
         let (lo, hi) = (
@@ -79,21 +83,31 @@ impl EfficiencyTable {
         })
     }
 
-    /// The nearest node's stored unpolarised efficiency (TE + TM)/2 of order `m` for the
-    /// proposal `p`; 0 outside its orders.
+    /// Σ_c w_c·(TE + TM)/2 of order `m`'s stored values at the corners of the proposal `p`
+    /// (its weights w_c); 0 outside its orders.
     #[inline]
-    pub(crate) fn node_efficiency(&self, p: &NodeProposal, m: i32) -> f64 {
+    pub(crate) fn cell_efficiency(&self, p: &CellProposal, m: i32) -> f64 {
         if m < p.lo || m > p.hi {
             return 0.0;
         }
         // m − order_min is in 0..order_count: p's orders are stored ones.
         let k = (i64::from(m) - i64::from(self.order_min)) as usize;
-        self.stored_unpolarised(k * p.slice + p.node)
+        let base = k * p.slice;
+        with_arrays!(self, |_sin, _bet, _lam, te, tm| {
+            let mut e = 0.0;
+            for c in 0..p.count {
+                // stored_unpolarised's operations.
+                let v = base + p.at[c];
+                e += p.w[c] * (0.5 * (te.at(v) + tm.at(v)));
+            }
+            e
+        })
     }
 
     /// The stored unpolarised efficiency (TE + TM)/2 at flat index `at` of the values (order
     /// k's node n at k·slice + n): what the proposal reads, and what the GPU's packed table
     /// holds for it.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
     #[inline]
     pub(crate) fn stored_unpolarised(&self, at: usize) -> f64 {
         with_arrays!(self, |_sin, _bet, _lam, te, tm| 0.5
@@ -101,7 +115,8 @@ impl EfficiencyTable {
     }
 
     /// The proposal of a query's cell: the stored orders `lo..=hi` trimmed to those that
-    /// propagate at the query (a contiguous run: α_m grows with m), and the node's sum.
+    /// propagate at the query (a contiguous run: α_m grows with m), the corners of positive
+    /// weight, and the sum.
     fn propose<C: OrderCell, T: Values + ?Sized>(
         &self,
         cell: &C,
@@ -109,7 +124,7 @@ impl EfficiencyTable {
         slice: usize,
         te: &T,
         tm: &T,
-    ) -> Option<NodeProposal> {
+    ) -> Option<CellProposal> {
         while lo <= hi && !cell.propagates(self.period_nm, lo) {
             lo += 1;
         }
@@ -119,15 +134,28 @@ impl EfficiencyTable {
         if hi < lo {
             return None;
         }
-        let node = cell.near();
+        let (cw, ci) = cell.corners();
+        let (mut w, mut at, mut count) = ([0.0; 8], [0usize; 8], 0);
+        for (c, &x) in cw.iter().enumerate() {
+            if x > 0.0 {
+                w[count] = x;
+                at[count] = ci[c];
+                count += 1;
+            }
+        }
         let mut total = 0.0;
         for m in lo..=hi {
-            let at = (i64::from(m) - i64::from(self.order_min)) as usize * slice + node;
-            // stored_unpolarised's operations.
-            total += 0.5 * (te.at(at) + tm.at(at));
+            let base = (i64::from(m) - i64::from(self.order_min)) as usize * slice;
+            for c in 0..count {
+                // stored_unpolarised's operations.
+                let v = base + at[c];
+                total += w[c] * (0.5 * (te.at(v) + tm.at(v)));
+            }
         }
-        Some(NodeProposal {
-            node,
+        Some(CellProposal {
+            w,
+            at,
+            count,
             slice,
             lo,
             hi,
