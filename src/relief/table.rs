@@ -49,8 +49,8 @@ macro_rules! with_arrays {
 mod conical;
 #[cfg(feature = "alloc")]
 mod load;
-#[cfg(feature = "presets")]
 mod nodes_q;
+#[cfg(feature = "presets")]
 mod preset;
 mod proposal;
 mod unit;

@@ -39,6 +39,8 @@ pub(super) type Computed = Option<Vec<[f64; 2]>>;
 pub(super) type Computed = Option<[[f64; 2]; 0]>;
 
 impl NodeQ {
+    // Every table is built by a constructor (feature `alloc`) or is a preset.
+    #[cfg_attr(not(any(feature = "alloc", feature = "presets")), allow(dead_code))]
     pub(super) const fn new() -> NodeQ {
         NodeQ {
             #[cfg(feature = "std")]

@@ -30,6 +30,7 @@ use super::{Values, GRAZING_CORNER};
 use crate::num::math;
 
 /// A cell is marked when its bound is at most this (per polarisation).
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
 const UNIT_BOUND: f64 = 1.0 - 1e-9;
 
 /// The cells' marks of one table, a bit per cell, computed on first use.
@@ -47,6 +48,8 @@ impl PartialEq for UnitCells {
 }
 
 impl UnitCells {
+    // Every table is built by a constructor (feature `alloc`) or is a preset.
+    #[cfg_attr(not(any(feature = "alloc", feature = "presets")), allow(dead_code))]
     pub(super) const fn new() -> UnitCells {
         UnitCells {
             #[cfg(feature = "std")]
