@@ -246,12 +246,46 @@ fn the_efficiency_tables_pack_as_documented() {
                 *t.orders().start() as f32,
                 k as f32,
                 v as f32,
-                0.0,
+                (v + 3 * k * n_l * n_s) as f32,
                 (v + 2 * k * n_l * n_s) as f32
             ]
         );
-        assert_eq!(w.len(), v + 3 * k * n_l * n_s);
+        let cells = (n_s - 1) * (n_l - 1);
+        assert_eq!(w.len(), v + 3 * k * n_l * n_s + cells);
         let eta_plane = v + 2 * k * n_l * n_s;
+        // The cells' marks: 0 or 1, and where 1 no query in the cell sums above 1 (the sums the
+        // CPU's normalisation would scale; corners, edges and inside).
+        let marks = &w[v + 3 * k * n_l * n_s..];
+        let mut out = vec![diffraction::relief::Polarised::default(); k];
+        let mut marked = 0;
+        for (c, &mark) in marks.iter().enumerate() {
+            assert!(mark == 0.0 || mark == 1.0, "{p:?} cell {c}: {mark}");
+            if mark == 0.0 {
+                continue;
+            }
+            marked += 1;
+            let (i, j) = (c % (n_s - 1), c / (n_s - 1));
+            for q in 0..25 {
+                let (a, b) = ((q % 5) as f64 / 4.0, (q / 5) as f64 / 4.0);
+                let s = sin[i] + (sin[i + 1] - sin[i]) * a;
+                let l = lam[j] + (lam[j + 1] - lam[j]) * b;
+                t.efficiencies(s, l, &mut out);
+                let (st, sm) = out
+                    .iter()
+                    .fold((0.0, 0.0), |(x, y), e| (x + e.te, y + e.tm));
+                // A sum the normalisation scaled would be 1 to rounding: a marked cell's stay at
+                // most the marks' 1 − 10⁻⁹.
+                let most = 1.0 - 1e-9;
+                assert!(
+                    st <= most && sm <= most,
+                    "{p:?} cell {c}, s = {s}, λ = {l}: {st} {sm}"
+                );
+            }
+        }
+        assert!(
+            marked > 0 || p == Preset::Blazed600,
+            "{p:?}: no cell marked"
+        );
         for (i, &s) in sin.iter().enumerate() {
             assert_eq!(w[8 + i] as f64, s);
         }

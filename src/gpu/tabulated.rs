@@ -24,7 +24,7 @@ const GRAZING_CORNER: f64 = 1e-6;
 /// let t = Preset::Cd.table();
 /// let words = pack_efficiency_table(t);
 /// let (n_s, n_l, k) = (t.sin_theta_i().len(), t.lambda_nm().len(), t.order_count());
-/// assert_eq!(words.len(), 8 + n_s + n_l + 3 * k * n_l * n_s);
+/// assert_eq!(words.len(), 8 + n_s + n_l + 3 * k * n_l * n_s + (n_s - 1) * (n_l - 1));
 /// assert_eq!((words[0], words[3], words[4]), (1600.0, -8.0, 17.0));
 /// # }
 /// ```
@@ -35,7 +35,8 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
     let (n_s, n_l, count) = (sin.len(), lam.len(), table.order_count());
     let values = EFFICIENCY_HEADER_WORDS + n_s + n_l;
     let nodes = count * n_l * n_s;
-    let mut w = Vec::with_capacity(values + 3 * nodes);
+    let cells = (n_s - 1) * (n_l - 1);
+    let mut w = Vec::with_capacity(values + 3 * nodes + cells);
     let d = table.period_nm();
     w.extend_from_slice(&[
         d as f32,
@@ -44,7 +45,7 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
         *table.orders().start() as f32,
         count as f32,
         values as f32,
-        0.0,
+        (values + 3 * nodes) as f32,
         (values + 2 * nodes) as f32,
     ]);
     w.extend(sin.iter().map(|&s| s as f32));
@@ -76,6 +77,16 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
             w.push(table.stored_unpolarised(k * slice + at) as f32);
         }
     }
+    // The cells whose queries need no normalisation (the CPU's per-cell bound; none of a
+    // conical table, whose bounds hold for its own reading, not the GPU's classical one).
+    let conical = table.is_conical();
+    w.extend((0..cells).map(|c| {
+        if !conical && table.cell_needs_no_normalisation(c) {
+            1.0
+        } else {
+            0.0
+        }
+    }));
     w
 }
 
@@ -91,11 +102,12 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
 /// | `o + 1`, `o + 2` | n_s, n_λ: the node counts of sin θi and λ |
 /// | `o + 3`, `o + 4` | the first stored order and the number of orders K |
 /// | `o + 5` | V: the offset of the values from `o` (8 + n_s + n_λ) |
-/// | `o + 6` | 0 (reserved for a further axis) |
+/// | `o + 6` | M: the offset of the cells' marks from `o` (P + K·n_λ·n_s) |
 /// | `o + 7` | P: the offset of the node efficiencies from `o` (V + 2·K·n_λ·n_s) |
 /// | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
 /// | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
 /// | `o + P ..` | the stored unpolarised η = (TE + TM)/2 at `o + P + (k·n_λ + j)·n_s + i`, what the sampler's cell proposal reads |
+/// | `o + M ..` | per interpolation cell (j, i) at `o + M + j·(n_s − 1) + i`: 1 where no query in it needs the normalisation (the CPU's per-cell bound), else 0 |
 ///
 /// q = η·cos θi/cos θm at the node (what the CPU interpolates), or −1 where the order does not
 /// propagate there (cos² θm ≤ 10⁻⁶, the CPU's grazing corner: such a corner never enters the

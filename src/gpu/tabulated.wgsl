@@ -123,6 +123,23 @@ fn diffraction_eta_at(t: u32, c: DiffractionEtaCell, k: vec2<f32>, m: i32) -> f3
     return 0.5 * (e.x + e.y);
 }
 
+// Whether no query in the cell needs the normalisation (the packed marks: the CPU's per-cell
+// bound of the sum over orders).
+fn diffraction_eta_unit(t: u32, c: DiffractionEtaCell) -> bool {
+    // The cell j * (n_s - 1) + i of corner 0 at j * n_s + i.
+    let cell = c.index - c.index / c.n_s;
+    return diffraction_efficiency_tables[t + u32(diffraction_efficiency_tables[t + 6u]) + cell] > 0.5;
+}
+
+// The unpolarised eta_m of the stored order m at the cell, normalised: that order alone in a
+// marked cell (the factors are 1 there), else with the factors of every stored order.
+fn diffraction_eta_one(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
+    if diffraction_eta_unit(t, c) {
+        return diffraction_eta_at(t, c, vec2<f32>(1.0), m);
+    }
+    return diffraction_eta_at(t, c, diffraction_eta_scale(t, c), m);
+}
+
 // eta_m(sin(theta_i), lambda) of table t: the CPU's `EfficiencyTable::efficiency(m, s,
 // lambda).unpolarised()`.
 fn diffraction_eta(t: u32, m: i32, sin_theta_i: f32, lambda_nm: f32) -> f32 {
@@ -135,7 +152,7 @@ fn diffraction_eta(t: u32, m: i32, sin_theta_i: f32, lambda_nm: f32) -> f32 {
     if m < first || m >= first + count {
         return 0.0;
     }
-    return diffraction_eta_at(t, c, diffraction_eta_scale(t, c), m);
+    return diffraction_eta_one(t, c, m);
 }
 
 // f = eta~_m * (N*d/lambda) * F_N(d*u/lambda) * g(v) for the order m = round(x) owning u, with
@@ -321,7 +338,7 @@ fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_n
     let count = i32(diffraction_efficiency_tables[b.table + 4u]);
     var e = 0.0;
     if c.ok && owner >= first && owner < first + count {
-        e = diffraction_eta_at(b.table, c, diffraction_eta_scale(b.table, c), owner);
+        e = diffraction_eta_one(b.table, c, owner);
     }
     out.wi = wi;
     out.f = diffraction_bsdf_tabulated_lobe(b, e, owner, wo, wi, lambda_nm);

@@ -705,6 +705,16 @@ impl EfficiencyTable {
         }
     }
 
+    /// Whether interpolation cell `cell` (numbered as `Cell` and `Cell3` number theirs) needs no
+    /// normalisation: every query in it has Σ_m η_m ≤ 1 per polarisation (`unit.rs`; always
+    /// `false` without `std`). For the GPU's packed table.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    pub(crate) fn cell_needs_no_normalisation(&self, cell: usize) -> bool {
+        with_arrays!(self, |sin, bet, lam, te, tm| self
+            .unit
+            .is_unit(cell, || self.marks_in(sin, bet, lam, te, tm)))
+    }
+
     /// The marks of every cell of the table (`unit.rs`).
     fn marks_in<T: Values + ?Sized>(
         &self,
