@@ -204,10 +204,52 @@ impl OrderCell for Cell {
         period_nm: f64,
         m: i32,
         base: usize,
-        values: (&T, &T),
+        (te, tm): (&T, &T),
         q: Option<&[[f64; 2]]>,
     ) -> Polarised {
-        Cell::order(self, period_nm, m, base, values, q)
+        let mf = f64::from(m);
+        let sm = self.s + mf * self.lambda_nm / period_nm;
+        if sm.abs() >= 1.0 {
+            return Polarised::default();
+        }
+        // The corners where the order propagates, with their bilinear weights and
+        // q = η·cos θi,c/cos θm,c.
+        let mut w = [0.0f64; 4];
+        let mut qc = [[0.0f64; 2]; 4];
+        for c in 0..4 {
+            if self.w[c] <= 0.0 {
+                continue;
+            }
+            let at = base + self.index[c];
+            let value = match q {
+                Some(q) => q[at],
+                None => {
+                    let cos_c = math::sqrt(1.0 - self.s_c[c] * self.s_c[c]);
+                    corner_q(
+                        self.s_c[c],
+                        0.0,
+                        self.l_c[c],
+                        cos_c,
+                        mf,
+                        period_nm,
+                        (te, tm),
+                        at,
+                    )
+                }
+            };
+            if value[0] != nodes_q::NOT_PROPAGATING {
+                w[c] = self.w[c];
+                qc[c] = value;
+            }
+        }
+        let Some([num_te, num_tm]) = corner_mean(&w, &qc) else {
+            return Polarised::default();
+        };
+        let k = math::sqrt(1.0 - sm * sm) / self.cos_i;
+        Polarised {
+            te: num_te * k,
+            tm: num_tm * k,
+        }
     }
     #[inline]
     fn index(&self) -> usize {
@@ -216,32 +258,6 @@ impl OrderCell for Cell {
     #[inline]
     fn propagates(&self, period_nm: f64, m: i32) -> bool {
         (self.s + f64::from(m) * self.lambda_nm / period_nm).abs() < 1.0
-    }
-    #[inline]
-    fn corners(&self) -> (&[f64], &[usize]) {
-        (&self.w, &self.index)
-    }
-}
-
-impl OrderCell for conical::Cell3 {
-    #[inline]
-    fn order<T: Values + ?Sized>(
-        &self,
-        period_nm: f64,
-        m: i32,
-        base: usize,
-        values: (&T, &T),
-        q: Option<&[[f64; 2]]>,
-    ) -> Polarised {
-        conical::Cell3::order(self, period_nm, m, base, values, q)
-    }
-    #[inline]
-    fn index(&self) -> usize {
-        self.cell
-    }
-    #[inline]
-    fn propagates(&self, period_nm: f64, m: i32) -> bool {
-        conical::Cell3::propagates(self, period_nm, m)
     }
     #[inline]
     fn corners(&self) -> (&[f64], &[usize]) {
@@ -305,75 +321,28 @@ impl Cell {
             cell: j * (n_s - 1) + i,
         })
     }
+}
 
-    /// Order m's interpolated efficiencies before the normalisation, reading the order's slice
-    /// starting at `base` of `te` and `tm`, or of the nodes' q's where kept.
-    #[inline]
-    fn order<T: Values + ?Sized>(
-        &self,
-        period_nm: f64,
-        m: i32,
-        base: usize,
-        (te, tm): (&T, &T),
-        q: Option<&[[f64; 2]]>,
-    ) -> Polarised {
-        let mf = f64::from(m);
-        let sm = self.s + mf * self.lambda_nm / period_nm;
-        if sm.abs() >= 1.0 {
-            return Polarised::default();
-        }
-        // The corners where the order propagates, with their bilinear weights and
-        // q = η·cos θi,c/cos θm,c.
-        let mut w = [0.0f64; 4];
-        let mut qc = [[0.0f64; 2]; 4];
-        let mut den = 0.0;
-        for c in 0..4 {
-            if self.w[c] <= 0.0 {
-                continue;
-            }
-            let at = base + self.index[c];
-            let value = match q {
-                Some(q) => q[at],
-                None => {
-                    let cos_c = math::sqrt(1.0 - self.s_c[c] * self.s_c[c]);
-                    corner_q(
-                        self.s_c[c],
-                        0.0,
-                        self.l_c[c],
-                        cos_c,
-                        mf,
-                        period_nm,
-                        (te, tm),
-                        at,
-                    )
-                }
-            };
-            if value[0] != nodes_q::NOT_PROPAGATING {
-                w[c] = self.w[c];
-                qc[c] = value;
-                den += self.w[c];
-            }
-        }
-        if den <= 0.0 {
-            return Polarised::default();
-        }
-        // The weights renormalised before they multiply anything: a cell whose only
-        // propagating corner has a tiny (even subnormal) weight gives that corner's q, never
-        // 0·∞ (each normalised weight is in [0, 1]).
-        let (mut num_te, mut num_tm) = (0.0, 0.0);
-        for c in 0..4 {
-            if w[c] > 0.0 {
-                let f = w[c] / den;
-                num_te += f * qc[c][0];
-                num_tm += f * qc[c][1];
-            }
-        }
-        let k = math::sqrt(1.0 - sm * sm) / self.cos_i;
-        Polarised {
-            te: num_te * k,
-            tm: num_tm * k,
+/// The mean of the corners' q's `q` with the weights `w` renormalised over the corners where
+/// the order propagates (w > 0 there, 0 elsewhere); `None` where there are none. The weights are
+/// renormalised before they multiply anything: a cell whose only propagating corner has a tiny
+/// (even subnormal) weight gives that corner's q, never 0·∞ (each normalised weight is in
+/// [0, 1]).
+#[inline]
+fn corner_mean(w: &[f64], q: &[[f64; 2]]) -> Option<[f64; 2]> {
+    let den: f64 = w.iter().sum();
+    if den <= 0.0 {
+        return None;
+    }
+    let (mut num_te, mut num_tm) = (0.0, 0.0);
+    for (&wc, qc) in w.iter().zip(q) {
+        if wc > 0.0 {
+            let f = wc / den;
+            num_te += f * qc[0];
+            num_tm += f * qc[1];
         }
     }
+    Some([num_te, num_tm])
 }
 
 /// The (q_TE, q_TM) of the node at flat index `at` for order m = `mf`: η·cos θi/cos θm, or

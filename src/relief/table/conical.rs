@@ -15,7 +15,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use super::nodes_q::NOT_PROPAGATING;
-use super::{corner_q, interval, scale, AxisName, EfficiencyTable, Values};
+use super::{corner_mean, corner_q, interval, scale, AxisName, EfficiencyTable, OrderCell, Values};
 #[cfg(feature = "alloc")]
 use super::{
     load::{check_axis, check_period, SUM_TOLERANCE},
@@ -37,14 +37,14 @@ pub(super) struct Cell3 {
     lambda_nm: f64,
     cos_i: f64,
     /// Per corner: trilinear weight, α, β², λ and cos θi of the node, flat index in a slice.
-    pub(super) w: [f64; 8],
+    w: [f64; 8],
     a_c: [f64; 8],
     b2_c: [f64; 8],
     l_c: [f64; 8],
     cos_c: [f64; 8],
-    pub(super) index: [usize; 8],
+    index: [usize; 8],
     /// The cell's index (k·(n_λ − 1) + j)·(n_s − 1) + i, for `UnitCells`.
-    pub(super) cell: usize,
+    cell: usize,
 }
 
 impl Cell3 {
@@ -111,11 +111,13 @@ impl Cell3 {
         }
         Some(cell)
     }
+}
 
+impl OrderCell for Cell3 {
     /// Whether order m propagates at the query (α_m² + β² < 1), with the operations of
     /// [`order`](Self::order).
     #[inline]
-    pub(super) fn propagates(&self, period_nm: f64, m: i32) -> bool {
+    fn propagates(&self, period_nm: f64, m: i32) -> bool {
         let am = self.alpha + f64::from(m) * self.lambda_nm / period_nm;
         1.0 - am * am - self.beta2 > 0.0
     }
@@ -124,7 +126,7 @@ impl Cell3 {
     /// starting at `base` (or the nodes' q's, where kept): the rule of the classical cell over
     /// the eight corners.
     #[inline]
-    pub(super) fn order<T: Values + ?Sized>(
+    fn order<T: Values + ?Sized>(
         &self,
         period_nm: f64,
         m: i32,
@@ -138,7 +140,7 @@ impl Cell3 {
         if cm2q <= 0.0 {
             return Polarised::default();
         }
-        let (mut qc, mut w, mut den) = ([[0.0f64; 2]; 8], [0.0f64; 8], 0.0);
+        let (mut qc, mut w) = ([[0.0f64; 2]; 8], [0.0f64; 8]);
         for c in 0..8 {
             if self.w[c] <= 0.0 {
                 continue;
@@ -160,25 +162,26 @@ impl Cell3 {
             if value[0] != NOT_PROPAGATING {
                 w[c] = self.w[c];
                 qc[c] = value;
-                den += self.w[c];
             }
         }
-        if den <= 0.0 {
+        let Some([num_te, num_tm]) = corner_mean(&w, &qc) else {
             return Polarised::default();
-        }
-        let (mut num_te, mut num_tm) = (0.0, 0.0);
-        for c in 0..8 {
-            if w[c] > 0.0 {
-                let f = w[c] / den;
-                num_te += f * qc[c][0];
-                num_tm += f * qc[c][1];
-            }
-        }
+        };
         let k = math::sqrt(cm2q) / self.cos_i;
         Polarised {
             te: num_te * k,
             tm: num_tm * k,
         }
+    }
+
+    #[inline]
+    fn index(&self) -> usize {
+        self.cell
+    }
+
+    #[inline]
+    fn corners(&self) -> (&[f64], &[usize]) {
+        (&self.w, &self.index)
     }
 }
 
