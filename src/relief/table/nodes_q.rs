@@ -8,6 +8,12 @@
 #[cfg(feature = "std")]
 use std::{sync::OnceLock, vec::Vec};
 
+#[cfg(feature = "std")]
+use super::corner_q;
+use super::{EfficiencyTable, Values};
+#[cfg(feature = "std")]
+use crate::num::math;
+
 /// The largest table (values per polarisation) whose q's are kept: 2²⁰, 32 MiB of them; a
 /// larger table computes them at each query.
 #[cfg_attr(not(feature = "std"), allow(dead_code))]
@@ -59,6 +65,71 @@ impl NodeQ {
         #[cfg(not(feature = "std"))]
         {
             let _ = compute;
+            None
+        }
+    }
+}
+
+impl EfficiencyTable {
+    /// The nodes' q's of every order (`nodes_q.rs`), with the corners' formulas of
+    /// [`Cell::find`] and `Cell3::find`; `None` for a table of more than
+    /// [`MAX_Q_VALUES`] values.
+    #[cfg_attr(not(feature = "std"), allow(dead_code))]
+    pub(super) fn q_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        bet: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+    ) -> Computed {
+        #[cfg(feature = "std")]
+        {
+            let (n_s, n_b, n_l) = (sin.count(), bet.count().max(1), lam.count());
+            let slice = n_s * n_b * n_l;
+            if slice * self.order_count > MAX_Q_VALUES {
+                return None;
+            }
+            let mut q = std::vec::Vec::with_capacity(slice * self.order_count);
+            for k in 0..self.order_count {
+                let mf = f64::from(self.order_min) + k as f64;
+                for b in 0..n_b {
+                    // A classical table: β = 0 and the corner formulas of `Cell::find`.
+                    let (b2, cb) = match bet.count() {
+                        0 => (0.0, 1.0),
+                        _ => {
+                            let bn = bet.at(b);
+                            (bn * bn, math::sqrt(1.0 - bn * bn))
+                        }
+                    };
+                    for j in 0..n_l {
+                        for i in 0..n_s {
+                            let sn = sin.at(i);
+                            let (alpha, cos_i) = match bet.count() {
+                                0 => (sn, math::sqrt(1.0 - sn * sn)),
+                                _ => (sn * cb, cb * math::sqrt(1.0 - sn * sn)),
+                            };
+                            let at = k * slice + (b * n_l + j) * n_s + i;
+                            let l = lam.at(j);
+                            q.push(corner_q(
+                                alpha,
+                                b2,
+                                l,
+                                cos_i,
+                                mf,
+                                self.period_nm,
+                                (te, tm),
+                                at,
+                            ));
+                        }
+                    }
+                }
+            }
+            Some(q)
+        }
+        #[cfg(not(feature = "std"))]
+        {
+            let _ = (sin, bet, lam, te, tm);
             None
         }
     }

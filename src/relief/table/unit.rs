@@ -27,7 +27,7 @@
 #[cfg(feature = "std")]
 use std::{sync::OnceLock, vec::Vec};
 
-use super::{Values, GRAZING_CORNER};
+use super::{EfficiencyTable, Storage, Values, GRAZING_CORNER};
 use crate::num::math;
 
 /// The largest table (values per polarisation) whose cells are marked: 2²⁰ (measured: the
@@ -273,12 +273,93 @@ fn ratio_bound(period_nm: f64, mf: f64, c: &[Corner]) -> f64 {
     worst * (1.0 + 1e-12)
 }
 
+impl EfficiencyTable {
+    /// Whether interpolation cell `cell` (numbered as `Cell` and `Cell3` number theirs) needs no
+    /// normalisation: every query in it has Σ_m η_m ≤ 1 per polarisation (`unit.rs`; always
+    /// `false` without `std`). For the GPU's packed table.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    pub(crate) fn cell_needs_no_normalisation(&self, cell: usize) -> bool {
+        with_arrays!(self, |sin, bet, lam, te, tm| self
+            .unit
+            .is_unit(cell, || self.marks_in(sin, bet, lam, te, tm)))
+    }
+
+    /// The marks of every cell of the table (`unit.rs`).
+    pub(super) fn marks_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        bet: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+    ) -> Bits {
+        let slice = sin.count() * bet.count().max(1) * lam.count();
+        let (period, first, count) = (self.period_nm, self.order_min, self.order_count);
+        let cells = cell_count(sin, bet, lam);
+        marks(period, first, count, slice, cells, te, tm, |c, buf| {
+            corners_of(sin, bet, lam, c, buf)
+        })
+    }
+}
+
+/// The number of interpolation cells of a grid (`bet` empty: classical).
+pub(super) fn cell_count<T: Values + ?Sized>(sin: &T, bet: &T, lam: &T) -> usize {
+    (sin.count() - 1) * bet.count().saturating_sub(1).max(1) * (lam.count() - 1)
+}
+
+/// The corners of cell `c` (numbered as [`Cell`] and `Cell3` number theirs) with the formulas
+/// of their `find`, written to `buf`: their count (4 or 8).
+pub(super) fn corners_of<T: Values + ?Sized>(
+    sin: &T,
+    bet: &T,
+    lam: &T,
+    c: usize,
+    buf: &mut [Corner; 8],
+) -> usize {
+    let (n_s, n_b, n_l) = (sin.count(), bet.count(), lam.count());
+    let i = c % (n_s - 1);
+    let j = (c / (n_s - 1)) % (n_l - 1);
+    if n_b == 0 {
+        for (n, corner) in buf.iter_mut().take(4).enumerate() {
+            let (di, dj) = (n & 1, n >> 1);
+            let s = sin.at(i + di);
+            *corner = Corner {
+                s,
+                b: 0.0,
+                alpha: s,
+                beta2: 0.0,
+                lambda_nm: lam.at(j + dj),
+                cos_i: math::sqrt(1.0 - s * s),
+                index: (j + dj) * n_s + i + di,
+            };
+        }
+        return 4;
+    }
+    let k = c / ((n_s - 1) * (n_l - 1));
+    for (n, corner) in buf.iter_mut().enumerate() {
+        let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
+        let (s, b) = (sin.at(i + di), bet.at(k + dk));
+        let cb = math::sqrt(1.0 - b * b);
+        *corner = Corner {
+            s,
+            b,
+            alpha: s * cb,
+            beta2: b * b,
+            lambda_nm: lam.at(j + dj),
+            cos_i: cb * math::sqrt(1.0 - s * s),
+            index: ((k + dk) * n_l + (j + dj)) * n_s + (i + di),
+        };
+    }
+    8
+}
+
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use std::vec::Vec;
 
-    use super::super::{cell_count, corners_of, EfficiencyTable, Storage};
+    use super::super::{EfficiencyTable, Storage};
     use super::{bound, Corner, UNIT_BOUND};
+    use super::{cell_count, corners_of};
 
     /// The table's axes and values as f64 (the presets' f32 widened exactly).
     fn arrays(t: &EfficiencyTable) -> [Vec<f64>; 5] {
