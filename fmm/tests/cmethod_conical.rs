@@ -502,6 +502,22 @@ fn converges_and_reports_its_error() {
     let g = grating(Profile::Sawtooth { blaze: 0.6 }, 1000.0, Metal::AL);
     let err = tight.solve(&g, deg(30.0, 50.0, 550.0)).unwrap_err();
     assert_eq!(err.parameter(), "harmonics");
+    // A lamellar profile is not the C method's, in either mount.
+    let lamellar = grating(
+        Profile::Lamellar {
+            duty: 0.5,
+            depth_nm: 50.0,
+        },
+        1000.0,
+        Metal::AL,
+    );
+    let err = cmethod()
+        .solve(&lamellar, deg(30.0, 50.0, 550.0))
+        .unwrap_err();
+    assert_eq!(err.parameter(), "depth_nm");
+    assert!(!Solver::default()
+        .uses_cmethod(&lamellar, &deg(30.0, 50.0, 550.0))
+        .unwrap());
 }
 
 /// The C-method geometries of tests/data/rigorous_orders.csv (sinusoid and sawtooth, Al and Ag,

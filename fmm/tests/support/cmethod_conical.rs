@@ -9,9 +9,11 @@ pub const PYTHON_SMOOTH_TOLERANCE: f64 = 5e-9;
 /// 2²⁰ points, an O(2⁻²⁰) error, where this crate integrates exactly: measured worst 3.8e-6
 /// (2.1e-4 with python_ref's 2¹⁴ points); asserted at 2e-5.
 pub const PYTHON_LINEAR_TOLERANCE: f64 = 2e-5;
-/// Against nannos staircases extrapolated in the slab count (lossless sinusoids): measured
-/// worst TBD.
-pub const NANNOS_TOLERANCE: f64 = 1e-3;
+/// Against nannos staircases extrapolated in the slab count (lossless sinusoids, 58 values):
+/// measured worst 1.0e-4 (1.55e-4 against the same extrapolation at 91 harmonics instead of 135:
+/// the reference approaches this crate's values as it converges; its own rows move by up to
+/// 6.7e-5 between slab pairs and 5.4e-5 from 91 harmonics); asserted at 4e-4.
+pub const NANNOS_TOLERANCE: f64 = 4e-4;
 /// β → 0 (β = 0 forced through the conical formulation, and β = 1e-9) against the classical C
 /// method, TE and TM: measured worst 6.3e-11 (rounding; the efficiencies move by O(β²));
 /// asserted at 5e-10.
