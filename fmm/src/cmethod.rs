@@ -1,5 +1,6 @@
 //! The C method (Chandezon's coordinate transformation) with Li's factorisation, for smooth and
-//! piecewise-linear profiles in the classical mount.
+//! piecewise-linear profiles: the classical mount here, the conical one in `cmethod/conical.rs` (which
+//! reuses this module's matrix, modes and plane waves with ε − β² in place of ε).
 //!
 //! The surface z = a(x) becomes the plane u = z − a(x) = 0, so there is a single interface and
 //! no staircase. Lengths are in units of 1/k0, time factor e^{−iωt}. In each homogeneous medium
