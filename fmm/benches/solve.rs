@@ -1,6 +1,7 @@
 //! One solve at a fixed truncation: lamellar (TE + TM, classical; s + p, conical) at 41, 81 and
 //! 121 harmonics (the cases of tests/data/nannos_timing.csv), one staircased sinusoid, and the C method on the foil and blazed600 gratings
-//! (compare with `python_ref/cmethod_cases.py --time`, the same solves in Python).
+//! (compare with `python_ref/cmethod_cases.py --time`, the same solves in Python), classical and
+//! conical.
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -93,6 +94,18 @@ fn solves(c: &mut Criterion) {
     }
     group.bench_function("blazed600_81", |b| {
         b.iter(|| c_method.solve_at(&blazed, at, 81).unwrap())
+    });
+    // The conical mount against the classical one in the same run: the same gratings and
+    // harmonic counts at θ = 30°, φ = 60° (one 4N system and two 2N eigenproblems, against
+    // three 2N eigenproblems and two 2N systems), s and p.
+    let conical = Incidence::new(30f64.to_radians(), 60f64.to_radians(), 550.0).unwrap();
+    for nh in [41, 81] {
+        group.bench_function(format!("foil_conical_{nh}"), |b| {
+            b.iter(|| c_method.solve_at(&foil, conical, nh).unwrap())
+        });
+    }
+    group.bench_function("blazed600_conical_81", |b| {
+        b.iter(|| c_method.solve_at(&blazed, conical, 81).unwrap())
     });
     group.finish();
 }

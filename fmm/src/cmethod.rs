@@ -1,5 +1,6 @@
 //! The C method (Chandezon's coordinate transformation) with Li's factorisation, for smooth and
-//! piecewise-linear profiles in the classical mount.
+//! piecewise-linear profiles: the classical mount here, the conical one in `cmethod/conical.rs` (which
+//! reuses this module's matrix, modes and plane waves with ε − β² in place of ε).
 //!
 //! The surface z = a(x) becomes the plane u = z − a(x) = 0, so there is a single interface and
 //! no staircase. Lengths are in units of 1/k0, time factor e^{−iωt}. In each homogeneous medium
@@ -41,6 +42,17 @@ use crate::solver::{
     MIN_HARMONICS,
 };
 use crate::surface::{Phases, Surface};
+
+mod conical;
+
+/// S = (I + A²)⁻¹ and A·S, A the Toeplitz matrix of the slope a'(x) (`nh` harmonics).
+fn slope_matrices(surface: &Surface, d: f64, nh: usize) -> (Mat<c64>, Mat<c64>) {
+    let a = toeplitz(&surface.slope_coefficients(d, nh - 1), nh);
+    let ident = Mat::<c64>::identity(nh, nh);
+    let s = (&ident + &a * &a).partial_piv_lu().inverse();
+    let as_ = &a * &s;
+    (s, as_)
+}
 
 /// One medium's matrix M for polarisation weight p and permittivity ε.
 fn matrix(s: &Mat<c64>, as_: &Mat<c64>, alpha: &[f64], eps: c64, p: c64) -> Mat<c64> {
@@ -131,6 +143,9 @@ pub(crate) fn solve_raw(
     nh: usize,
     opt: &Options,
 ) -> Result<Raw, Error> {
+    if inc.beta != 0.0 || opt.always_conical {
+        return conical::solve_raw(g, inc, nh, opt);
+    }
     let surface = Surface::of(g).ok_or(Error::invalid(
         "depth_nm",
         g.depth_nm(),
@@ -154,10 +169,7 @@ pub(crate) fn solve_raw(
     let k0 = core::f64::consts::TAU / lambda;
     let kmax = nh - 1;
 
-    let a = toeplitz(&surface.slope_coefficients(d, kmax), nh);
-    let ident = Mat::<c64>::identity(nh, nh);
-    let s = (&ident + &a * &a).partial_piv_lu().inverse();
-    let as_ = &a * &s;
+    let (s, as_) = slope_matrices(&surface, d, nh);
 
     let beta_up: Vec<f64> = alpha
         .iter()

@@ -3,9 +3,9 @@
 //! reflection-matrix recursion, staircased smooth profiles, metals from
 //! [`diffraction::relief::Metal`], an optional thick dielectric cover, and convergence control;
 //! and the C method (Chandezon) with Li's factorisation for continuous profiles (sinusoid,
-//! sawtooth, Fourier series, sampled) in the classical mount, where the staircase converges
-//! badly in TM on metals. [`Method::Auto`] (the default) picks the C method for those and the
-//! Fourier modal method otherwise.
+//! sawtooth, Fourier series, sampled) in the classical and the conical mount, where the
+//! staircase converges badly in TM on metals. [`Method::Auto`] (the default) picks the C method
+//! for those and the Fourier modal method otherwise.
 //!
 //! Conventions (those of the `diffraction` crate's design notes): x across the grooves (the
 //! grating vector), y along them, z the normal; the incident direction of travel has direction

@@ -50,14 +50,13 @@ pub enum Extrapolation {
 /// Which rigorous method solves a grating.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// The C method for continuous profiles (sinusoid, sawtooth, Fourier, sampled) in the
-    /// classical mount; the Fourier modal method otherwise (lamellar, multilevel, flat, and
-    /// every profile in the conical mount or with `always_conical`).
+    /// The C method for continuous profiles (sinusoid, sawtooth, Fourier, sampled), classical
+    /// and conical mounts; the Fourier modal method otherwise (lamellar, multilevel, flat).
     Auto,
     /// The Fourier modal method (a staircase of a continuous profile).
     Fmm,
-    /// The C method (continuous profiles, classical mount only: other inputs are refused with
-    /// an error naming `beta` or `depth_nm`).
+    /// The C method (continuous profiles and flat ones, any mount: a lamellar or multilevel
+    /// profile is refused with an error naming `depth_nm`).
     CMethod,
 }
 
@@ -77,7 +76,7 @@ pub struct Options {
     /// The cover's passes (default multiple).
     pub cover_passes: CoverPasses,
     /// Use the vector (conical) formulation even at β = 0 (twice the size, for checks; default
-    /// false: the classical mount splits into TE and TM).
+    /// false: the classical mount splits into TE and TM), in either method.
     pub always_conical: bool,
     /// The method (default [`Method::Auto`]).
     pub method: Method,
@@ -202,21 +201,14 @@ impl Solver {
     }
 
     /// Whether this solve goes to the C method (see [`Method`]); an explicit
-    /// [`Method::CMethod`] on an input it cannot take is an error naming `beta` or `depth_nm`.
-    pub fn uses_cmethod(&self, g: &Grating, inc: &Incidence) -> Result<bool, Error> {
+    /// [`Method::CMethod`] on an input it cannot take (lamellar, multilevel) is an error naming
+    /// `depth_nm`.
+    pub fn uses_cmethod(&self, g: &Grating, _inc: &Incidence) -> Result<bool, Error> {
         let continuous = Surface::of(g).is_some() && !matches!(g.profile, Profile::Flat);
-        let classical = inc.beta == 0.0 && !self.options.always_conical;
         match self.options.method {
             Method::Fmm => Ok(false),
-            Method::Auto => Ok(continuous && classical),
+            Method::Auto => Ok(continuous),
             Method::CMethod => {
-                if !classical {
-                    return Err(Error::invalid(
-                        "beta",
-                        inc.beta,
-                        "0 for the C method (classical mount only; use Method::Fmm or Auto)",
-                    ));
-                }
                 if Surface::of(g).is_none() {
                     return Err(Error::invalid(
                         "depth_nm",

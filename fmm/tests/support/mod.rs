@@ -2,6 +2,8 @@
 //! tolerances.
 #![allow(dead_code)]
 
+pub mod cmethod_conical;
+
 use diffraction::relief::Metal;
 use diffraction_fmm::{Grating, Profile};
 
