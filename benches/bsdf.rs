@@ -78,6 +78,15 @@ fn bench(c: &mut Criterion) {
                 acc
             })
         });
+        g.bench_with_input(BenchmarkId::new("cd_f4", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for (&(wi, wo, _), l4) in s.iter().zip(&lambdas) {
+                    acc += cd.eval4(black_box(wo), black_box(wi), l4)[3];
+                }
+                acc
+            })
+        });
         g.bench_with_input(BenchmarkId::new("pdf", n), &inputs, |b, s| {
             b.iter(|| {
                 let mut acc = 0.0;
@@ -92,6 +101,15 @@ fn bench(c: &mut Criterion) {
                 let mut acc = 0.0;
                 for (&(wi, wo, _), l4) in s.iter().zip(&lambdas) {
                     acc += bsdf.pdf4(black_box(wo), black_box(wi), l4)[3];
+                }
+                acc
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("cd_pdf4", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for (&(wi, wo, _), l4) in s.iter().zip(&lambdas) {
+                    acc += cd.pdf4(black_box(wo), black_box(wi), l4)[3];
                 }
                 acc
             })
@@ -124,6 +142,28 @@ fn bench(c: &mut Criterion) {
                 for (&(_, wo, l), &(uc, u2)) in s.iter().zip(&randoms) {
                     if let Some(x) = cd.sample(black_box(wo), l, uc, u2) {
                         acc += cd.pdf(wo, black_box(x.wi), l);
+                    }
+                }
+                acc
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("sample4", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for ((&(_, wo, _), &(uc, u2)), l4) in s.iter().zip(&randoms).zip(&lambdas) {
+                    if let Some(x) = bsdf.sample4(black_box(wo), l4, uc, u2) {
+                        acc += x.pdf[3];
+                    }
+                }
+                acc
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("cd_sample4", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for ((&(_, wo, _), &(uc, u2)), l4) in s.iter().zip(&randoms).zip(&lambdas) {
+                    if let Some(x) = cd.sample4(black_box(wo), l4, uc, u2) {
+                        acc += x.pdf[3];
                     }
                 }
                 acc

@@ -39,7 +39,7 @@ pub use scalar::{
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES};
 #[cfg(feature = "presets")]
 pub use table::Preset;
-pub(crate) use table::{CellProposal, FastProposal};
+pub(crate) use table::{CellProposal, FastProposal, Incidences};
 pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};
 #[cfg(feature = "alloc")]
 pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};

@@ -394,8 +394,16 @@ impl DiffractionBrdf for GratingBsdf {
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
         }
-        if let OrderSource::Tabulated { .. } = self.orders {
-            return lambdas.lambda().map(|l| self.eval(wo, wi, l));
+        // A table: the pair (wo, wi) located once, each λ read as `eval` reads it.
+        #[cfg(feature = "relief")]
+        if let Some(pair) = self.orders.incidences(wo, wi) {
+            return lambdas.lambda().map(|l| {
+                if l > 0.0 && l.is_finite() {
+                    self.value_at(&pair, wo, wi, l)
+                } else {
+                    0.0
+                }
+            });
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let l = lambdas.lambda();
@@ -562,10 +570,21 @@ impl Bsdf for GratingBsdf {
         self.pdf_finite(wo, wi, lambda_nm)
     }
 
-    /// Shares the checks, u and v; the candidate orders depend on λ and are found per λ.
+    /// Shares the checks, u and v (and a table's location of wo); the candidate orders depend
+    /// on λ and are found per λ.
     fn pdf4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
         let mut out = [0.0; 4];
         if !(both_above(wo, wi) && self.is_glossy()) {
+            return out;
+        }
+        // A table: wo located once.
+        #[cfg(feature = "relief")]
+        if let Some(pair) = self.orders.incidences(wo, wi) {
+            for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {
+                if l > 0.0 && l.is_finite() {
+                    *o = self.pdf_at(&pair, wo, wi, l);
+                }
+            }
             return out;
         }
         for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {

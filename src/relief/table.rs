@@ -59,7 +59,7 @@ mod unit;
 use lookup::Lookup;
 use nodes_q::NodeQ;
 
-pub(crate) use lookup::FastProposal;
+pub(crate) use lookup::{FastProposal, Incidences};
 pub(crate) use proposal::CellProposal;
 
 use unit::UnitCells;

@@ -1,6 +1,7 @@
 //! The grating's four-wavelength sample ([`Bsdf::sample4`](crate::Bsdf::sample4)): the hero's
 //! direction, value and density from one [`sample`](crate::Bsdf::sample), and the three
-//! secondaries' values and densities at that direction with the checks and (u, v) shared.
+//! secondaries' values and densities at that direction with the checks and (u, v) shared (and a
+//! table's location of wo and wi).
 
 use glam::{DVec2, DVec3};
 
@@ -28,8 +29,17 @@ impl GratingBsdf {
         if !hero.flags.is_specular() {
             let wi = hero.wi;
             let l = lambdas.lambda();
+            // A table: the pair (wo, wi) located once for the three.
+            #[cfg(feature = "relief")]
+            let pair = self.orders.incidences(wo, wi);
             for k in 1..4 {
                 if l[k] > 0.0 && l[k].is_finite() {
+                    #[cfg(feature = "relief")]
+                    if let Some(pair) = &pair {
+                        f[k] = self.value_at(pair, wo, wi, l[k]);
+                        pdf[k] = self.pdf_at(pair, wo, wi, l[k]);
+                        continue;
+                    }
                     f[k] = self.value(wo, wi, l[k]);
                     pdf[k] = self.pdf_finite(wo, wi, l[k]);
                 }

@@ -31,7 +31,7 @@ use super::orders::{candidate_range, AmplitudeOrders, Candidates};
 #[cfg(feature = "relief")]
 use crate::num::math;
 #[cfg(feature = "relief")]
-use crate::relief::{CellProposal, FastProposal};
+use crate::relief::{CellProposal, FastProposal, Incidences};
 #[cfg(feature = "relief")]
 use crate::relief::{EfficiencyTable, Polarised};
 use crate::Slits;
@@ -158,6 +158,35 @@ impl<'a> TabulatedWeights<'a> {
             Some(p) => Proposal::Fast(p?),
             None => Proposal::Cell(table.cell_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?),
         };
+        TabulatedWeights::from_proposal(table, proposal, wo, lambda_nm)
+    }
+
+    /// [`new`](Self::new) with wo located in `pair` (its first incidence, (−wo.x, −wo.y)),
+    /// for the reads of several wavelengths: the same weights.
+    #[inline(always)]
+    pub(super) fn at(
+        table: &'a Tabulated,
+        pair: &Incidences<'a>,
+        wo: DVec3,
+        lambda_nm: f64,
+        (lo, hi): (i64, i64),
+    ) -> Option<TabulatedWeights<'a>> {
+        let table = table.table();
+        let proposal = match pair.proposal(lambda_nm, lo..=hi) {
+            Some(p) => Proposal::Fast(p?),
+            None => Proposal::Cell(table.cell_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?),
+        };
+        TabulatedWeights::from_proposal(table, proposal, wo, lambda_nm)
+    }
+
+    /// The weights of a proposal.
+    #[inline(always)]
+    fn from_proposal(
+        table: &'a EfficiencyTable,
+        proposal: Proposal<'a>,
+        wo: DVec3,
+        lambda_nm: f64,
+    ) -> Option<TabulatedWeights<'a>> {
         let (count, total, orders) = match &proposal {
             Proposal::Fast(p) => (p.count(), p.total(), p.orders()),
             Proposal::Cell(p) => (p.count(), p.total(), p.orders()),
@@ -442,16 +471,34 @@ impl OrderSource {
             }
             #[cfg(feature = "relief")]
             OrderSource::Tabulated { table, .. } => {
-                let m = math::rint(x);
-                if !m.is_finite() {
-                    return 0.0;
-                }
-                table
-                    .table()
-                    .incidences((-wo.x, -wo.y), (-wi.x, -wi.y))
-                    .min(m as i64, lambda_nm)
+                let pair = table.table().incidences((-wo.x, -wo.y), (-wi.x, -wi.y));
+                OrderSource::factor_at(&pair, x, lambda_nm)
             }
         }
+    }
+
+    /// A tabulated model's pair (wo, wi) located in its table (wo first), for the reads of
+    /// several wavelengths; `None` for the amplitude reading.
+    #[cfg(feature = "relief")]
+    #[inline(always)]
+    pub(super) fn incidences(&self, wo: DVec3, wi: DVec3) -> Option<Incidences<'_>> {
+        match self {
+            OrderSource::Amplitude(_) => None,
+            OrderSource::Tabulated { table, .. } => {
+                Some(table.table().incidences((-wo.x, -wo.y), (-wi.x, -wi.y)))
+            }
+        }
+    }
+
+    /// [`lobe_factor`](Self::lobe_factor) of a table with the pair located.
+    #[cfg(feature = "relief")]
+    #[inline(always)]
+    pub(super) fn factor_at(pair: &Incidences<'_>, x: f64, lambda_nm: f64) -> f64 {
+        let m = math::rint(x);
+        if !m.is_finite() {
+            return 0.0;
+        }
+        pair.min(m as i64, lambda_nm)
     }
 
     /// The candidate orders' range for wo (`inv_step` = d/λ), for a table's weights.

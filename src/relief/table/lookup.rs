@@ -438,7 +438,7 @@ pub(crate) struct Incidences<'a> {
     dirs: [(f64, f64); 2],
 }
 
-impl Incidences<'_> {
+impl<'a> Incidences<'a> {
     /// η̃_m = min(η_m(a, λ), η_m(b, λ)), unpolarised and normalised: 0 for an order the
     /// table does not store, where either read is 0, and where either is not a finite
     /// positive number.
@@ -464,6 +464,23 @@ impl Incidences<'_> {
             return 0.0;
         }
         e.min(t.unpolarised(m, self.dirs[1], lambda_nm))
+    }
+
+    /// The fast reading's proposal at the first incidence (a) for `lambda_nm` and the
+    /// candidates (the table's [`fast_proposal`](EfficiencyTable::fast_proposal) at a, with
+    /// the incidence's location reused); `None` where the table has no fast reading.
+    #[inline(always)]
+    pub(crate) fn proposal(
+        &self,
+        lambda_nm: f64,
+        candidates: RangeInclusive<i64>,
+    ) -> Option<Option<FastProposal<'a>>> {
+        #[cfg(feature = "std")]
+        if let Some((f, a, _)) = &self.fast {
+            return Some(FastProposal::at(f, *a, lambda_nm, candidates));
+        }
+        let _ = (lambda_nm, candidates);
+        None
     }
 }
 
@@ -537,6 +554,17 @@ impl<'a> FastProposal<'a> {
         lambda_nm: f64,
         candidates: RangeInclusive<i64>,
     ) -> Option<FastProposal<'a>> {
+        FastProposal::at(f, f.side(s), lambda_nm, candidates)
+    }
+
+    /// [`new`](Self::new) at the located incidence `a`.
+    #[inline(always)]
+    fn at(
+        f: &'a Fast,
+        a: Side,
+        lambda_nm: f64,
+        candidates: RangeInclusive<i64>,
+    ) -> Option<FastProposal<'a>> {
         let first = i64::from(f.order_min);
         let last = first + f.order_count as i64 - 1;
         let (lo, hi) = (
@@ -546,22 +574,27 @@ impl<'a> FastProposal<'a> {
         if hi < lo {
             return None;
         }
-        let (a, w) = (f.side(s), f.wave(lambda_nm)?);
+        let w = f.wave(lambda_nm)?;
         if !a.ok {
             return None;
         }
-        // The candidates that propagate at the query (the test of the fast read): at most
-        // one at each end of the amplitude model's candidates is not.
+        // The candidates that propagate at the query, by the parent module's test (and the
+        // fast read's). Of the amplitude model's candidates (the periods meeting the disk's
+        // u-range) at most the first and the last do not: the four tests are independent.
         let live = |m: i64| (a.s + m as f64 * w.l / f.period_nm).abs() < 1.0;
-        let (mut lo, mut hi) = (lo, hi);
-        while lo <= hi && !live(lo) {
-            lo += 1;
-        }
-        while hi >= lo && !live(hi) {
-            hi -= 1;
-        }
-        if hi < lo {
-            return None;
+        let (l0, l1, h0, h1) = (live(lo), live(lo + 1), live(hi), live(hi - 1));
+        let (mut lo, mut hi) = (lo + i64::from(!l0), hi - i64::from(!h0));
+        if !(l0 || l1) || !(h0 || h1) || hi < lo {
+            // Other candidates (a range from elsewhere, or rounding): trimmed one by one.
+            while lo <= hi && !live(lo) {
+                lo += 1;
+            }
+            while hi >= lo && !live(hi) {
+                hi -= 1;
+            }
+            if hi < lo {
+                return None;
+            }
         }
         let cell = w.j * (f.s.len() - 1) + a.i;
         let (tx, ty) = (a.tx, w.ty);
