@@ -394,16 +394,8 @@ impl DiffractionBrdf for GratingBsdf {
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
         }
-        // A table: the pair (wo, wi) located once, each λ read as `eval` reads it.
-        #[cfg(feature = "relief")]
-        if let Some(pair) = self.orders.incidences(wo, wi) {
-            return lambdas.lambda().map(|l| {
-                if l > 0.0 && l.is_finite() {
-                    self.value_at(&pair, wo, wi, l)
-                } else {
-                    0.0
-                }
-            });
+        if let OrderSource::Tabulated { .. } = self.orders {
+            return self.eval4_tabulated(wo, wi, lambdas);
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let l = lambdas.lambda();
@@ -577,15 +569,8 @@ impl Bsdf for GratingBsdf {
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
         }
-        // A table: wo located once.
-        #[cfg(feature = "relief")]
-        if let Some(pair) = self.orders.incidences(wo, wi) {
-            for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {
-                if l > 0.0 && l.is_finite() {
-                    *o = self.pdf_at(&pair, wo, wi, l);
-                }
-            }
-            return out;
+        if let OrderSource::Tabulated { .. } = self.orders {
+            return self.pdf4_tabulated(wo, wi, lambdas);
         }
         for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {
             if l > 0.0 && l.is_finite() {

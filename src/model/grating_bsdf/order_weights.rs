@@ -440,6 +440,16 @@ impl OrderWeights for TabulatedWeights<'_> {
     }
 }
 
+/// [`OrderSource::lobe_factor`] of a table. Not inlined: the table's reading would otherwise
+/// fill the amplitude model's `eval` (measured: its code's layout then cost the amplitude
+/// `eval` up to 3× its time in the benches' binary, at the same instructions).
+#[cfg(feature = "relief")]
+#[inline(never)]
+fn table_factor(table: &Tabulated, x: f64, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+    let pair = table.table().incidences((-wo.x, -wo.y), (-wi.x, -wi.y));
+    OrderSource::factor_at(&pair, x, lambda_nm)
+}
+
 /// Where a grating's order weights come from: the amplitude reading's precomputed weights, or
 /// a table (with the grating's N, for the candidate range).
 // The amplitude variant holds its weight tables inline (2.2 kB, as the BSDF always has): boxing
@@ -470,10 +480,7 @@ impl OrderSource {
                 match *table {}
             }
             #[cfg(feature = "relief")]
-            OrderSource::Tabulated { table, .. } => {
-                let pair = table.table().incidences((-wo.x, -wo.y), (-wi.x, -wi.y));
-                OrderSource::factor_at(&pair, x, lambda_nm)
-            }
+            OrderSource::Tabulated { table, .. } => table_factor(table, x, wo, wi, lambda_nm),
         }
     }
 
