@@ -5,7 +5,7 @@
 use std::vec::Vec;
 
 use super::super::{interval, EfficiencyTable};
-use super::{Bins, Fast};
+use super::{bins::Bins, Fast};
 
 /// The fast reading against the parent module's, relative to the scale of its rounding: the
 /// corners' q's (or stored values) times cos θm/cos θi, summed over the four corners. The
@@ -132,7 +132,7 @@ fn bins_locate_as_the_binary_search() {
     for nodes in &grids {
         let bins = Bins::new(nodes);
         let inv: Vec<f64> = nodes.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect();
-        several += bins.bins.iter().filter(|b| b.split.is_nan()).count();
+        several += bins.crowded();
         let (lo, hi) = (nodes[0], nodes[nodes.len() - 1]);
         let mut xs: Vec<f64> = Vec::new();
         for &x in nodes.iter() {
