@@ -22,7 +22,7 @@
 //!   (sin θm = s + m·λ/d), and so is the proposal's set of orders.
 //! * **The pair.** The BSDF's η̃ = min(η_m(a), η_m(b)) of two incidences at one λ: the
 //!   wavelength is located once for both reads, and the incidences once for any number of
-//!   wavelengths (`eval4`; `sample` reuses its proposal's incidence). Symmetric in (a, b) to
+//!   wavelengths (`eval4`, `pdf4`, `sample4`; `sample` reuses its proposal's incidence). Symmetric in (a, b) to
 //!   the bit. Comparing q̄²·c_m·c_i′ to finish only the smaller read (one square root) was
 //!   measured slower than finishing both: its branch is unpredictable.
 //! * **The proposal.** The sampler's cell proposal ([`FastProposal`]): the candidates that
@@ -96,8 +96,8 @@ pub(super) struct Fast {
     l_bins: Bins,
     /// Per cell j·(n_s − 1) + i: whether it needs no normalisation (`unit.rs`).
     unit: Vec<bool>,
-    /// Per order index k and node (k·n_λ + j)·n_s + i: the nodes' (q_TE, q_TM) (`nodes_q.rs`)
-    /// and the stored unpolarised (TE + TM)/2.
+    /// Per order index k and node (k·n_λ + j)·n_s + i: the nodes' (q_TE, q_TM) (`nodes_q.rs`,
+    /// copied), for the reads outside the plain cells.
     q: Vec<[f64; 2]>,
     /// Per order index k and cell c, at k·(cells) + c: the corners' stored unpolarised values
     /// (TE + TM)/2, and their running sums Σ_{k′ ≤ k} (the proposal's).
@@ -123,8 +123,8 @@ struct Side {
     ok: bool,
 }
 
-/// One wavelength located on the λ axis: λ clamped to the grid, the interval j, the weight ty
-/// of the plain reading and λ/d.
+/// One wavelength located on the λ axis: λ clamped to the grid, the interval j and the weight
+/// ty of the plain reading.
 #[cfg(feature = "std")]
 #[derive(Debug, Clone, Copy)]
 struct Wave {
