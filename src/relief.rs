@@ -37,9 +37,9 @@ pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,
 };
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES};
-pub(crate) use table::CellProposal;
 #[cfg(feature = "presets")]
 pub use table::Preset;
+pub(crate) use table::{CellProposal, FastProposal, Incidences};
 pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};
 #[cfg(feature = "alloc")]
 pub use table::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};

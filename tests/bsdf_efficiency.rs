@@ -308,6 +308,49 @@ fn efficiencies_of_the_orders_sum_to_at_most_one() {
     }
 }
 
+/// The model's η̃ (a classical table's fast reading) against the table's own reading, the min
+/// of `EfficiencyTable::efficiency(..).unpolarised()` at −wo.x and −wi.x: the same rule, to
+/// rounding; and 0 exactly where the table's reading is.
+#[test]
+fn the_models_efficiency_is_the_tables_to_rounding() {
+    let scalar = scalar_table();
+    let mut rng = Rng::new(31);
+    let (mut worst, mut compared) = (0.0f64, 0usize);
+    for (name, b) in models(Slits::Infinite, &scalar) {
+        let Some(t) = b.order_efficiency().table().cloned() else {
+            continue;
+        };
+        if t.is_conical() {
+            continue;
+        }
+        let d = t.period_nm();
+        for _ in 0..3000 {
+            let wo = rng.direction(0.0);
+            let lambda = 350.0 + 490.0 * rng.next_f64();
+            for m in t.orders() {
+                let x = f64::from(m) * lambda / d - wo.x;
+                if x.abs() >= 1.0 {
+                    continue;
+                }
+                let wi = DVec3::new(x, -wo.y, (1.0 - x * x).max(0.0).sqrt());
+                let e = b.efficiency_at(m, wo, wi, lambda);
+                let want = t
+                    .efficiency(m, -wo.x, lambda)
+                    .unpolarised()
+                    .min(t.efficiency(m, -wi.x, lambda).unpolarised());
+                if want == 0.0 {
+                    assert_eq!(e, 0.0, "{name}: m={m} λ={lambda}");
+                }
+                worst = worst.max((e - want).abs());
+                compared += 1;
+            }
+        }
+    }
+    println!("η̃ against the table's reading: {compared} pairs, within {worst:.2e}");
+    assert!(compared > 50_000, "{compared}");
+    assert!(worst <= TAB_FAST_READING, "{worst:e}");
+}
+
 #[test]
 fn infinite_n_carries_exactly_the_efficiency_of_each_order() {
     let scalar = scalar_table();

@@ -395,7 +395,7 @@ impl DiffractionBrdf for GratingBsdf {
             return out;
         }
         if let OrderSource::Tabulated { .. } = self.orders {
-            return lambdas.lambda().map(|l| self.eval(wo, wi, l));
+            return self.eval4_tabulated(wo, wi, lambdas);
         }
         let (u, v) = (wi.x + wo.x, wi.y + wo.y);
         let l = lambdas.lambda();
@@ -562,11 +562,15 @@ impl Bsdf for GratingBsdf {
         self.pdf_finite(wo, wi, lambda_nm)
     }
 
-    /// Shares the checks, u and v; the candidate orders depend on λ and are found per λ.
+    /// Shares the checks, u and v (and a table's location of wo); the candidate orders depend
+    /// on λ and are found per λ.
     fn pdf4(&self, wo: DVec3, wi: DVec3, lambdas: &SampledWavelengths) -> [f64; 4] {
         let mut out = [0.0; 4];
         if !(both_above(wo, wi) && self.is_glossy()) {
             return out;
+        }
+        if let OrderSource::Tabulated { .. } = self.orders {
+            return self.pdf4_tabulated(wo, wi, lambdas);
         }
         for (o, &l) in out.iter_mut().zip(lambdas.lambda().iter()) {
             if l > 0.0 && l.is_finite() {

@@ -49,14 +49,17 @@ macro_rules! with_arrays {
 mod conical;
 #[cfg(feature = "alloc")]
 mod load;
+mod lookup;
 mod nodes_q;
 #[cfg(feature = "presets")]
 mod preset;
 mod proposal;
 mod unit;
 
+use lookup::Lookup;
 use nodes_q::NodeQ;
 
+pub(crate) use lookup::{FastProposal, Incidences};
 pub(crate) use proposal::CellProposal;
 
 use unit::UnitCells;
@@ -111,6 +114,8 @@ pub struct EfficiencyTable {
     unit: UnitCells,
     /// The nodes' q's (`nodes_q.rs`), computed on first use.
     q: NodeQ,
+    /// The fast reading of a classical table (`lookup.rs`), derived on first use.
+    lookup: Lookup,
 }
 
 /// The nodes and values: static f32 data of the presets, or owned f64 data of user tables.

@@ -27,6 +27,16 @@
 //! plane it is the classical-mount approximation (measured: 22-59 % of orders with η ≥ 1 %
 //! within 10 % at azimuths 30-80°; `docs/efficiency_tables.md`, "Conical tables").
 //!
+//! **The reading.** A classical table whose fast reading exists (feature `std`, at most 2¹⁷
+//! values: the presets and the usual user tables; `relief/table/lookup.rs`) gives η̃ from it:
+//! the two incidences and the wavelength located in O(1), each order read from its cell's
+//! record, both reads finished (no normalisation where the cell's bound needs none). That is
+//! the table's rule to rounding, within 2.8·10⁻¹⁶ of the rounding's scale (the corners' q's
+//! times cos θm/cos θi) of `EfficiencyTable::efficiency(..).unpolarised()`, not the same bits;
+//! every identity of the model (reciprocity, `sample` against `eval` and `pdf`, the
+//! four-wavelength forms) holds to the bit because every path reads the same way. A conical
+//! table, and every table without `std`, is read by `efficiency_conical`.
+//!
 //! **The sampler** of a tabulated model: the candidate orders are those of the amplitude model
 //! (periods meeting the disk's u-range), clipped to the table's orders and to those that
 //! propagate at wo's table query (the query clamped to the grid, as the interpolation clamps
@@ -34,7 +44,9 @@
 //! stored efficiencies of the query's cell corners with its bilinear weights and δ =
 //! [`TABULATED_DEFENSIVE_SHARE`](super::TABULATED_DEFENSIVE_SHARE)
 //! (one cell search and the corners' stored values: no q-factors, no square roots, no
-//! allocation). f
+//! allocation; from the fast reading, Σ η̂ from the corners' running sums over the orders,
+//! the same to rounding), written as w_m/Σ w with w_m = (1 − δ)·K·η̂_m + δ·Σ η̂ so that the
+//! density divides once. f
 //! vanishes wherever η_m(−wo.x, λ) does (the min), and η_m(−wo.x, λ) vanishes for every order
 //! that does not propagate at the query, so P(m) ≥ δ/K > 0 wherever f > 0. The rest (u from
 //! the period proxy of F_N, v from the groove's Cauchy proxy) is the amplitude model's, and
@@ -243,14 +255,8 @@ pub(super) fn eta(t: &EfficiencyTable, order: i64, dir: (f64, f64), lambda_nm: f
     if order < i64::from(*t.orders().start()) || order > i64::from(*t.orders().end()) {
         return 0.0;
     }
-    let e = t
-        .efficiency_conical(order as i32, dir.0, dir.1, lambda_nm)
-        .unpolarised();
-    if e.is_finite() && e > 0.0 {
-        e
-    } else {
-        0.0
-    }
+    // A stored order fits an i32.
+    t.unpolarised(order as i32, dir, lambda_nm)
 }
 
 impl GratingBsdf {
@@ -390,8 +396,9 @@ impl GratingBsdf {
     pub fn efficiency_at(&self, order: i32, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
         #[cfg(feature = "relief")]
         if let Some(t) = self.table() {
-            let m = i64::from(order);
-            return eta(t, m, (-wi.x, -wi.y), lambda_nm).min(eta(t, m, (-wo.x, -wo.y), lambda_nm));
+            return t
+                .incidences((-wo.x, -wo.y), (-wi.x, -wi.y))
+                .min(i64::from(order), lambda_nm);
         }
         #[cfg(not(feature = "relief"))]
         let _ = (wo, wi, lambda_nm);

@@ -10,11 +10,13 @@
 //!   in f is 1.
 //! * [`TabulatedWeights`]: the cell proposal P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K over the
 //!   candidates that propagate at wo's table query (η̂ the stored efficiencies of its cell's
-//!   corners with the query's bilinear weights, [`TABULATED_DEFENSIVE_SHARE`] δ); the order's factor in f is
-//!   η̃_m = min(η_m(−wi.x, −wi.y, λ), η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`; a classical
-//!   table ignores the second argument), interpolated for that order alone, the lobe the
-//!   unit-integral (N·d/λ)·F_N·g. [`TabulatedEtas`] holds every candidate's η_m(wo) for the
-//!   albedo's integrand.
+//!   corners with the query's bilinear weights, [`TABULATED_DEFENSIVE_SHARE`] δ; a classical
+//!   table's fast reading, `FastProposal`, where it has one, else the table's
+//!   `CellProposal`); the order's factor in f is η̃_m = min(η_m(−wi.x, −wi.y, λ),
+//!   η_m(−wo.x, −wo.y, λ)) (`efficiency.rs`; a classical table ignores the second argument),
+//!   interpolated for that order alone (`sample` reuses the proposal's location of wo), the
+//!   lobe the unit-integral (N·d/λ)·F_N·g. [`TabulatedEtas`] holds every candidate's η_m(wo)
+//!   for the albedo's integrand.
 //!
 //! The model-level [`OrderSource`] builds the weights of a query; each public method matches
 //! on it once and runs the generic body, so the amplitude path never carries the tabulated
@@ -24,12 +26,12 @@ use glam::DVec3;
 
 use super::efficiency::Tabulated;
 #[cfg(feature = "relief")]
-use super::efficiency::{eta, MAX_TABULATED_ORDERS};
+use super::efficiency::MAX_TABULATED_ORDERS;
 use super::orders::{candidate_range, AmplitudeOrders, Candidates};
 #[cfg(feature = "relief")]
 use crate::num::math;
 #[cfg(feature = "relief")]
-use crate::relief::CellProposal;
+use crate::relief::{CellProposal, FastProposal, Incidences};
 #[cfg(feature = "relief")]
 use crate::relief::{EfficiencyTable, Polarised};
 use crate::Slits;
@@ -114,23 +116,37 @@ pub const TABULATED_DEFENSIVE_SHARE: f64 = 0.1;
 
 /// A tabulated model's weights for one (wo, λ): the cell proposal of the candidate orders (one
 /// cell search, the corners' stored values: no interpolation of q, no square root),
-/// P(m) = w_m with Σ w = 1; each order's factor η̃_m is interpolated for the one order a query
-/// needs.
+/// w_m = (1 − δ)·K·η̂_m + δ·Σ η̂ with Σ w = K·Σ η̂, so that P(m) = w_m/Σ w takes one division
+/// (w_m = 1, Σ w = K where Σ η̂ = 0); each order's factor η̃_m is interpolated for the one
+/// order a query needs.
 #[cfg(feature = "relief")]
 pub(super) struct TabulatedWeights<'a> {
     table: &'a EfficiencyTable,
-    proposal: CellProposal,
+    proposal: Proposal<'a>,
+    /// The proposal's orders.
+    lo: i64,
+    hi: i64,
     wo: DVec3,
     lambda_nm: f64,
-    /// P(m) = scale·η̂_m + floor: (1 − δ)/Σ η̂ and δ/K, or 0 and 1/K where Σ η̂ = 0.
+    /// w_m = scale·η̂_m + floor and Σ w: (1 − δ)·K, δ·Σ η̂ and K·Σ η̂, or 0, 1 and K where
+    /// Σ η̂ = 0.
     scale: f64,
     floor: f64,
+    total: f64,
+}
+
+/// The cell proposal of a classical table's fast reading, or the table's own.
+#[cfg(feature = "relief")]
+enum Proposal<'a> {
+    Fast(FastProposal<'a>),
+    Cell(CellProposal),
 }
 
 #[cfg(feature = "relief")]
 impl<'a> TabulatedWeights<'a> {
     /// The proposal of the candidate orders [lo, hi] for wo at λ; `None` when none of them is
     /// stored and propagates at wo (every η_m(−wo.x, −wo.y, λ) is 0 there).
+    #[inline(always)]
     pub(super) fn new(
         table: &'a Tabulated,
         wo: DVec3,
@@ -138,68 +154,121 @@ impl<'a> TabulatedWeights<'a> {
         (lo, hi): (i64, i64),
     ) -> Option<TabulatedWeights<'a>> {
         let table = table.table();
-        let proposal = table.cell_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?;
-        let k = proposal.count() as f64;
-        let total = proposal.total();
-        let (scale, floor) = if total > 0.0 && total.is_finite() {
+        let proposal = match table.fast_proposal(-wo.x, lambda_nm, lo..=hi) {
+            Some(p) => Proposal::Fast(p?),
+            None => Proposal::Cell(table.cell_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?),
+        };
+        TabulatedWeights::from_proposal(table, proposal, wo, lambda_nm)
+    }
+
+    /// [`new`](Self::new) with wo located in `pair` (its first incidence, (−wo.x, −wo.y)),
+    /// for the reads of several wavelengths: the same weights.
+    #[inline(always)]
+    pub(super) fn at(
+        table: &'a Tabulated,
+        pair: &Incidences<'a>,
+        wo: DVec3,
+        lambda_nm: f64,
+        (lo, hi): (i64, i64),
+    ) -> Option<TabulatedWeights<'a>> {
+        let table = table.table();
+        let proposal = match pair.proposal(lambda_nm, lo..=hi) {
+            Some(p) => Proposal::Fast(p?),
+            None => Proposal::Cell(table.cell_proposal(-wo.x, -wo.y, lambda_nm, lo..=hi)?),
+        };
+        TabulatedWeights::from_proposal(table, proposal, wo, lambda_nm)
+    }
+
+    /// The weights of a proposal.
+    #[inline(always)]
+    fn from_proposal(
+        table: &'a EfficiencyTable,
+        proposal: Proposal<'a>,
+        wo: DVec3,
+        lambda_nm: f64,
+    ) -> Option<TabulatedWeights<'a>> {
+        let (count, total, orders) = match &proposal {
+            Proposal::Fast(p) => (p.count(), p.total(), p.orders()),
+            Proposal::Cell(p) => (p.count(), p.total(), p.orders()),
+        };
+        let k = count as f64;
+        let (scale, floor, total) = if total > 0.0 && total.is_finite() {
             (
-                (1.0 - TABULATED_DEFENSIVE_SHARE) / total,
-                TABULATED_DEFENSIVE_SHARE / k,
+                (1.0 - TABULATED_DEFENSIVE_SHARE) * k,
+                TABULATED_DEFENSIVE_SHARE * total,
+                k * total,
             )
         } else {
-            (0.0, 1.0 / k)
+            (0.0, 1.0, k)
         };
         Some(TabulatedWeights {
             table,
             proposal,
+            lo: i64::from(*orders.start()),
+            hi: i64::from(*orders.end()),
             wo,
             lambda_nm,
             scale,
             floor,
+            total,
         })
+    }
+
+    /// The candidate orders that propagate at wo.
+    #[inline(always)]
+    fn orders(&self) -> (i64, i64) {
+        (self.lo, self.hi)
     }
 
     /// η̃_m = min(η_m(−wo.x, −wo.y, λ), η_m(−wi.x, −wi.y, λ)), 0 where the first is.
     #[inline]
     fn eta_pair(&self, m: i64, wi: DVec3, lambda_nm: f64) -> f64 {
-        let wo = self.wo;
-        let e = eta(self.table, m, (-wo.x, -wo.y), lambda_nm);
-        if e == 0.0 {
-            return 0.0;
+        if let Proposal::Fast(p) = &self.proposal {
+            if lambda_nm == self.lambda_nm {
+                return p.min_efficiency(m, -wi.x);
+            }
         }
-        e.min(eta(self.table, m, (-wi.x, -wi.y), lambda_nm))
+        let wo = self.wo;
+        self.table
+            .incidences((-wo.x, -wo.y), (-wi.x, -wi.y))
+            .min(m, lambda_nm)
     }
 }
 
 #[cfg(feature = "relief")]
 impl OrderWeights for TabulatedWeights<'_> {
-    #[inline]
+    #[inline(always)]
     fn total(&self) -> f64 {
-        1.0
+        self.total
     }
 
-    #[inline]
+    #[inline(always)]
     fn weight(&self, m: i64) -> f64 {
-        let orders = self.proposal.orders();
-        if m < i64::from(*orders.start()) || m > i64::from(*orders.end()) {
+        let (lo, hi) = self.orders();
+        if m < lo || m > hi {
             return 0.0;
         }
         // m is a stored order (i32).
-        self.scale * self.table.cell_efficiency(&self.proposal, m as i32) + self.floor
+        let e = match &self.proposal {
+            Proposal::Fast(p) => p.efficiency(m as i32),
+            Proposal::Cell(p) => self.table.cell_efficiency(p, m as i32),
+        };
+        self.scale * e + self.floor
     }
 
+    #[inline]
     fn choose(&self, uc: f64) -> (i64, f64) {
-        let orders = self.proposal.orders();
-        let (lo, hi) = (i64::from(*orders.start()), i64::from(*orders.end()));
+        let (lo, hi) = self.orders();
+        let target = uc * self.total;
         let mut acc = 0.0;
         for m in lo..=hi {
             let w = self.weight(m);
             acc += w;
-            if uc < acc {
-                return (m, w);
+            if target < acc {
+                return (m, w / self.total);
             }
         }
-        (hi, self.weight(hi))
+        (hi, self.weight(hi) / self.total)
     }
 
     #[inline]
@@ -221,12 +290,12 @@ impl OrderWeights for TabulatedWeights<'_> {
         self.table
             .efficiencies_conical(-wo.x, -wo.y, self.lambda_nm, &mut buf[..count]);
         let first = i64::from(*self.table.orders().start());
-        let orders = self.proposal.orders();
+        let (lo, hi) = self.orders();
         let mut worst = 0.0f64;
-        for m in i64::from(*orders.start())..=i64::from(*orders.end()) {
+        for m in lo..=hi {
             let e = buf[(m - first) as usize].unpolarised();
             if e.is_finite() && e > 0.0 {
-                worst = worst.max(e / self.weight(m));
+                worst = worst.max(e * self.total / self.weight(m));
             }
         }
         worst * (1.0 + 1e-12)
@@ -290,14 +359,15 @@ impl<'a> TabulatedEtas<'a> {
     }
 
     /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x, and wi.y = −wo.y: the
-    /// groove lobe's centre v = 0): the albedo's integrand.
+    /// groove lobe's centre v = 0): the albedo's integrand, read as `eval` reads it.
     #[inline]
     pub(super) fn eta_at_u(&self, m: i64, u: f64, wo: DVec3, lambda_nm: f64) -> f64 {
-        let w = self.eta_wo(m);
-        if w == 0.0 {
+        if self.eta_wo(m) == 0.0 {
             return 0.0;
         }
-        w.min(eta(self.table, m, (-(u - wo.x), wo.y), lambda_nm))
+        self.table
+            .incidences((-wo.x, -wo.y), (-(u - wo.x), wo.y))
+            .min(m, lambda_nm)
     }
 }
 
@@ -370,6 +440,16 @@ impl OrderWeights for TabulatedWeights<'_> {
     }
 }
 
+/// [`OrderSource::lobe_factor`] of a table. Not inlined: the table's reading would otherwise
+/// fill the amplitude model's `eval` (measured: its code's layout then cost the amplitude
+/// `eval` up to 3× its time in the benches' binary, at the same instructions).
+#[cfg(feature = "relief")]
+#[inline(never)]
+fn table_factor(table: &Tabulated, x: f64, wo: DVec3, wi: DVec3, lambda_nm: f64) -> f64 {
+    let pair = table.table().incidences((-wo.x, -wo.y), (-wi.x, -wi.y));
+    OrderSource::factor_at(&pair, x, lambda_nm)
+}
+
 /// Where a grating's order weights come from: the amplitude reading's precomputed weights, or
 /// a table (with the grating's N, for the candidate range).
 // The amplitude variant holds its weight tables inline (2.2 kB, as the BSDF always has): boxing
@@ -400,19 +480,32 @@ impl OrderSource {
                 match *table {}
             }
             #[cfg(feature = "relief")]
+            OrderSource::Tabulated { table, .. } => table_factor(table, x, wo, wi, lambda_nm),
+        }
+    }
+
+    /// A tabulated model's pair (wo, wi) located in its table (wo first), for the reads of
+    /// several wavelengths; `None` for the amplitude reading.
+    #[cfg(feature = "relief")]
+    #[inline(always)]
+    pub(super) fn incidences(&self, wo: DVec3, wi: DVec3) -> Option<Incidences<'_>> {
+        match self {
+            OrderSource::Amplitude(_) => None,
             OrderSource::Tabulated { table, .. } => {
-                let m = math::rint(x);
-                if !m.is_finite() {
-                    return 0.0;
-                }
-                let (t, m) = (table.table(), m as i64);
-                let e = eta(t, m, (-wo.x, -wo.y), lambda_nm);
-                if e == 0.0 {
-                    return 0.0;
-                }
-                e.min(eta(t, m, (-wi.x, -wi.y), lambda_nm))
+                Some(table.table().incidences((-wo.x, -wo.y), (-wi.x, -wi.y)))
             }
         }
+    }
+
+    /// [`lobe_factor`](Self::lobe_factor) of a table with the pair located.
+    #[cfg(feature = "relief")]
+    #[inline(always)]
+    pub(super) fn factor_at(pair: &Incidences<'_>, x: f64, lambda_nm: f64) -> f64 {
+        let m = math::rint(x);
+        if !m.is_finite() {
+            return 0.0;
+        }
+        pair.min(m as i64, lambda_nm)
     }
 
     /// The candidate orders' range for wo (`inv_step` = d/λ), for a table's weights.

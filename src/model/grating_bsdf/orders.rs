@@ -31,9 +31,10 @@ const MAX_PHASE: f64 = 4.0e15;
 /// Orders |m| ≤ this have their weights w_m and prefix sums in a table, so that the candidates'
 /// total and an order's probability cost O(1) instead of O(K).
 const TABLE_ORDERS: usize = 64;
-/// Windows of at most this many candidates that contain order 0 are chosen from without a
-/// data-dependent branch (a count over this many lanes).
+/// Windows of at most this many candidates that contain order 0 are chosen from by a
+/// bisection of fixed depth over this many lanes (a power of two).
 const CHOICE_LANES: usize = 16;
+const _: () = assert!(CHOICE_LANES.is_power_of_two());
 /// The index of order m = 0 in [`AmplitudeOrders`]'s `cum` table (which starts at m = −65).
 const CUM_ZERO: i64 = TABLE_ORDERS as i64 + 1;
 /// The `cum` table's length: m = −65 ..= 64, and `CHOICE_LANES` entries of padding.
@@ -202,18 +203,24 @@ impl AmplitudeOrders {
         let target = uc * c.total;
         if c.lo <= 0 && c.hi >= 0 && c.hi - c.lo < CHOICE_LANES as i64 {
             // The first m with Σ_{lo}^{m} w = C(m) − C(lo − 1) > target (hi if none), as the
-            // number of m ≥ lo with C(m) − C(lo − 1) ≤ target, at most hi − lo: a count over
-            // fixed lanes, without a branch on uc (C is non-decreasing, so the lanes past hi
-            // count only where target rounds to the total, and the cap takes them back).
+            // number of m ≥ lo with C(m) − C(lo − 1) ≤ target, at most hi − lo: counted over
+            // fixed lanes (C is non-decreasing, so the lanes past hi count only where target
+            // rounds to the total, and the cap takes them back).
             // Order 0 lies in the window, so |C| is at most the window's total and the
             // differences round like a running sum. An order of weight 0 has C(m) = C(m − 1)
             // and is never the first above target, except as hi.
             let start = (c.lo + CUM_ZERO) as usize;
             if let Some(lanes) = self.cum.get(start..start + CHOICE_LANES) {
                 let base = self.cum[start - 1];
-                let mut k = 0u32;
-                for &cm in lanes {
-                    k += u32::from(cm - base <= target);
+                // C(m) − C(lo − 1) is non-decreasing along the lanes (a difference with a
+                // constant is monotone), so the count is the lanes' partition point: log₂ 16
+                // halvings, each a comparison and a conditional add.
+                let (mut k, mut half) = (0usize, CHOICE_LANES / 2);
+                while half > 0 {
+                    if lanes[k + half - 1] - base <= target {
+                        k += half;
+                    }
+                    half /= 2;
                 }
                 let mut m = c.lo + (k as i64).min(c.hi - c.lo);
                 while m > c.lo && self.weight(m) == 0.0 {

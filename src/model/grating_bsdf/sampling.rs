@@ -16,6 +16,8 @@ use crate::model::bsdf::{BsdfFlags, BsdfSample};
 use crate::model::MIN_COS_THETA;
 use crate::num::math;
 use crate::optics::groove::GrooveSpread;
+#[cfg(feature = "relief")]
+use crate::relief::Incidences;
 use crate::Slits;
 
 impl GratingBsdf {
@@ -90,6 +92,49 @@ impl GratingBsdf {
             return 0.0;
         }
         k * self.lobe.value(u, v, lambda_nm)
+    }
+
+    /// [`value`](Self::value) of a tabulated model with the pair (wo, wi) located in its table
+    /// (`OrderSource::incidences`): the same operations, so the same bits.
+    #[cfg(feature = "relief")]
+    #[inline(always)]
+    pub(super) fn value_at(
+        &self,
+        pair: &Incidences<'_>,
+        wo: DVec3,
+        wi: DVec3,
+        lambda_nm: f64,
+    ) -> f64 {
+        let (u, v) = (wi.x + wo.x, wi.y + wo.y);
+        let k = OrderSource::factor_at(pair, self.lobe.phase(u, lambda_nm), lambda_nm);
+        if k == 0.0 {
+            return 0.0;
+        }
+        k * self.lobe.value(u, v, lambda_nm)
+    }
+
+    /// [`pdf_finite`](Self::pdf_finite) of a tabulated model with the pair (wo, wi) located in
+    /// its table: the same weights (wo's location reused), so the same bits.
+    #[cfg(feature = "relief")]
+    #[inline]
+    pub(super) fn pdf_at(
+        &self,
+        pair: &Incidences<'_>,
+        wo: DVec3,
+        wi: DVec3,
+        lambda_nm: f64,
+    ) -> f64 {
+        let OrderSource::Tabulated { table, slits } = &self.orders else {
+            return self.pdf_finite(wo, wi, lambda_nm);
+        };
+        let Some(range) = OrderSource::range(*slits, wo, self.grating.period_nm() / lambda_nm)
+        else {
+            return 0.0;
+        };
+        match TabulatedWeights::at(table, pair, wo, lambda_nm, range) {
+            Some(w) => self.pdf_with(&w, wo, wi, lambda_nm),
+            None => 0.0,
+        }
     }
 
     /// The density for finite N and a non-ideal groove, after the checks.

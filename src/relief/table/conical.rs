@@ -19,7 +19,7 @@ use super::{corner_mean, corner_q, interval, scale, AxisName, EfficiencyTable, O
 #[cfg(feature = "alloc")]
 use super::{
     load::{check_axis, check_period, SUM_TOLERANCE},
-    NodeQ, Storage, UnitCells, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
+    Lookup, NodeQ, Storage, UnitCells, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
 };
 #[cfg(feature = "alloc")]
 use crate::error::{Error, Requirement};
@@ -394,6 +394,7 @@ impl EfficiencyTable {
             },
             unit: UnitCells::new(),
             q: NodeQ::new(),
+            lookup: Lookup::new(),
         })
     }
 }

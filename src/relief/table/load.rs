@@ -4,7 +4,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use super::{EfficiencyTable, NodeQ, Storage, UnitCells};
+use super::{EfficiencyTable, Lookup, NodeQ, Storage, UnitCells};
 use crate::error::{positive, Error, Requirement};
 use crate::num::math;
 use crate::relief::scalar::{ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER};
@@ -213,6 +213,7 @@ impl EfficiencyTable {
             },
             unit: UnitCells::new(),
             q: NodeQ::new(),
+            lookup: Lookup::new(),
         })
     }
 

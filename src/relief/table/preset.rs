@@ -4,7 +4,7 @@
 use core::fmt;
 use core::str::FromStr;
 
-use super::{EfficiencyTable, NodeQ, Storage, UnitCells};
+use super::{EfficiencyTable, Lookup, NodeQ, Storage, UnitCells};
 use crate::data::efficiency_presets_data as data;
 use crate::ParseError;
 
@@ -49,6 +49,7 @@ static CD: EfficiencyTable = EfficiencyTable {
     },
     unit: UnitCells::new(),
     q: NodeQ::new(),
+    lookup: Lookup::new(),
 };
 
 static DVD: EfficiencyTable = EfficiencyTable {
@@ -64,6 +65,7 @@ static DVD: EfficiencyTable = EfficiencyTable {
     },
     unit: UnitCells::new(),
     q: NodeQ::new(),
+    lookup: Lookup::new(),
 };
 
 static BLAZED600: EfficiencyTable = EfficiencyTable {
@@ -79,6 +81,7 @@ static BLAZED600: EfficiencyTable = EfficiencyTable {
     },
     unit: UnitCells::new(),
     q: NodeQ::new(),
+    lookup: Lookup::new(),
 };
 
 static FOIL: EfficiencyTable = EfficiencyTable {
@@ -94,6 +97,7 @@ static FOIL: EfficiencyTable = EfficiencyTable {
     },
     unit: UnitCells::new(),
     q: NodeQ::new(),
+    lookup: Lookup::new(),
 };
 
 /// The spellings [`Preset`]'s `FromStr` accepts.
