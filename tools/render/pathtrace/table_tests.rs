@@ -88,8 +88,8 @@ fn a_hostile_table_file_is_refused_naming_the_field() {
     std::fs::write(dir.join("tables/bad.json"), "{\"format\": ").unwrap();
     std::fs::write(dir.join("tables/latin1.json"), b"{\"name\": \"\xe9\"}").unwrap();
     std::fs::write(
-        dir.join("tables/v3.json"),
-        TABLE.replace("\"version\": 1", "\"version\": 3"),
+        dir.join("tables/v4.json"),
+        TABLE.replace("\"version\": 1", "\"version\": 4"),
     )
     .unwrap();
     let big = std::fs::File::create(dir.join("tables/big.json")).unwrap();
@@ -126,8 +126,8 @@ fn a_hostile_table_file_is_refused_naming_the_field() {
             "\"tables/bad.json\": format: EOF while parsing a value at line 1 column 11".into(),
         ),
         (
-            "tables/v3.json",
-            "\"tables/v3.json\": version: expected 1 or 2, got 3 at line 7 column 74".into(),
+            "tables/v4.json",
+            "\"tables/v4.json\": version: expected 1, 2 or 3, got 4 at line 7 column 74".into(),
         ),
     ];
     if has_fifo {
