@@ -213,7 +213,120 @@ impl Reduced<'_> {
     }
 }
 
+impl Reduced<'_> {
+    /// The cell of plane `p` alone at s′ = `sp` and its own physical wavelength `lambda_nm`
+    /// (both clamped to the plane's axes; the query is then the clamped point): the eight
+    /// corners of [`find`](Self::find) with the other plane's weights 0. `None` for a non-finite
+    /// query or grazing incidence on the grid.
+    fn find_plane(&self, p: usize, sp: f64, lambda_nm: f64) -> Option<Cell3> {
+        if !(sp.is_finite() && lambda_nm.is_finite()) || p >= self.bet.len() {
+            return None;
+        }
+        let (sin, n_s) = (self.sin, self.sin.len());
+        let sp = sp.max(sin[0]).min(sin[n_s - 1]);
+        let c = cb(self.bet[p]);
+        let cos_i = c * math::sqrt(1.0 - sp * sp);
+        if cos_i.is_nan() || cos_i <= 0.0 {
+            return None;
+        }
+        let nodes = self.plane(p);
+        let l = lambda_nm.max(nodes[0]).min(nodes[nodes.len() - 1]);
+        let (i, j) = (interval(sin, sp), interval(nodes, l));
+        let tx = (sp - sin[i]) / (sin[i + 1] - sin[i]);
+        let ty = (l - nodes[j]) / (nodes[j + 1] - nodes[j]);
+        let b = self.bet[p];
+        let mut cell = Cell3 {
+            alpha: sp * c,
+            beta2: b * b,
+            lambda_nm: l,
+            cos_i,
+            w: [0.0; 8],
+            a_c: [0.0; 8],
+            b2_c: [0.0; 8],
+            l_c: [0.0; 8],
+            cos_c: [0.0; 8],
+            index: [0; 8],
+            cell: 0,
+        };
+        let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };
+        for n in 0..8 {
+            let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
+            // Corners 0..4 (dk = 0) are the plane's; the others repeat them with weight 0.
+            cell.w[n] = if dk == 0 {
+                wt(di, tx) * wt(dj, ty)
+            } else {
+                0.0
+            };
+            let s_n = sin[i + di];
+            cell.a_c[n] = s_n * c;
+            cell.b2_c[n] = b * b;
+            cell.l_c[n] = nodes[j + dj];
+            cell.cos_c[n] = c * math::sqrt(1.0 - s_n * s_n);
+            cell.index[n] = (self.rows[p] + j + dj) * n_s + i + di;
+        }
+        Some(cell)
+    }
+}
+
 impl EfficiencyTable {
+    /// Every stored order's efficiencies of plane `plane` of a reduced conical table read
+    /// alone (feature `alloc`), at s′ = `sin_theta_i` and the plane's own physical wavelength
+    /// `lambda_nm`, each clamped to the plane's nodes: the rule of
+    /// [`efficiencies_conical`](Self::efficiencies_conical) on that plane's corners only, with
+    /// its normalisation, written to `out` as there; returns the unpolarised sum. A query of
+    /// the table reads a plane at wavelengths beyond the band (its neighbours' queries), which
+    /// this reaches directly (the table builder checks a plane's interpolation with it). 0
+    /// (and `out` zeroed) for any other table, a plane past the last, or a non-finite query.
+    ///
+    /// ```
+    /// use diffraction::relief::{EfficiencyTable, Polarised, ReducedGrid};
+    /// let grid = ReducedGrid {
+    ///     sin_theta_i: vec![-0.5, 0.5],
+    ///     abs_beta: vec![0.0, 0.6],
+    ///     lambda_range_nm: (400.0, 700.0),
+    ///     lambda_nm: vec![vec![400.0, 875.0], vec![320.0, 700.0]],
+    /// };
+    /// let te = vec![0.9, 0.9, 0.9, 0.9, 0.5, 0.5, 0.5, 0.5];
+    /// let t = EfficiencyTable::new_reduced(1000.0, 0, grid, te.clone(), te)?;
+    /// let mut out = [Polarised::default(); 1];
+    /// // The β = 0 plane at 850 nm, past the band: its own value.
+    /// t.plane_efficiencies(0, 0.2, 850.0, &mut out);
+    /// assert!((out[0].te - 0.9).abs() < 1e-12);
+    /// t.plane_efficiencies(1, 0.2, 330.0, &mut out);
+    /// assert!((out[0].te - 0.5).abs() < 1e-12);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn plane_efficiencies(
+        &self,
+        plane: usize,
+        sin_theta_i: f64,
+        lambda_nm: f64,
+        out: &mut [Polarised],
+    ) -> f64 {
+        for o in out.iter_mut() {
+            *o = Polarised::default();
+        }
+        let Some(r) = self.reduced() else {
+            return 0.0;
+        };
+        let Some(cell) = r.find_plane(plane, sin_theta_i, lambda_nm) else {
+            return 0.0;
+        };
+        let q = self.q.get(|| self.reduced_q(&r));
+        let first = self.order_min;
+        let (st, sm) = self.sum_cell(&cell, r.slice(), (r.te, r.tm), q, |m, e| {
+            if let Some(o) = out.get_mut((m - first) as usize) {
+                *o = e;
+            }
+        });
+        let (kt, km) = (super::scale(st), super::scale(sm));
+        for o in out.iter_mut() {
+            o.te *= kt;
+            o.tm *= km;
+        }
+        0.5 * (st * kt + sm * km)
+    }
+
     /// The arrays of a reduced conical table, `None` for any other.
     pub(super) fn reduced(&self) -> Option<Reduced<'_>> {
         match &self.storage {
