@@ -189,7 +189,7 @@ pub struct TableSpec {
     /// docs, step 5), or, `false`, the version-2 tensor grid in (s′, |β|, λ).
     pub reduced: bool,
     /// A reduced table's largest ratio c_p/c_{p+1} between neighbouring planes, c = √(1 − β²)
-    /// (default 1.5): planes are added (bisecting c) until every pair meets it, so that each
+    /// (default 2.5): planes are added (bisecting c) until every pair meets it, so that each
     /// plane's wavelengths reach at most this factor beyond the band (and within the solver's
     /// [`OrderSolver::wavelength_range_nm`]: the ratio is lowered to fit it).
     pub max_plane_ratio: f64,
@@ -219,7 +219,7 @@ impl Default for TableSpec {
             abs_beta: Vec::new(),
             min_beta_step: 0.02,
             reduced: true,
-            max_plane_ratio: 1.5,
+            max_plane_ratio: 2.5,
             fixed_nodes: None,
         }
     }

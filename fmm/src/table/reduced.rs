@@ -11,10 +11,10 @@
 //!    Rayleigh breakpoints c_p·d/m and c_p·2d/m (the classical ones in λ′).
 //! 3. Held-out midpoints: along s′ on every plane's rows, along each plane's λ on every s′
 //!    column, and between neighbouring planes at the mean of their c, on every s′ column, at
-//!    the reduced wavelengths of both planes' nodes inside the slab's queries (and its ends)
-//!    where they fall inside the band. An interval (of s′, of a plane's λ, or a slab) above
-//!    the tolerance is bisected; its midpoints, already solved, become nodes (an inserted plane
-//!    gets all those reduced wavelengths, the ones past the band solved in the next round).
+//!    the lower plane's nodes' reduced wavelengths that fall inside the band there. An interval
+//!    (of s′, of a plane's λ, or a slab) above the tolerance is bisected; its midpoints,
+//!    already solved, become nodes (an inserted plane gets both planes' nodes' reduced
+//!    wavelengths inside the slab's queries, and its ends, solved in the next round).
 //! 4. Random points in the box (s′, |β| and λ uniform); one above the tolerance bisects its s′
 //!    interval, its slab and both planes' λ intervals.
 //!
@@ -223,10 +223,16 @@ pub(super) fn build<S: OrderSolver>(
         let inserts: Vec<(f64, Vec<f64>)> = (0..planes.len() - 1)
             .map(|k| between(&planes[k], &planes[k + 1], band, spec.min_lambda_step_nm))
             .collect();
-        // Between planes: the blend at the band's queries only (the plane's other nodes are
-        // solved once it is inserted).
+        // Between planes: the blend at the band's queries, at the lower plane's reduced
+        // wavelengths (a plane inserted there gets both planes', solved once it is).
         for (k, (beta, lams)) in inserts.iter().enumerate() {
-            for &lam in lams.iter().filter(|&&l| l >= band.0 && l <= band.1) {
+            let (c0, cm) = (cb(planes[k].beta), cb(*beta));
+            let at_lower = |l: f64| {
+                let lp = l / cm * c0;
+                planes[k].lam.iter().any(|&x| (x - lp).abs() <= 1e-9 * x)
+            };
+            let in_band = |l: f64| l >= band.0 && l <= band.1;
+            for &lam in lams.iter().filter(|&&l| in_band(l) && at_lower(l)) {
                 for &x in &s {
                     checks.push(((x, *beta, lam), Axis::B(k)));
                 }

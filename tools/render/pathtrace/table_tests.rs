@@ -81,6 +81,27 @@ fn a_table_file_is_the_gratings_efficiencies_and_period() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A reduced conical table (version 3): two |β| planes of one order, each with its own
+/// wavelengths (docs/efficiency_tables.md, "Reduced conical tables").
+const TABLE_V3: &str = r#"{"format": "diffraction-efficiency-table", "version": 3, "name": "t",
+"grating": {"profile": "lamellar", "period_nm": 1000.0}, "sin_theta_i": [-0.5, 0.5],
+"abs_beta": [0.0, 0.6], "lambda_range_nm": [400.0, 700.0],
+"lambda_nm": [[400.0, 600.0, 875.0], [320.0, 700.0]], "order_min": 0, "order_max": 0,
+"te": [[[[0.9, 0.9], [0.9, 0.9], [0.9, 0.9]], [[0.9, 0.9], [0.9, 0.9]]]],
+"tm": [[[[0.8, 0.8], [0.8, 0.8], [0.8, 0.8]], [[0.8, 0.8], [0.8, 0.8]]]],
+"solver": {}, "validation": {}, "sha256": "0"}"#;
+
+#[test]
+fn a_reduced_conical_table_file_loads() {
+    let dir = scratch("v3");
+    std::fs::write(dir.join("tables/v3.json"), TABLE_V3).unwrap();
+    let scene = load(&dir, &scene_src("tables/v3.json", "")).unwrap();
+    let g = scene.materials[0].grating.as_ref().unwrap();
+    assert_eq!(g.model.grating().period_nm(), 1000.0);
+    assert!(g.model.order_efficiency().is_tabulated());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_hostile_table_file_is_refused_naming_the_field() {
     let dir = scratch("hostile");
