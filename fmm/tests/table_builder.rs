@@ -471,7 +471,7 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
 }
 
 /// The reduced format (version 3) of the same: every plane with its own wavelengths, planes
-/// added until neighbours' √(1 − β²) differ by at most 1.5.
+/// added until neighbours' √(1 − β²) differ by at most 2.5.
 #[test]
 fn a_reduced_conical_table_is_within_its_error_and_reads_back() {
     conical_build(true);

@@ -47,7 +47,7 @@ const USAGE: &str =
                (s', lambda/sqrt(1-beta^2))), planes added until neighbours' sqrt(1-beta^2) differ by
                at most --max-plane-ratio
   --conical-version  3 (default) or 2 (the tensor grid in (s', |beta|, lambda) of version 2)
-  --max-plane-ratio  a reduced table's largest ratio of neighbouring planes' sqrt(1-beta^2) (default 1.5)
+  --max-plane-ratio  a reduced table's largest ratio of neighbouring planes' sqrt(1-beta^2) (default 2.5; lowered to keep every plane inside the metal's data)
   --max-solves bound on rigorous solves (default 20000)
   --nodes-of   solve at the (s, lambda) nodes of this classical table file instead: no refinement, no
                --tolerance; the held-out error at --validation random points is measured and stored
