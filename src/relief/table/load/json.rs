@@ -636,9 +636,12 @@ impl Fields {
 
 /// The JSON table of `docs/efficiency_tables.md` (features `serde` and `alloc`; a
 /// self-describing format such as JSON), checked as [`EfficiencyTable::new`] checks (and
-/// `format` = `"diffraction-efficiency-table"`, `version` = the integer 1, `order_min` and
-/// `order_max` integers with `order_max` ≥ `order_min`, `te` and `tm` of shape
-/// `[order_max − order_min + 1][n_λ][n_s]`); each error names the field, and the element
+/// `format` = `"diffraction-efficiency-table"`, `version` = the integer 1, 2 or 3, `order_min`
+/// and `order_max` integers with `order_max` ≥ `order_min`, `te` and `tm` of shape
+/// `[order_max − order_min + 1][n_λ][n_s]`, with `abs_beta` `[…][n_β][n_λ][n_s]` (version 2,
+/// [`EfficiencyTable::new_conical`]'s checks), or `[…][n_β][rows of plane p][n_s]` with
+/// `abs_beta`, `lambda_range_nm` and `lambda_nm` one array per plane (version 3,
+/// [`EfficiencyTable::new_reduced`]'s checks)); each error names the field, and the element
 /// (`te[2][0][1]: expected a number, got null`), also where the parser itself refuses a value
 /// (`lambda_nm[1]: number out of range`). Fields the crate does not use (`name`,
 /// `description`, `symmetric`, `solver`, `validation`, `command`, `sha256`, the grating's
