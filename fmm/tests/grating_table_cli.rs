@@ -337,8 +337,9 @@ fn a_small_table_is_written_and_loads() {
     std::fs::remove_file(&out).unwrap();
 }
 
-/// Expensive: a reduced conical build (minutes on the shared 2-core machine). Run with
-/// `--ignored`.
+/// Expensive: a reduced conical build (half a minute on the shared 2-core machine: two planes,
+/// solves capped at 161 harmonics and converged to 10⁻², the table to 0.1; capped lamellar TM
+/// solves are noisier than a tighter table). Run with `--ignored`.
 #[test]
 #[ignore]
 fn a_small_reduced_conical_table_is_written_and_loads() {
@@ -353,8 +354,12 @@ fn a_small_reduced_conical_table_is_written_and_loads() {
             "0.5",
             "--abs-beta",
             "0,0.5",
+            "--max-harmonics",
+            "161",
+            "--solve-tolerance",
+            "1e-2",
             "--tolerance",
-            "0.02",
+            "0.1",
             "--out",
             o,
         ])
@@ -366,6 +371,6 @@ fn a_small_reduced_conical_table_is_written_and_loads() {
     assert!(t.is_reduced());
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(v["version"], 3);
-    assert!(v["validation"]["achieved_abs_error"].as_f64().unwrap() <= 0.02);
+    assert!(v["validation"]["achieved_abs_error"].as_f64().unwrap() <= 0.1);
     std::fs::remove_file(&out).unwrap();
 }
