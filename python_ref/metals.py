@@ -10,8 +10,10 @@ Sources (all tabulated measurements, taken from the refractiveindex.info databas
       doi:10.1103/PhysRevB.9.5056 (database/data/main/Cr/nk/Johnson.yml); the same measurement
       technique and film preparation as the noble metals, so the five tables are comparable.
 
-The rows used (every source row inside 360-830 nm plus the nearest row on each side, so that
-linear interpolation covers the band without extrapolation) are committed as
+The rows used (every source row inside 200-2000 nm plus the nearest row on each side where
+there is one, so that linear interpolation covers the visible band without extrapolation, and
+the wavelengths a reduced conical table's |beta| planes reach beyond it: a plane between |beta|
+nodes with c = sqrt(1 - beta^2) is read at lambda * c_p / c) are committed as
 `python_ref/data/metals/<Metal>.csv`, with a header naming the paper, DOI, database path, commit and
 licence. `python3 python_ref/metals.py --extract DIR` rebuilds those CSVs from a checkout of the
 database (DIR contains `database/data/...`); it is not part of `generate.py` (the database is not a
@@ -44,6 +46,10 @@ from common import FIRST_NM, LAST_NM, REGEN_CMD, REPO, f, write_csv  # noqa: E40
 DATA_DIR = Path("python_ref/data/metals")
 RUST_OUTPUT = Path("src/data/metals_data.rs")
 CSV_OUTPUT = Path("tests/data/metals.csv")
+
+# The rows kept: every source row inside this range (nm) plus the nearest one on each side.
+KEEP_FIRST_NM = 200
+KEEP_LAST_NM = 2000
 
 # The database commit the committed CSVs were extracted from (refractiveindex.info-database).
 DATABASE_COMMIT = "ff11b5897ef0754b15d939d921eb6c745693cbd1"
@@ -152,8 +158,9 @@ def extract(db_root: Path) -> list[Path]:
         rows = _tabulated_rows((db_root / s.db_path).read_text(encoding="utf-8"))
         wl = [um_to_nm(r[0]) for r in rows]
         assert all(a < b for a, b in zip(wl, wl[1:])), s.metal
-        lo = max(i for i, w in enumerate(wl) if w <= FIRST_NM)
-        hi = min(i for i, w in enumerate(wl) if w >= LAST_NM)
+        lo = max((i for i, w in enumerate(wl) if w <= KEEP_FIRST_NM), default=0)
+        hi = min((i for i, w in enumerate(wl) if w >= KEEP_LAST_NM), default=len(wl) - 1)
+        assert wl[lo] <= FIRST_NM and wl[hi] >= LAST_NM, s.metal
         keep = rows[lo : hi + 1]
         path = REPO / DATA_DIR / f"{s.metal}.csv"
         write_csv(
@@ -163,7 +170,8 @@ def extract(db_root: Path) -> list[Path]:
                 f"Paper: {s.citation}, doi:{s.doi}.",
                 f"Database: {DATABASE_NAME}, file {s.db_path}, commit {DATABASE_COMMIT}.",
                 f"Licence: {LICENCE}.",
-                f"Rows: every source row inside {FIRST_NM}-{LAST_NM} nm plus the nearest one on each side,",
+                f"Rows: every source row inside {KEEP_FIRST_NM}-{KEEP_LAST_NM} nm plus the nearest one on each side",
+                "where there is one,",
                 "copied verbatim (wavelength in micrometres as in the database). Extracted with",
                 "`python3 python_ref/metals.py --extract DIR` (DIR: a checkout of the database).",
             ],
@@ -221,8 +229,9 @@ def _rust(root: Path) -> str:
         "Complex refractive indices n + ik of metals, tabulated measurements at the sources' own "
         f"wavelengths, from the {DATABASE_NAME}, commit {DATABASE_COMMIT}; licence {LICENCE}. The rows "
         "are those committed in python_ref/data/metals/<Metal>.csv: every source row inside "
-        f"{FIRST_NM}-{LAST_NM} nm plus the nearest one on each side, so the first row is at or below "
-        f"{FIRST_NM} nm and the last at or above {LAST_NM} nm. Values are the sources' decimal "
+        f"{KEEP_FIRST_NM}-{KEEP_LAST_NM} nm plus the nearest one on each side where there is one "
+        f"(the band {FIRST_NM}-{LAST_NM} nm, and the wavelengths the |beta| planes of a reduced "
+        "conical table reach beyond it). Values are the sources' decimal "
         "strings (wavelengths converted from micrometres exactly), no resampling."
     )
     header += ["//"]

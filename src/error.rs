@@ -122,6 +122,32 @@ pub enum Requirement {
         /// The most slices accepted.
         max_slices: usize,
     },
+    /// A whole number of `[plane][lambda][sin_theta_i]` slices of a reduced conical table
+    /// (version 3: each |β| plane with its own wavelength rows), one per order.
+    PlaneSlices {
+        /// The length of one slice (n_s times the rows of every plane).
+        slice: usize,
+        /// The most slices accepted.
+        max_slices: usize,
+    },
+    /// A reduced conical table's plane `plane` (its wavelength nodes `lambda_nm[plane]`) must
+    /// reach from `min` to `max` nm: the wavelengths that the queries of the table's band in the
+    /// cells beside the plane read there (the value is the plane's end node that falls short).
+    PlaneCovers {
+        /// The plane (index into `abs_beta`).
+        plane: usize,
+        /// The shortest wavelength the plane must hold, nm.
+        min: f64,
+        /// The longest wavelength the plane must hold, nm.
+        max: f64,
+    },
+    /// An element of plane `plane`'s wavelength nodes (`lambda_nm[plane]`) of a reduced conical
+    /// table: the plane has 2 to [`MAX_TABLE_NODES`](crate::relief::MAX_TABLE_NODES) finite
+    /// wavelengths > 0, strictly increasing (the value is the first that is not, or the count).
+    PlaneNodes {
+        /// The plane (index into `abs_beta`).
+        plane: usize,
+    },
     /// The same at every wavelength (a groove spread other than a coherence length, whose
     /// width λ/L changes with λ): the value is the rejected length.
     IndependentOfWavelength,
@@ -203,6 +229,15 @@ impl fmt::Display for Error {
             ),
             Error::InvalidParameter {
                 name,
+                value: len,
+                requirement: Requirement::PlaneSlices { slice, max_slices },
+            } => write!(
+                f,
+                "invalid {name}: has {len} values, must have a multiple of {slice} \
+                 (one [plane][lambda][sin_theta_i] slice per order), 1 to {max_slices} slices"
+            ),
+            Error::InvalidParameter {
+                name,
                 requirement: Requirement::NotTabulated,
                 ..
             } => write!(
@@ -248,10 +283,23 @@ impl fmt::Display for Error {
                         "be 0: order {order} is evanescent there \
                          ((sin_theta_i sqrt(1 - beta^2) + m lambda/d)^2 + beta^2 >= 1)"
                     ),
+                    Requirement::PlaneCovers { plane, min, max } => write!(
+                        f,
+                        "let plane {plane} (lambda_nm[{plane}]) reach from {} to {} nm, the \
+                         wavelengths the band's queries in the cells beside it read there",
+                        Num(*min),
+                        Num(*max)
+                    ),
+                    Requirement::PlaneNodes { plane } => write!(
+                        f,
+                        "be in plane {plane} (lambda_nm[{plane}]): 2 to 4096 finite wavelengths \
+                         > 0, strictly increasing"
+                    ),
                     // Printed by the arms above.
                     Requirement::Count { .. }
                     | Requirement::Slices { .. }
                     | Requirement::ConicalSlices { .. }
+                    | Requirement::PlaneSlices { .. }
                     | Requirement::NotTabulated => Ok(()),
                     Requirement::IndependentOfWavelength => {
                         write!(f, "be the same at every wavelength")

@@ -17,7 +17,7 @@ use bsdf_check::{
 };
 use bsdf_efficiency_tolerance::*;
 use diffraction::grating_bsdf::OrderEfficiency;
-use diffraction::relief::{EfficiencyTable, Metal, Preset, Relief, ScalarRelief};
+use diffraction::relief::{EfficiencyTable, Metal, Preset, ReducedGrid, Relief, ScalarRelief};
 use diffraction::{
     Bsdf, DiffractionBrdf, Grating, GratingBsdf, GrooveSpread, Slits, SpectralResponse,
 };
@@ -82,6 +82,60 @@ fn conical_table() -> Arc<EfficiencyTable> {
     Arc::new(EfficiencyTable::new_conical(1600.0, lo, s, b, l, te, tm).unwrap())
 }
 
+/// A reduced conical table (version 3) of the same sinusoid, scaled by 1 − 0.5·|β| as
+/// [`conical_table`]: planes at |β| = 0, 0.5, 0.7, 0.8, 0.9, each with 24 wavelengths of its own
+/// over what it must reach for the band 360-830 nm (λ0·c_p/c_{p−1} to λ1·c_p/c_{p+1},
+/// c = √(1 − β²)), and 41 nodes of s′.
+fn reduced_table() -> Arc<EfficiencyTable> {
+    let relief = ScalarRelief::new(Relief::sinusoid(80.0).unwrap(), Metal::AL, 1600.0).unwrap();
+    let (s, b) = (grid(-0.99, 0.99, 41), vec![0.0, 0.5, 0.7, 0.8, 0.9]);
+    let band = (360.0, 830.0);
+    let c = |x: f64| (1.0f64 - x * x).sqrt();
+    let planes: Vec<Vec<f64>> = (0..b.len())
+        .map(|p| {
+            let lo = if p > 0 {
+                band.0 * c(b[p]) / c(b[p - 1])
+            } else {
+                band.0
+            };
+            let hi = match b.get(p + 1) {
+                Some(&n) => band.1 * c(b[p]) / c(n),
+                None => band.1,
+            };
+            grid(lo, hi, 24)
+        })
+        .collect();
+    let (lo, hi) = (-9i32, 9i32);
+    let rows: usize = planes.iter().map(Vec::len).sum();
+    let slice = s.len() * rows;
+    let n = (hi - lo + 1) as usize * slice;
+    let (mut te, mut tm) = (vec![0.0; n], vec![0.0; n]);
+    let mut row = 0;
+    for (&beta, nodes) in b.iter().zip(&planes) {
+        for &lam in nodes {
+            for (i, &x) in s.iter().enumerate() {
+                let alpha = x * c(beta);
+                for o in relief.orders(alpha, lam) {
+                    let am = alpha + f64::from(o.order) * lam / 1600.0;
+                    if (lo..=hi).contains(&o.order) && 1.0 - am * am - beta * beta > 0.0 {
+                        let at = (o.order - lo) as usize * slice + row * s.len() + i;
+                        te[at] = o.efficiency.te * (1.0 - 0.5 * beta);
+                        tm[at] = o.efficiency.tm * (1.0 - 0.5 * beta);
+                    }
+                }
+            }
+            row += 1;
+        }
+    }
+    let grid = ReducedGrid {
+        sin_theta_i: s,
+        abs_beta: b,
+        lambda_range_nm: band,
+        lambda_nm: planes,
+    };
+    Arc::new(EfficiencyTable::new_reduced(1600.0, lo, grid, te, tm).unwrap())
+}
+
 /// Every tabulated model of the tests at N, with its name.
 fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBsdf)> {
     let mut out: Vec<(String, GratingBsdf)> = PRESETS
@@ -100,6 +154,11 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
         let e = OrderEfficiency::from_table(conical_table()).unwrap();
         out.push((
             "conical sinusoid".into(),
+            GratingBsdf::new(g).with_efficiency(e).unwrap(),
+        ));
+        let e = OrderEfficiency::from_table(reduced_table()).unwrap();
+        out.push((
+            "reduced conical sinusoid".into(),
             GratingBsdf::new(g).with_efficiency(e).unwrap(),
         ));
     }

@@ -341,8 +341,8 @@ fn json_tables_load_and_bad_ones_name_the_field() {
             "format: expected \"diffraction-efficiency-table\", got \"other\"",
         ),
         (
-            |v| v["version"] = 3.into(),
-            "version: expected 1 or 2, got 3",
+            |v| v["version"] = 4.into(),
+            "version: expected 1, 2 or 3, got 4",
         ),
         (
             |v| v["grating"]["period_nm"] = (-1.0).into(),

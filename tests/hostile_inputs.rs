@@ -85,15 +85,15 @@ fn json_refusals_name_the_field_and_the_element() {
     let cases: Vec<(String, &str)> = vec![
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": 1.0"#)),
-            "version: expected 1 or 2, got 1.0",
+            "version: expected 1, 2 or 3, got 1.0",
         ),
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": "1""#)),
-            "version: expected 1 or 2, got \"1\"",
+            "version: expected 1, 2 or 3, got \"1\"",
         ),
         (
             json_with(|t| t.replace(r#""version": 1"#, r#""version": null"#)),
-            "version: expected 1 or 2, got null",
+            "version: expected 1, 2 or 3, got null",
         ),
         (
             json_with(|t| t.replace(r#""period_nm": 1000.0"#, r#""period_nm": null"#)),
@@ -207,7 +207,7 @@ fn hostile_json_tables_are_refused_by_field() {
         (json_with(|t| t.replace("[0.0, 0.5]", "[0.5, 0.0]")), "invalid sin_theta_i = 0: must be strictly increasing (above the value before it)".into()),
         (json_with(|t| t.replace("[500.0, 600.0]", "[500.0, 500.0]")), "invalid lambda_nm = 500: must be strictly increasing (above the value before it)".into()),
         // Wrong version.
-        (json_with(|t| t.replace(r#""version": 1"#, r#""version": 3"#)), "version: expected 1 or 2, got 3".into()),
+        (json_with(|t| t.replace(r#""version": 1"#, r#""version": 4"#)), "version: expected 1, 2 or 3, got 4".into()),
         // Claimed dimensions far beyond the data.
         (json_with(|t| t.replace(r#""order_max": 1"#, r#""order_max": 4000"#)), "te: has shape [3][2][2], expected [4002][2][2] ([order][lambda][sin])".into()),
         // An order whose rows disagree, a row longer than the grid.
@@ -227,7 +227,7 @@ fn hostile_json_tables_are_refused_by_field() {
         ),
         // Deeply nested JSON, in a field the reader uses and in one it skips.
         (json_with(|t| t.replacen(r#""te": ["#, &format!(r#""te": [{deep},"#), 1)), "te[0][0][0][0]: expected a number, got an array".into()),
-        (json_with(|t| t.replace(r#""version": 1"#, &format!(r#""version": {deep}"#))), "version: expected 1 or 2, got an array".into()),
+        (json_with(|t| t.replace(r#""version": 1"#, &format!(r#""version": {deep}"#))), "version: expected 1, 2 or 3, got an array".into()),
         // A table whose orders or grid disagree with its period: order 1 propagating at a
         // node where it is evanescent for d = 1000 nm; the same table on a 100 nm period.
         (json_with(|t| t.replace("[[0.1, 0.0], [0.1, 0.0]]]", "[[0.1, 0.01], [0.1, 0.0]]]")), "invalid te = 0.01: must be 0: order 1 is evanescent there (|sin_theta_i + m lambda/d| >= 1)".into()),
@@ -278,8 +278,9 @@ fn hostile_conical_tables_are_refused_by_field() {
         (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.6, 0.6]")), "invalid abs_beta = 0.6: must be strictly increasing (above the value before it)".into()),
         (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.6]")), "invalid abs_beta: has 1 values, must have 2 to 4096".into()),
         (conical_json_with(|t| t.replace("[0.0, 0.6]", "[0.0, null]")), "abs_beta[1]: expected a number, got null".into()),
-        // A plane of another shape, a value of the wrong type, deeper than four levels.
-        (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, 0.2], [0.1, 0.2], [0.1, 0.2]]]", 1)), "te[0][1]: has 3 wavelength rows, expected 2 (as the first)".into()),
+        // A plane of another shape (each plane may have its own rows, version 3, but every
+        // order the first's), a value of the wrong type, deeper than four levels.
+        (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, 0.2], [0.1, 0.2], [0.1, 0.2]]]", 1)), "te[1][1]: has 2 wavelength rows, expected 3 (as the first order's plane 1)".into()),
         (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, \"x\"], [0.1, 0.2]]]", 1)), "te[0][1][0][1]: expected a number, got \"x\"".into()),
         (conical_json_with(|t| t.replacen("[[0.1, 0.2], [0.1, 0.2]]]", "[[0.1, [0.2]], [0.1, 0.2]]]", 1)), "te[0][1][0][1]: expected a number, got an array".into()),
         // Order 1 at s′ = 0.5, |β| = 0.6, λ = 600 nm: α₁ = 0.4 + 0.6, evanescent.

@@ -25,6 +25,13 @@
 //! 4. Validation: solve at [`TableSpec::validation_points`] random points (seeded) and compare;
 //!    a point above the tolerance bisects both intervals of its cell and the loop goes on.
 //!
+//! 5. Conical ([`TableSpec::abs_beta`] not empty): the error is the unpolarised efficiency's
+//!    per order (a conical solve's s and p split swaps between β = 0 and β > 0 at α = 0; their
+//!    mean is what the BSDF reads). By default ([`TableSpec::reduced`]) the table is the
+//!    reduced format (JSON version 3): |β| planes with their own wavelength nodes, refined along
+//!    s′, along each plane's λ and between planes (`table/reduced.rs` says how); otherwise the
+//!    version-2 tensor grid in (s′, |β|, λ), refined as steps 1-4 along its three axes.
+//!
 //! The achieved error stored with the table is the largest absolute error over the held-out
 //! points of the final grid (the last round's midpoints, which are not nodes, and the random
 //! points). Work is bounded: more than [`TableSpec::max_solves`] solves, or a grid beyond the
@@ -36,13 +43,16 @@ use std::fmt;
 use std::time::Instant;
 
 use diffraction::relief::{EfficiencyTable, MAX_TABLE_NODES};
-use diffraction::{Error, Requirement};
+use diffraction::Error;
 
 mod cache;
 mod json;
+mod reduced;
 mod rigorous;
+mod spec;
 
 use cache::{assemble, point_error, Cache, Point};
+use spec::check_spec;
 
 pub use json::TableMeta;
 pub use rigorous::{Mapped, Rigorous};
@@ -120,6 +130,13 @@ pub trait OrderSolver: Sync {
         }
     }
 
+    /// The wavelengths (nm) the solver can solve at (its materials' tabulated range), `None`
+    /// (the default) for any: a reduced conical table's planes reach beyond its band, and the
+    /// builder keeps them inside this range or refuses the band by name.
+    fn wavelength_range_nm(&self) -> Option<(f64, f64)> {
+        None
+    }
+
     /// [`solve_conical`](Self::solve_conical), with the node marked where the solver did not
     /// converge to its tolerance but returned its best value: `Some(the last change)`. The
     /// default marks nothing.
@@ -164,8 +181,18 @@ pub struct TableSpec {
     /// (β: the incident direction cosine along the grooves); empty (the default): a classical
     /// table. A conical table's s axis is s′ = α/√(1 − β²) (`docs/efficiency_tables.md`).
     pub abs_beta: Vec<f64>,
-    /// Intervals narrower than this in |β| are not bisected; default 0.02.
+    /// Intervals narrower than this in |β| (in √(1 − β²) for a reduced table, whose planes are
+    /// bisected in it) are not bisected; default 0.02.
     pub min_beta_step: f64,
+    /// A conical table (`abs_beta` not empty) in the reduced format (JSON version 3, the
+    /// default: |β| planes with their own wavelength nodes, read at fixed (s′, λ′); the module
+    /// docs, step 5), or, `false`, the version-2 tensor grid in (s′, |β|, λ).
+    pub reduced: bool,
+    /// A reduced table's largest ratio c_p/c_{p+1} between neighbouring planes, c = √(1 − β²)
+    /// (default 2.5): planes are added (bisecting c) until every pair meets it, so that each
+    /// plane's wavelengths reach at most this factor beyond the band (and within the solver's
+    /// [`OrderSolver::wavelength_range_nm`]: the ratio is lowered to fit it).
+    pub max_plane_ratio: f64,
     /// A classical table on these nodes, (s, λ nm), each axis strictly increasing with 2 to
     /// [`MAX_TABLE_NODES`] nodes: no refinement (steps 1 and 3 of the module docs are skipped,
     /// `tolerance` is not enforced) and the held-out error is measured at the random
@@ -191,6 +218,8 @@ impl Default for TableSpec {
             threads: 0,
             abs_beta: Vec::new(),
             min_beta_step: 0.02,
+            reduced: true,
+            max_plane_ratio: 2.5,
             fixed_nodes: None,
         }
     }
@@ -325,13 +354,18 @@ pub struct BuiltTable {
     pub sin_theta_i: Vec<f64>,
     /// The |β| nodes of a conical table; empty for a classical one.
     pub abs_beta: Vec<f64>,
-    /// The λ nodes, nm.
+    /// The λ nodes, nm (of a reduced conical table its first plane's).
     pub lambda_nm: Vec<f64>,
+    /// A reduced conical table's wavelength nodes, one list per |β| plane (empty otherwise).
+    pub plane_lambda_nm: Vec<Vec<f64>>,
+    /// The band of physical wavelengths the table answers for, nm.
+    pub lambda_range_nm: (f64, f64),
     /// The first order stored.
     pub order_min: i32,
     /// The last order stored.
     pub order_max: i32,
-    /// TE efficiencies flattened `[order][λ][s]` (`[order][|β|][λ][s]` for a conical table).
+    /// TE efficiencies flattened `[order][λ][s]` (`[order][|β|][λ][s]` for a conical table,
+    /// `[order][plane][λ of the plane][s]` for a reduced one).
     pub te: Vec<f64>,
     /// TM efficiencies, flattened as `te`.
     pub tm: Vec<f64>,
@@ -339,133 +373,6 @@ pub struct BuiltTable {
     pub table: EfficiencyTable,
     /// The error statistics.
     pub report: BuildReport,
-}
-
-fn invalid(name: &'static str, value: f64, requirement: Requirement) -> TableError {
-    TableError::Invalid(Error::InvalidParameter {
-        name,
-        value,
-        requirement,
-    })
-}
-
-// The negated comparisons reject NaN with the out-of-range values.
-#[allow(clippy::neg_cmp_op_on_partial_ord)]
-fn check_spec(spec: &TableSpec, period_nm: f64) -> Result<(), TableError> {
-    if !(period_nm.is_finite() && period_nm > 0.0) {
-        return Err(invalid("period_nm", period_nm, Requirement::Positive));
-    }
-    let (s0, s1) = spec.sin_theta_range;
-    let open = Requirement::Within {
-        min: -0.99999,
-        max: 0.99999,
-    };
-    for (name, v) in [("sin_theta_range.0", s0), ("sin_theta_range.1", s1)] {
-        if !(v.abs() <= 0.99999) {
-            return Err(invalid(name, v, open));
-        }
-    }
-    if !(s1 > s0) {
-        let r = Requirement::GreaterThan {
-            bound_name: "sin_theta_range.0",
-            bound: s0,
-        };
-        return Err(invalid("sin_theta_range.1", s1, r));
-    }
-    let (l0, l1) = spec.lambda_range_nm;
-    let lam = Requirement::Within {
-        min: 100.0,
-        max: 20_000.0,
-    };
-    for (name, v) in [("lambda_range_nm.0", l0), ("lambda_range_nm.1", l1)] {
-        if !(100.0..=20_000.0).contains(&v) {
-            return Err(invalid(name, v, lam));
-        }
-    }
-    if !(l1 > l0) {
-        let r = Requirement::GreaterThan {
-            bound_name: "lambda_range_nm.0",
-            bound: l0,
-        };
-        return Err(invalid("lambda_range_nm.1", l1, r));
-    }
-    let positive = [
-        ("tolerance", spec.tolerance),
-        ("initial_sin_step", spec.initial_sin_step),
-        ("initial_lambda_step_nm", spec.initial_lambda_step_nm),
-        ("min_sin_step", spec.min_sin_step),
-        ("min_lambda_step_nm", spec.min_lambda_step_nm),
-    ];
-    for (name, v) in positive {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(invalid(name, v, Requirement::Positive));
-        }
-    }
-    if spec.max_solves == 0 {
-        return Err(invalid("max_solves", 0.0, Requirement::AtLeastOne));
-    }
-    if !(spec.min_beta_step.is_finite() && spec.min_beta_step > 0.0) {
-        return Err(invalid(
-            "min_beta_step",
-            spec.min_beta_step,
-            Requirement::Positive,
-        ));
-    }
-    if let Some((s, l)) = &spec.fixed_nodes {
-        // The random points are a fixed grid's only held-out check.
-        if spec.validation_points == 0 {
-            return Err(invalid("validation_points", 0.0, Requirement::AtLeastOne));
-        }
-        if !spec.abs_beta.is_empty() {
-            return Err(invalid(
-                "abs_beta",
-                spec.abs_beta.len() as f64,
-                Requirement::Count { min: 0, max: 0 },
-            ));
-        }
-        let count = Requirement::Count {
-            min: 2,
-            max: MAX_TABLE_NODES,
-        };
-        for (name, nodes, lo, hi) in [
-            ("fixed_nodes.0", s, -0.99999, 0.99999),
-            ("fixed_nodes.1", l, 100.0, 20_000.0),
-        ] {
-            if !(2..=MAX_TABLE_NODES).contains(&nodes.len()) {
-                return Err(invalid(name, nodes.len() as f64, count));
-            }
-            for (i, &x) in nodes.iter().enumerate() {
-                if !(lo..=hi).contains(&x) {
-                    return Err(invalid(name, x, Requirement::Within { min: lo, max: hi }));
-                }
-                if i > 0 && x <= nodes[i - 1] {
-                    return Err(invalid(name, x, Requirement::StrictlyIncreasing));
-                }
-            }
-        }
-    }
-    if !spec.abs_beta.is_empty() {
-        let within = Requirement::Within {
-            min: 0.0,
-            max: diffraction::relief::MAX_TABLE_ABS_BETA,
-        };
-        if spec.abs_beta.len() < 2 {
-            let r = Requirement::Count {
-                min: 2,
-                max: MAX_TABLE_NODES,
-            };
-            return Err(invalid("abs_beta", spec.abs_beta.len() as f64, r));
-        }
-        for (i, &b) in spec.abs_beta.iter().enumerate() {
-            if !(0.0..=diffraction::relief::MAX_TABLE_ABS_BETA).contains(&b) {
-                return Err(invalid("abs_beta", b, within));
-            }
-            if i > 0 && b <= spec.abs_beta[i - 1] {
-                return Err(invalid("abs_beta", b, Requirement::StrictlyIncreasing));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Even steps of at most `step` from `a` to `b`, both ends included.
@@ -560,6 +467,9 @@ pub fn build_table<S: OrderSolver>(
 ) -> Result<BuiltTable, TableError> {
     let d = solver.period_nm();
     check_spec(spec, d)?;
+    if spec.reduced && !spec.abs_beta.is_empty() {
+        return reduced::build(solver, spec, progress);
+    }
     let threads = if spec.threads == 0 {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     } else {
@@ -661,7 +571,7 @@ pub fn build_table<S: OrderSolver>(
         ];
         let mut unresolved = 0;
         for &(p, axis, i) in &checks {
-            let e = point_error(&table, &cache.get(p), p);
+            let e = point_error(&table, &cache.get(p), p, conical);
             errs.push(e);
             at.push(p);
             if e > spec.tolerance {
@@ -705,7 +615,7 @@ pub fn build_table<S: OrderSolver>(
                     e => e,
                 })?;
             for &p in &pts {
-                let e = point_error(&table, &cache.get(p), p);
+                let e = point_error(&table, &cache.get(p), p, conical);
                 errs.push(e);
                 at.push(p);
                 random_max = random_max.max(e);
@@ -739,6 +649,8 @@ pub fn build_table<S: OrderSolver>(
             sin_theta_i: s.clone(),
             abs_beta: if conical { b.clone() } else { Vec::new() },
             lambda_nm: l.clone(),
+            plane_lambda_nm: Vec::new(),
+            lambda_range_nm: (l[0], l[l.len() - 1]),
             order_min: lo,
             order_max: hi,
             te,

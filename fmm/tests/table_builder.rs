@@ -197,7 +197,7 @@ fn json_reads_back_through_the_library_loader() {
 #[test]
 fn bad_specs_name_the_field() {
     let solver = foil();
-    let cases: [(&str, TableSpec); 9] = [
+    let cases: [(&str, TableSpec); 11] = [
         (
             "validation_points",
             TableSpec {
@@ -232,6 +232,20 @@ fn bad_specs_name_the_field() {
             "tolerance",
             TableSpec {
                 tolerance: -1.0,
+                ..spec(1e-2)
+            },
+        ),
+        (
+            "max_plane_ratio",
+            TableSpec {
+                max_plane_ratio: 1.0,
+                ..spec(1e-2)
+            },
+        ),
+        (
+            "max_plane_ratio",
+            TableSpec {
+                max_plane_ratio: f64::NAN,
                 ..spec(1e-2)
             },
         ),
@@ -381,15 +395,17 @@ impl OrderSolver for Conical {
     }
 }
 
-/// A conical table built to 2·10⁻² is within its claimed error (with the fresh-points margin)
-/// at fresh random (α, β, λ) inside its box, and reads back through the library's loader as a
-/// version-2 file.
-#[test]
-fn a_conical_table_is_within_its_error_and_reads_back() {
+/// A conical table of the synthetic conical solver built to 2·10⁻² in the format `reduced`
+/// (version 3) or not (version 2): within its claimed error (unpolarised, what a conical build
+/// controls; with the fresh-points margin) at fresh random (α, β, λ) inside its box, read back
+/// through the library's loader as a file of that version. Returns the solves and the fresh
+/// error.
+fn conical_build(reduced: bool) -> (usize, f64) {
     let solver = Conical { period_nm: 1000.0 };
     let tolerance = 2e-2;
     let spec = TableSpec {
         abs_beta: vec![0.0, 0.45, 0.9],
+        reduced,
         ..spec(tolerance)
     };
     let built = match build_table(&solver, &spec, &mut |_| {}) {
@@ -398,7 +414,7 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
     };
     let r = &built.report;
     assert!(r.achieved_abs_error <= tolerance, "{r:?}");
-    assert!(built.table.is_conical());
+    assert!(built.table.is_conical() && built.table.is_reduced() == reduced);
     let mut state = 999u64;
     let mut next = || {
         state ^= state << 13;
@@ -415,13 +431,15 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
         for m in -6..=6 {
             let t = built.table.efficiency_conical(m, a, -b, l);
             let (te, tm) = o.get(m);
-            worst = worst.max((t.te - te).abs()).max((t.tm - tm).abs());
+            worst = worst.max((t.unpolarised() - 0.5 * (te + tm)).abs());
         }
     }
+    let rows: Vec<usize> = built.plane_lambda_nm.iter().map(Vec::len).collect();
     eprintln!(
-        "conical: grid {} x {} x {}, {} solves, achieved {:.3e}, fresh max {worst:.3e}",
+        "conical (reduced {reduced}): grid {} x {:?} x {} {rows:?}, {} solves, achieved {:.3e}, \
+         fresh max {worst:.3e}",
         built.sin_theta_i.len(),
-        built.abs_beta.len(),
+        built.abs_beta,
         built.lambda_nm.len(),
         r.solves,
         r.achieved_abs_error
@@ -432,9 +450,9 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
     );
     let text = built.to_json(&meta("conical"));
     let read: EfficiencyTable = serde_json::from_str(&text).unwrap();
-    assert!(read.is_conical());
+    assert!(read.is_conical() && read.is_reduced() == reduced);
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    assert_eq!(v["version"], 2);
+    assert_eq!(v["version"], if reduced { 3 } else { 2 });
     for &(a, b, l) in &[(0.1, 0.3, 450.0), (-0.5, 0.7, 620.0), (0.0, 0.0, 500.0)] {
         for m in -3..=3 {
             let (e, f) = (
@@ -444,6 +462,50 @@ fn a_conical_table_is_within_its_error_and_reads_back() {
             assert!((e.te - f.te).abs() <= 1e-6 && (e.tm - f.tm).abs() <= 1e-6);
         }
     }
+    (r.solves, worst)
+}
+
+#[test]
+fn a_conical_table_is_within_its_error_and_reads_back() {
+    conical_build(false);
+}
+
+/// The reduced format (version 3) of the same: every plane with its own wavelengths, planes
+/// added until neighbours' √(1 − β²) differ by at most 2.5.
+#[test]
+fn a_reduced_conical_table_is_within_its_error_and_reads_back() {
+    conical_build(true);
+}
+
+/// A band that the solver's materials do not cover (with the room a plane needs beyond it) is
+/// refused by name before any solve.
+#[test]
+fn a_reduced_table_beyond_the_metals_data_is_refused_by_name() {
+    use diffraction_fmm::table::Rigorous;
+    use diffraction_fmm::{Grating, Profile, Solver};
+    let rig = Rigorous {
+        grating: Grating {
+            period_nm: 1000.0,
+            profile: Profile::Lamellar {
+                duty: 0.5,
+                depth_nm: 50.0,
+            },
+            metal: diffraction::relief::Metal::AG,
+            cover: None,
+        },
+        solver: Solver::default(),
+        accept_unconverged: 1e-3,
+    };
+    let spec = TableSpec {
+        abs_beta: vec![0.0, 0.5],
+        lambda_range_nm: (200.0, 700.0),
+        ..spec(1e-2)
+    };
+    let e = build_table(&rig, &spec, &mut |_| {}).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid lambda_range_nm.0 = 200: must lie in [203.286, 1899.0196078431372]"
+    );
 }
 
 /// Given nodes are kept as they are (no refinement, whatever the tolerance), solved once each

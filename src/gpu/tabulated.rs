@@ -50,15 +50,21 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
     ]);
     w.extend(sin.iter().map(|&s| s as f32));
     w.extend(lam.iter().map(|&l| l as f32));
+    // A reduced conical table (version 3): its first plane's own nodes, read there alone.
+    let reduced = table.is_reduced();
     for m in table.orders() {
         let mf = f64::from(m);
-        for &l in &lam {
-            for &s in &sin {
+        for (j, &l) in lam.iter().enumerate() {
+            for (i, &s) in sin.iter().enumerate() {
                 // The CPU's corner test, with its operations (relief/table.rs, `Cell::order`).
                 let sm = s + mf * l / d;
                 let cm2 = 1.0 - sm * sm;
                 if cm2 > GRAZING_CORNER {
-                    let e = table.efficiency(m, s, l);
+                    let e = if reduced {
+                        table.first_plane_node(m, j, i)
+                    } else {
+                        table.efficiency(m, s, l)
+                    };
                     let g = crate::num::math::sqrt(1.0 - s * s) / crate::num::math::sqrt(cm2);
                     w.push((e.te * g) as f32);
                     w.push((e.tm * g) as f32);
@@ -70,8 +76,12 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
     }
     // The sampler's proposal reads the stored values themselves (`EfficiencyTable`'s
     // unpolarised (TE + TM)/2), flattened as the q's; of a conical table its β = 0 plane, the
-    // plane the q's above read (the first of each order's slice).
-    let slice = n_s * n_l * table.abs_beta().len().max(1);
+    // plane the q's above read (the first of each order's slice: a reduced table's slice holds
+    // every plane's own rows).
+    let slice = n_s
+        * (0..table.abs_beta().len().max(1))
+            .map(|p| table.plane_lambda_nm(p).len())
+            .sum::<usize>();
     for k in 0..count {
         for at in 0..n_l * n_s {
             w.push(table.stored_unpolarised(k * slice + at) as f32);

@@ -26,10 +26,11 @@ pub const MAX_INDEX: f64 = 1e4;
 /// The tabulated metals are measurements at the sources' own wavelengths, generated into the
 /// crate by `python_ref/metals.py` (`src/data/metals_data.rs`: Al from Rakić, Appl. Opt. 34, 4755
 /// (1995); Ag, Au and Cu from Johnson & Christy, Phys. Rev. B 6, 4370 (1972); Cr from Johnson &
-/// Christy, Phys. Rev. B 9, 5056 (1974)), each row set covering 360-830 nm. n and k are each
-/// interpolated linearly in λ between neighbouring rows; outside the rows (below about 326-354
-/// nm, above about 838-886 nm) the nearest end row is used. [`Metal::custom`] is a constant
-/// n + ik at every wavelength.
+/// Christy, Phys. Rev. B 9, 5056 (1974)), each row set covering 200-1937 nm at least (the
+/// visible band, and the wavelengths a reduced conical table's |β| planes reach beyond it;
+/// [`Metal::wavelength_range_nm`]). n and k are each interpolated linearly in λ between
+/// neighbouring rows; outside the rows the nearest end row is used. [`Metal::custom`] is a
+/// constant n + ik at every wavelength.
 ///
 /// ```
 /// use diffraction::relief::Metal;
@@ -149,13 +150,32 @@ impl Metal {
     /// let (n, k) = Metal::AL.index(0.5 * (516.6 + 563.57));
     /// assert!((n - 0.5 * (0.8734 + 1.0728)).abs() < 1e-15);
     /// assert!((k - 0.5 * (6.2418 + 6.7839)).abs() < 1e-15);
-    /// assert_eq!(Metal::AL.index(100.0), Metal::AL.index(326.28)); // the first row
+    /// assert_eq!(Metal::AL.index(100.0), Metal::AL.index(177.12)); // the first row
     /// ```
     #[must_use]
     pub fn index(&self, lambda_nm: f64) -> (f64, f64) {
         match self.kind {
             Kind::Custom { n, k } => (n, k),
             Kind::Table { rows, .. } => interpolate(rows, lambda_nm),
+        }
+    }
+
+    /// The wavelengths (nm) of the first and the last tabulated row, between which
+    /// [`index`](Self::index) interpolates measurements (outside it repeats the end row);
+    /// `None` for a custom metal (the same n + ik at every wavelength).
+    ///
+    /// ```
+    /// use diffraction::relief::Metal;
+    /// assert_eq!(Metal::AL.wavelength_range_nm(), Some((177.12, 2066.4)));
+    /// assert_eq!(Metal::AG.wavelength_range_nm(), Some((199.3, 1937.0)));
+    /// assert_eq!(Metal::custom(1.0, 7.0)?.wavelength_range_nm(), None);
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    #[must_use]
+    pub fn wavelength_range_nm(&self) -> Option<(f64, f64)> {
+        match self.kind {
+            Kind::Custom { .. } => None,
+            Kind::Table { rows, .. } => Some((rows[0][0], rows[rows.len() - 1][0])),
         }
     }
 

@@ -42,6 +42,27 @@ macro_rules! with_arrays {
                 );
                 $body
             }
+            // A reduced conical table binds its concatenated wavelength rows: the functions
+            // that interpolate branch to `reduced.rs` before this (its rows are per plane); the
+            // others read values by flat index.
+            #[cfg(feature = "alloc")]
+            Storage::Reduced {
+                sin_theta_i: $sin,
+                abs_beta: $bet,
+                lambda_nm: $lam,
+                te: $te,
+                tm: $tm,
+                ..
+            } => {
+                let ($sin, $bet, $lam, $te, $tm): (&[f64], &[f64], &[f64], &[f64], &[f64]) = (
+                    $sin.as_slice(),
+                    $bet.as_slice(),
+                    $lam.as_slice(),
+                    $te.as_slice(),
+                    $tm.as_slice(),
+                );
+                $body
+            }
         }
     };
 }
@@ -54,6 +75,8 @@ mod nodes_q;
 #[cfg(feature = "presets")]
 mod preset;
 mod proposal;
+#[cfg(feature = "alloc")]
+mod reduced;
 mod unit;
 
 use lookup::Lookup;
@@ -70,6 +93,8 @@ pub use preset::Preset;
 
 #[cfg(feature = "alloc")]
 pub use load::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};
+#[cfg(feature = "alloc")]
+pub use reduced::ReducedGrid;
 
 /// A corner of the interpolation cell closer than this to its order's Rayleigh line
 /// (cos² θm ≤ 10⁻⁶, cos θm ≤ 10⁻³) counts as evanescent: there η and cos θm are both tiny and
@@ -136,6 +161,21 @@ enum Storage {
         /// The |β| nodes of a conical table; empty for a classical (2-D) table.
         abs_beta: Vec<f64>,
         lambda_nm: Vec<f64>,
+        te: Vec<f64>,
+        tm: Vec<f64>,
+    },
+    /// A reduced conical table (version 3, `reduced.rs`): every |β| plane has its own
+    /// wavelength nodes, concatenated in `lambda_nm` (plane p's are `rows[p]..rows[p + 1]`),
+    /// and the values are flattened `[order][plane][λ of the plane][s′]`.
+    #[cfg(feature = "alloc")]
+    Reduced {
+        sin_theta_i: Vec<f64>,
+        abs_beta: Vec<f64>,
+        lambda_nm: Vec<f64>,
+        /// Plane p's wavelength nodes start at `rows[p]` (n_β + 1 entries, the last the total).
+        rows: Vec<usize>,
+        /// The band [λ0, λ1] queries are clamped to, nm.
+        band: (f64, f64),
         te: Vec<f64>,
         tm: Vec<f64>,
     },
@@ -484,6 +524,10 @@ impl EfficiencyTable {
     /// Calls `f(m, η_m)` for every stored order before the normalisation and returns the TE
     /// and TM sums; `beta` is read only by a conical table.
     fn each(&self, s: f64, beta: f64, lambda_nm: f64, f: impl FnMut(i32, Polarised)) -> (f64, f64) {
+        #[cfg(feature = "alloc")]
+        if let Some(r) = self.reduced() {
+            return self.each_reduced(&r, (s, beta, lambda_nm), f);
+        }
         with_arrays!(self, |sin, bet, lam, te, tm| self.each_in(
             sin,
             bet,
@@ -499,6 +543,10 @@ impl EfficiencyTable {
     /// interpolation alone in a cell whose queries need no normalisation (`unit.rs`),
     /// otherwise from the sum over every stored order; `beta` is read only by a conical table.
     fn one(&self, order: i32, s: f64, beta: f64, lambda_nm: f64) -> Polarised {
+        #[cfg(feature = "alloc")]
+        if let Some(r) = self.reduced() {
+            return self.one_reduced(&r, order, (s, beta, lambda_nm));
+        }
         with_arrays!(self, |sin, bet, lam, te, tm| self.one_in(
             sin,
             bet,
@@ -630,7 +678,8 @@ impl EfficiencyTable {
         self.axis(AxisName::Sin)
     }
 
-    /// The table's wavelength nodes, nm, as f64.
+    /// The table's wavelength nodes, nm, as f64 (of a reduced conical table, version 3, its
+    /// first |β| plane's: [`plane_lambda_nm`](Self::plane_lambda_nm) gives every plane's).
     ///
     /// ```
     /// # #[cfg(feature = "presets")] {
@@ -669,6 +718,22 @@ impl EfficiencyTable {
                     AxisName::Sin => sin_theta_i,
                     AxisName::Beta => abs_beta,
                     AxisName::Lambda => lambda_nm,
+                }
+                .iter(),
+            ),
+            // A reduced conical table's wavelength nodes are its first plane's.
+            #[cfg(feature = "alloc")]
+            Storage::Reduced {
+                sin_theta_i,
+                abs_beta,
+                lambda_nm,
+                rows,
+                ..
+            } => Axis::F64(
+                match which {
+                    AxisName::Sin => &sin_theta_i[..],
+                    AxisName::Beta => &abs_beta[..],
+                    AxisName::Lambda => &lambda_nm[rows[0]..rows[1]],
                 }
                 .iter(),
             ),

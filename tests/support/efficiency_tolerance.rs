@@ -39,3 +39,12 @@ pub const UNPOLARISED_MEAN: f64 = 1e-15;
 /// values are the JSON's rounded to 5 decimals (half a unit, 5e-6) and to f32. Measured 3.6e-6
 /// (`json_tables_load_and_bad_ones_name_the_field`, 4 presets); margin 2.8×.
 pub const JSON_AGAINST_PRESET: f64 = 1e-5;
+/// A reduced conical table (version 3) holding an affine q(s′, λ′, √(1 − β²)) read against that
+/// q, absolute: the rule reproduces it exactly, so this is rounding (values about 0.5).
+/// Measured 2.3e-15 (`an_affine_q_is_read_exactly`, tests/reduced_table.rs); margin 8.6×.
+pub const REDUCED_AFFINE: f64 = 2e-14;
+/// A reduced table whose planes hold the CD preset at the same reduced nodes, read at
+/// (α, β, λ), against the CD at (s′, λ′) = (α, λ)/√(1 − β²), absolute: the same corners and
+/// weights up to rounding. Measured 2.5e-13
+/// (`planes_of_one_classical_table_read_it_in_reduced_coordinates`); margin 8×.
+pub const REDUCED_MAPPING: f64 = 2e-12;

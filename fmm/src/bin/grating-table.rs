@@ -30,7 +30,8 @@ const USAGE: &str =
     "usage: grating-table (--lines-per-mm N | --period NM) --profile lamellar|sinusoid|sawtooth
        [--depth NM] [--duty F] [--blaze DEG] (--metal Al|Ag|Au|Cu|Cr | --nk N,K)
        [--cover none|polycarbonate] [--cover-passes multiple|single] [--tolerance ABS]
-       [--lambda MIN,MAX] [--sin-max S] [--abs-beta B0,B1,...] [--max-solves N] [--threads N] [--name NAME]
+       [--lambda MIN,MAX] [--sin-max S] [--abs-beta B0,B1,...] [--conical-version 3|2]
+       [--max-plane-ratio R] [--max-solves N] [--threads N] [--name NAME]
        [--nodes-of TABLE] [--validation N] [--solve-tolerance ABS] [--max-harmonics N] [--description TEXT]
        [--keep-best] --out FILE
 
@@ -40,8 +41,13 @@ const USAGE: &str =
   --tolerance  largest interpolation error allowed, absolute per order (default 0.01)
   --lambda     wavelength range, nm (default 360,830)
   --sin-max    the table covers sin(theta_i) in [-S, S] (default 0.9999)
-  --abs-beta   a conical table (version 2): its starting |beta| nodes, increasing in [0, 0.99999]
-               (beta: the incident direction cosine along the grooves; default: a classical table)
+  --abs-beta   a conical table: its starting |beta| nodes, increasing in [0, 0.99999] (beta: the
+               incident direction cosine along the grooves; default: a classical table). Written as
+               a reduced conical table (version 3: planes with their own wavelengths, read at fixed
+               (s', lambda/sqrt(1-beta^2))), planes added until neighbours' sqrt(1-beta^2) differ by
+               at most --max-plane-ratio
+  --conical-version  3 (default) or 2 (the tensor grid in (s', |beta|, lambda) of version 2)
+  --max-plane-ratio  a reduced table's largest ratio of neighbouring planes' sqrt(1-beta^2) (default 2.5; lowered to keep every plane inside the metal's data)
   --max-solves bound on rigorous solves (default 20000)
   --nodes-of   solve at the (s, lambda) nodes of this classical table file instead: no refinement, no
                --tolerance; the held-out error at --validation random points is measured and stored
@@ -263,6 +269,20 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
                 }
                 spec.abs_beta = nodes;
             }
+            "--conical-version" => {
+                spec.reduced = match v {
+                    "3" => true,
+                    "2" => false,
+                    _ => return Err(bad(flag, v, "expected 3 or 2")),
+                }
+            }
+            "--max-plane-ratio" => {
+                let x = number(flag, v)?;
+                if !(1.01..=10.0).contains(&x) {
+                    return Err(bad(flag, v, "must be in [1.01, 10]"));
+                }
+                spec.max_plane_ratio = x;
+            }
             "--max-solves" => {
                 spec.max_solves = v
                     .parse::<usize>()
@@ -475,7 +495,7 @@ fn read_nodes(path: &PathBuf) -> Result<(Vec<f64>, Vec<f64>), String> {
     let table: diffraction::relief::EfficiencyTable =
         serde_json::from_str(&text).map_err(|e| e.to_string())?;
     if table.is_conical() {
-        return Err("a conical table (version 2): --nodes-of takes a classical one".into());
+        return Err("a conical table (version 2 or 3): --nodes-of takes a classical one".into());
     }
     Ok((table.sin_theta_i().collect(), table.lambda_nm().collect()))
 }
@@ -602,6 +622,16 @@ fn main() -> ExitCode {
         return ExitCode::from(1);
     }
     let r = &built.report;
+    let rows = if built.plane_lambda_nm.is_empty() {
+        format!("{}", built.lambda_nm.len())
+    } else {
+        let r: Vec<String> = built
+            .plane_lambda_nm
+            .iter()
+            .map(|p| p.len().to_string())
+            .collect();
+        format!("({})", r.join("+"))
+    };
     eprintln!(
         "wrote {}: {} x {} x {} nodes (s x |beta| x lambda), orders {}..={}, {} solves in {:.1} s; \
          held-out error max {:.3e}, p95 {:.3e} over {} points (tolerance {:e}); \
@@ -609,7 +639,7 @@ fn main() -> ExitCode {
         args.out.display(),
         built.sin_theta_i.len(),
         built.abs_beta.len().max(1),
-        built.lambda_nm.len(),
+        rows,
         built.order_min,
         built.order_max,
         r.solves,

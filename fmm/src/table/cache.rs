@@ -29,7 +29,7 @@ fn key((s, b, l): Point, symmetric: bool) -> (u64, u64, u64) {
 }
 
 /// α of the point (s′·√(1 − β²); s itself at β = 0).
-fn alpha_of((s, b, _): Point) -> f64 {
+pub(super) fn alpha_of((s, b, _): Point) -> f64 {
     if b == 0.0 {
         s
     } else {
@@ -130,20 +130,57 @@ impl<'a, S: OrderSolver> Cache<'a, S> {
     }
 }
 
-/// The table's largest absolute error at one point against a solve there.
-pub(super) fn point_error(table: &EfficiencyTable, solve: &Orders, p: Point) -> f64 {
+/// The table's largest absolute error at one point against a solve there: per order and
+/// polarisation, or (`unpolarised`, conical tables) per order of the mean of TE and TM, the
+/// only part of a conical solve that does not depend on the choice of the incident s and p
+/// (which swap between β = 0 and β > 0 at α = 0).
+pub(super) fn point_error(
+    table: &EfficiencyTable,
+    solve: &Orders,
+    p: Point,
+    unpolarised: bool,
+) -> f64 {
     let mut out = vec![diffraction::relief::Polarised::default(); table.order_count()];
     table.efficiencies_conical(alpha_of(p), p.1, p.2, &mut out);
     let first = *table.orders().start();
     let mut worst: f64 = 0.0;
     for (k, t) in out.iter().enumerate() {
         let (te, tm) = solve.get(first + k as i32);
-        worst = worst.max((t.te - te).abs()).max((t.tm - tm).abs());
+        worst = if unpolarised {
+            worst.max((t.unpolarised() - 0.5 * (te + tm)).abs())
+        } else {
+            worst.max((t.te - te).abs()).max((t.tm - tm).abs())
+        };
     }
     // Orders the solve has and the table does not store.
     for (k, (&te, &tm)) in solve.te.iter().zip(&solve.tm).enumerate() {
         if !table.orders().contains(&(solve.order_min + k as i32)) {
-            worst = worst.max(te.abs()).max(tm.abs());
+            worst = if unpolarised {
+                worst.max(0.5 * (te + tm).abs())
+            } else {
+                worst.max(te.abs()).max(tm.abs())
+            };
+        }
+    }
+    worst
+}
+
+/// [`point_error`] of plane `plane` of a reduced table read alone
+/// (`EfficiencyTable::plane_efficiencies`) at the point's s′ and physical λ: a plane's own
+/// interpolation, also at the wavelengths past the band that only its neighbours' queries
+/// read.
+pub(super) fn plane_error(table: &EfficiencyTable, plane: usize, solve: &Orders, p: Point) -> f64 {
+    let mut out = vec![diffraction::relief::Polarised::default(); table.order_count()];
+    table.plane_efficiencies(plane, p.0, p.2, &mut out);
+    let first = *table.orders().start();
+    let mut worst: f64 = 0.0;
+    for (k, t) in out.iter().enumerate() {
+        let (te, tm) = solve.get(first + k as i32);
+        worst = worst.max((t.unpolarised() - 0.5 * (te + tm)).abs());
+    }
+    for (k, (&te, &tm)) in solve.te.iter().zip(&solve.tm).enumerate() {
+        if !table.orders().contains(&(solve.order_min + k as i32)) {
+            worst = worst.max(0.5 * (te + tm).abs());
         }
     }
     worst

@@ -248,8 +248,35 @@ fn floats(v: &[f64]) -> Value {
     Value::Array(v.iter().map(|&x| Value::Float(x)).collect())
 }
 
-/// `[order][λ][s]` (or `[order][|β|][λ][s]`) nested arrays of one polarisation.
+/// `[order][λ][s]` (or `[order][|β|][λ][s]`, or `[order][plane][λ of the plane][s]`) nested
+/// arrays of one polarisation.
 fn nested(t: &BuiltTable, flat: &[f64]) -> Value {
+    if !t.plane_lambda_nm.is_empty() {
+        let n_s = t.sin_theta_i.len();
+        let total: usize = t.plane_lambda_nm.iter().map(Vec::len).sum();
+        let n_o = (t.order_max - t.order_min + 1) as usize;
+        let row = |at: usize| {
+            let r = &flat[at * n_s..(at + 1) * n_s];
+            Value::Array(r.iter().map(|&x| Value::Float(round6(x))).collect())
+        };
+        return Value::Array(
+            (0..n_o)
+                .map(|k| {
+                    let mut first = k * total;
+                    Value::Array(
+                        t.plane_lambda_nm
+                            .iter()
+                            .map(|plane| {
+                                let rows = (first..first + plane.len()).map(row).collect();
+                                first += plane.len();
+                                Value::Array(rows)
+                            })
+                            .collect(),
+                    )
+                })
+                .collect(),
+        );
+    }
     let (n_s, n_l) = (t.sin_theta_i.len(), t.lambda_nm.len());
     let n_b = t.abs_beta.len().max(1);
     let n_o = (t.order_max - t.order_min + 1) as usize;
@@ -284,8 +311,15 @@ impl BuiltTable {
     #[must_use]
     pub fn to_json(&self, meta: &TableMeta) -> String {
         let r = &self.report;
+        let reduced = !self.plane_lambda_nm.is_empty();
+        let conical = !self.abs_beta.is_empty();
         let max_sum = |flat: &[f64]| {
-            let slice = self.sin_theta_i.len() * self.lambda_nm.len() * self.abs_beta.len().max(1);
+            let rows = if reduced {
+                self.plane_lambda_nm.iter().map(Vec::len).sum()
+            } else {
+                self.lambda_nm.len() * self.abs_beta.len().max(1)
+            };
+            let slice = self.sin_theta_i.len() * rows;
             let mut sums = vec![0.0; slice];
             for (i, &x) in flat.iter().enumerate() {
                 sums[i % slice] += round6(x);
@@ -316,15 +350,25 @@ impl BuiltTable {
             ),
             (
                 "method",
-                Value::Str(if r.fixed_grid {
-                    "held-out rigorous solves at random points inside the given grid (fixed nodes, not refined), \
-                 against the library's interpolation (relief::EfficiencyTable); largest absolute error over every order \
-                 and both polarisations".into()
-                } else {
-                    "held-out rigorous solves at the midpoints of every interval of the final grid and at random points, \
-                 against the library's interpolation (relief::EfficiencyTable); largest absolute error over every order \
-                 and both polarisations".into()
-                }),
+                Value::Str(format!(
+                    "{}, against the library's interpolation (relief::EfficiencyTable); largest absolute error over \
+                     every order {}",
+                    if r.fixed_grid {
+                        "held-out rigorous solves at random points inside the given grid (fixed nodes, not refined)"
+                    } else if reduced {
+                        "held-out rigorous solves at the midpoints of every interval of the final grid (along s', along \
+                         each plane's wavelengths, and between planes at the mean of their sqrt(1 - beta^2)) and at \
+                         random points"
+                    } else {
+                        "held-out rigorous solves at the midpoints of every interval of the final grid and at random points"
+                    },
+                    if conical {
+                        "of the unpolarised efficiency (the mean of TE and TM: a conical solve's s and p split depends \
+                         on the azimuth, their mean does not)"
+                    } else {
+                        "and both polarisations"
+                    }
+                )),
             ),
             (
                 "tolerance",
@@ -357,10 +401,16 @@ impl BuiltTable {
             ("unconverged_max_change", Value::Float(r.unconverged.1)),
             ("rounds", Value::Int(r.rounds as i64)),
         ];
-        let conical = !self.abs_beta.is_empty();
         let mut body = vec![
             ("format", Value::Str("diffraction-efficiency-table".into())),
-            ("version", Value::Int(if conical { 2 } else { 1 })),
+            (
+                "version",
+                Value::Int(match (conical, reduced) {
+                    (_, true) => 3,
+                    (true, false) => 2,
+                    _ => 1,
+                }),
+            ),
             ("name", Value::Str(meta.name.clone())),
             ("description", Value::Str(meta.description.clone())),
             (
@@ -377,7 +427,14 @@ impl BuiltTable {
             ),
             ("symmetric", Value::Bool(meta.symmetric)),
             ("sin_theta_i", floats(&self.sin_theta_i)),
-            ("lambda_nm", floats(&self.lambda_nm)),
+            (
+                "lambda_nm",
+                if reduced {
+                    Value::Array(self.plane_lambda_nm.iter().map(|p| floats(p)).collect())
+                } else {
+                    floats(&self.lambda_nm)
+                },
+            ),
             ("order_min", Value::Int(i64::from(self.order_min))),
             ("order_max", Value::Int(i64::from(self.order_max))),
             ("te", nested(self, &self.te)),
@@ -388,6 +445,10 @@ impl BuiltTable {
         ];
         if conical {
             body.push(("abs_beta", floats(&self.abs_beta)));
+        }
+        if reduced {
+            let (l0, l1) = self.lambda_range_nm;
+            body.push(("lambda_range_nm", floats(&[l0, l1])));
         }
         let body = Value::Object(body);
         let mut text = String::new();

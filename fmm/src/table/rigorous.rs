@@ -31,6 +31,22 @@ impl OrderSolver for Rigorous {
         )
     }
 
+    /// The metal's tabulated wavelengths ([`diffraction::relief::Metal::wavelength_range_nm`]),
+    /// above a Sellmeier cover's pole by 10 % (`None` for a custom metal without such a cover).
+    fn wavelength_range_nm(&self) -> Option<(f64, f64)> {
+        let metal = self.grating.metal.wavelength_range_nm();
+        let pole = match self.grating.cover.map(|c| c.index) {
+            Some(crate::CoverIndex::Sellmeier { c_um2, .. }) => Some(1.1e3 * c_um2.sqrt()),
+            _ => None,
+        };
+        match (metal, pole) {
+            (Some((lo, hi)), Some(p)) => Some((lo.max(p), hi)),
+            (Some(r), None) => Some(r),
+            (None, Some(p)) => Some((p, f64::INFINITY)),
+            (None, None) => None,
+        }
+    }
+
     /// A point on a Rayleigh line (an order grazing in air or in the cover, up to 10⁻¹²) is
     /// solved 10⁻⁹ off it, as `python_ref` does: the appearing order's efficiency grows like the
     /// square root of the distance, so this changes it by about 3·10⁻⁵ of its scale.
@@ -169,6 +185,10 @@ impl OrderSolver for Mapped {
 
     fn mirror_symmetric(&self) -> bool {
         self.0.mirror_symmetric()
+    }
+
+    fn wavelength_range_nm(&self) -> Option<(f64, f64)> {
+        self.0.wavelength_range_nm()
     }
 
     fn solve(&self, sin_theta_i: f64, lambda_nm: f64) -> Result<Orders, String> {

@@ -32,19 +32,19 @@ pub const MAX_TABLE_ABS_BETA: f64 = 0.99999;
 /// One query's interpolation cell in (s′, |β|, λ), shared by every order.
 pub(super) struct Cell3 {
     /// The query clamped to the grid: α, β², λ and cos θi.
-    alpha: f64,
-    beta2: f64,
-    lambda_nm: f64,
-    cos_i: f64,
+    pub(super) alpha: f64,
+    pub(super) beta2: f64,
+    pub(super) lambda_nm: f64,
+    pub(super) cos_i: f64,
     /// Per corner: trilinear weight, α, β², λ and cos θi of the node, flat index in a slice.
-    w: [f64; 8],
-    a_c: [f64; 8],
-    b2_c: [f64; 8],
-    l_c: [f64; 8],
-    cos_c: [f64; 8],
-    index: [usize; 8],
+    pub(super) w: [f64; 8],
+    pub(super) a_c: [f64; 8],
+    pub(super) b2_c: [f64; 8],
+    pub(super) l_c: [f64; 8],
+    pub(super) cos_c: [f64; 8],
+    pub(super) index: [usize; 8],
     /// The cell's index (k·(n_λ − 1) + j)·(n_s − 1) + i, for `UnitCells`.
-    cell: usize,
+    pub(super) cell: usize,
 }
 
 impl Cell3 {

@@ -71,6 +71,11 @@ impl EfficiencyTable {
         }
         // In i32: the stored orders are.
         let (lo, hi) = (lo as i32, hi as i32);
+        #[cfg(feature = "alloc")]
+        if let Some(r) = self.reduced() {
+            let cell = r.find(alpha, beta, lambda_nm)?;
+            return self.propose(&cell, (lo, hi), r.slice(), r.te, r.tm);
+        }
         with_arrays!(self, |sin, bet, lam, te, tm| {
             let slice = sin.count() * bet.count().max(1) * lam.count();
             if bet.count() > 0 {

@@ -34,11 +34,11 @@ use crate::num::math;
 /// first query of a table of 1.04·10⁶ values takes 0.37 s for the marks and the kept q's, the CD
 /// preset's 10,625 values 1.5 ms); a larger table is read with the full sum everywhere.
 #[cfg_attr(not(feature = "std"), allow(dead_code))]
-const MAX_MARKED_VALUES: usize = 1 << 20;
+pub(super) const MAX_MARKED_VALUES: usize = 1 << 20;
 
 /// A cell is marked when its bound is at most this (per polarisation).
 #[cfg_attr(not(feature = "std"), allow(dead_code))]
-const UNIT_BOUND: f64 = 1.0 - 1e-9;
+pub(super) const UNIT_BOUND: f64 = 1.0 - 1e-9;
 
 /// The cells' marks of one table, a bit per cell, computed on first use.
 #[derive(Debug, Clone, Default)]
@@ -83,7 +83,7 @@ impl UnitCells {
 }
 
 /// Every cell's mark, a bit per cell.
-pub(super) struct Bits(#[cfg(feature = "std")] Vec<u64>);
+pub(super) struct Bits(#[cfg(feature = "std")] pub(super) Vec<u64>);
 
 /// One corner of a cell: its node's s (s′ of a conical table) and |β| (0 for a classical
 /// one), α, β² and λ of the node, cos θi there, and the node's flat index in an order's slice.
@@ -162,6 +162,22 @@ pub(super) fn bound<T: Values + ?Sized>(
     te: &T,
     tm: &T,
 ) -> (f64, f64) {
+    let ratio = |mf: f64| ratio_bound(period_nm, mf, c);
+    bound_with(period_nm, order_min, order_count, slice, c, (te, tm), ratio)
+}
+
+/// [`bound`] with R_m from `ratio(m)`: a bound of cos θm/cos θi over every query of the cell
+/// (a reduced conical table's cell takes it over its box in (s′, λ′), `reduced.rs`).
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
+pub(super) fn bound_with<T: Values + ?Sized>(
+    period_nm: f64,
+    order_min: i32,
+    order_count: usize,
+    slice: usize,
+    c: &[Corner],
+    (te, tm): (&T, &T),
+    ratio: impl Fn(f64) -> f64,
+) -> (f64, f64) {
     if c.iter().any(|k| k.cos_i.is_nan() || k.cos_i <= 0.0) {
         return (f64::INFINITY, f64::INFINITY);
     }
@@ -185,7 +201,7 @@ pub(super) fn bound<T: Values + ?Sized>(
         if q.iter().all(|&(a, b)| a == 0.0 && b == 0.0) {
             continue;
         }
-        let r = ratio_bound(period_nm, mf, c);
+        let r = ratio(mf);
         if live == c.len() {
             for (f, q) in full.iter_mut().zip(&q) {
                 f.0 += q.0 * r;
@@ -211,7 +227,7 @@ const PIECES: [usize; 3] = [8, 4, 4];
 /// straddle 0: α_m is monotone along each axis, so its range is the corners'; β₀ its
 /// smallest |β|) over inf cos θi (the smallest corner's: cos θi is concave in s′ and falls
 /// with |β|).
-fn ratio_bound(period_nm: f64, mf: f64, c: &[Corner]) -> f64 {
+pub(super) fn ratio_bound(period_nm: f64, mf: f64, c: &[Corner]) -> f64 {
     // The cell's axes from its corners: corner 1 is the next s node, corner 2 the next |β|
     // node (conical) or λ node (classical), corner 4 the next λ node (conical).
     let conical = c.len() == 8;
@@ -385,6 +401,7 @@ mod tests {
                 te.clone(),
                 tm.clone(),
             ],
+            Storage::Reduced { .. } => unreachable!("the classical and conical tables only"),
         }
     }
 

@@ -81,6 +81,27 @@ fn a_table_file_is_the_gratings_efficiencies_and_period() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A reduced conical table (version 3): two |β| planes of one order, each with its own
+/// wavelengths (docs/efficiency_tables.md, "Reduced conical tables").
+const TABLE_V3: &str = r#"{"format": "diffraction-efficiency-table", "version": 3, "name": "t",
+"grating": {"profile": "lamellar", "period_nm": 1000.0}, "sin_theta_i": [-0.5, 0.5],
+"abs_beta": [0.0, 0.6], "lambda_range_nm": [400.0, 700.0],
+"lambda_nm": [[400.0, 600.0, 875.0], [320.0, 700.0]], "order_min": 0, "order_max": 0,
+"te": [[[[0.9, 0.9], [0.9, 0.9], [0.9, 0.9]], [[0.9, 0.9], [0.9, 0.9]]]],
+"tm": [[[[0.8, 0.8], [0.8, 0.8], [0.8, 0.8]], [[0.8, 0.8], [0.8, 0.8]]]],
+"solver": {}, "validation": {}, "sha256": "0"}"#;
+
+#[test]
+fn a_reduced_conical_table_file_loads() {
+    let dir = scratch("v3");
+    std::fs::write(dir.join("tables/v3.json"), TABLE_V3).unwrap();
+    let scene = load(&dir, &scene_src("tables/v3.json", "")).unwrap();
+    let g = scene.materials[0].grating.as_ref().unwrap();
+    assert_eq!(g.model.grating().period_nm(), 1000.0);
+    assert!(g.model.order_efficiency().is_tabulated());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_hostile_table_file_is_refused_naming_the_field() {
     let dir = scratch("hostile");
@@ -88,8 +109,8 @@ fn a_hostile_table_file_is_refused_naming_the_field() {
     std::fs::write(dir.join("tables/bad.json"), "{\"format\": ").unwrap();
     std::fs::write(dir.join("tables/latin1.json"), b"{\"name\": \"\xe9\"}").unwrap();
     std::fs::write(
-        dir.join("tables/v3.json"),
-        TABLE.replace("\"version\": 1", "\"version\": 3"),
+        dir.join("tables/v4.json"),
+        TABLE.replace("\"version\": 1", "\"version\": 4"),
     )
     .unwrap();
     let big = std::fs::File::create(dir.join("tables/big.json")).unwrap();
@@ -126,8 +147,8 @@ fn a_hostile_table_file_is_refused_naming_the_field() {
             "\"tables/bad.json\": format: EOF while parsing a value at line 1 column 11".into(),
         ),
         (
-            "tables/v3.json",
-            "\"tables/v3.json\": version: expected 1 or 2, got 3 at line 7 column 74".into(),
+            "tables/v4.json",
+            "\"tables/v4.json\": version: expected 1, 2 or 3, got 4 at line 7 column 74".into(),
         ),
     ];
     if has_fifo {

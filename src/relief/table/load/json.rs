@@ -3,7 +3,7 @@
 //!
 //! Each value is first read in a loosely typed form ([`Loose`]: what kind of value it was,
 //! never more than a short quote of a string), then converted with a message naming the field
-//! (`version: expected 1 or 2, got 1.0`, `lambda_nm[1]: expected a number, got null`). Errors the
+//! (`version: expected 1, 2 or 3, got 1.0`, `lambda_nm[1]: expected a number, got null`). Errors the
 //! parser itself raises (`1e400`: number out of range; a truncated file) are prefixed with the
 //! field they occurred in. The arrays are read straight into flat vectors and refused as soon
 //! as they exceed the table's bounds ([`MAX_TABLE_NODES`] per axis and per row,
@@ -22,13 +22,14 @@ use serde::de::{self, DeserializeSeed, IgnoredAny, MapAccess, SeqAccess, Visitor
 use super::{check_axis, check_period, EfficiencyTable};
 use super::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};
 use crate::error::{Error, Requirement};
-use crate::relief::MAX_TABLE_ABS_BETA;
+use crate::relief::{ReducedGrid, MAX_TABLE_ABS_BETA};
 
 /// The `format` field's one accepted value.
 const FORMAT: &str = "diffraction-efficiency-table";
-/// The `version` field's accepted values: 1 (classical, `[order][λ][s]`) and 2 (conical,
-/// with `abs_beta` and `[order][|β|][λ][s]`).
-const VERSIONS: [i128; 2] = [1, 2];
+/// The `version` field's accepted values: 1 (classical, `[order][λ][s]`), 2 (conical, with
+/// `abs_beta` and `[order][|β|][λ][s]`) and 3 (reduced conical, with `abs_beta`,
+/// `lambda_range_nm`, one wavelength array per plane and `[order][plane][λ of the plane][s]`).
+const VERSIONS: [i128; 3] = [1, 2, 3];
 /// The most characters of a string quoted in a message (a longer one is described by its
 /// length).
 const QUOTE_CHARS: usize = 40;
@@ -262,7 +263,9 @@ impl<'de> DeserializeSeed<'de> for Axis<'_> {
 }
 
 mod cube;
+mod lambda;
 use cube::{Cube, CubeSeed};
+use lambda::{Lambda, LambdaSeed};
 
 /// The `grating` object: its `period_nm` (the other fields are skipped).
 struct GratingVisitor;
@@ -308,6 +311,7 @@ enum Key {
     SinThetaI,
     AbsBeta,
     LambdaNm,
+    LambdaRangeNm,
     OrderMin,
     OrderMax,
     Te,
@@ -316,7 +320,7 @@ enum Key {
 }
 
 impl Key {
-    const ALL: [(Key, &'static str); 11] = [
+    const ALL: [(Key, &'static str); 12] = [
         (Key::Format, "format"),
         (Key::Version, "version"),
         (Key::Grating, "grating"),
@@ -324,6 +328,7 @@ impl Key {
         (Key::SinThetaI, "sin_theta_i"),
         (Key::AbsBeta, "abs_beta"),
         (Key::LambdaNm, "lambda_nm"),
+        (Key::LambdaRangeNm, "lambda_range_nm"),
         (Key::OrderMin, "order_min"),
         (Key::OrderMax, "order_max"),
         (Key::Te, "te"),
@@ -367,7 +372,8 @@ struct Fields {
     period_nm: Option<Option<f64>>,
     sin_theta_i: Option<Vec<f64>>,
     abs_beta: Option<Vec<f64>>,
-    lambda_nm: Option<Vec<f64>>,
+    lambda_nm: Option<Lambda>,
+    lambda_range_nm: Option<Vec<f64>>,
     order_min: Option<Loose>,
     order_max: Option<Loose>,
     te: Option<Cube>,
@@ -401,7 +407,8 @@ impl<'de> Visitor<'de> for FileVisitor {
                 Key::Grating => once!(f.period_nm, GratingVisitor),
                 Key::SinThetaI => once!(f.sin_theta_i, Axis(name)),
                 Key::AbsBeta => once!(f.abs_beta, Axis(name)),
-                Key::LambdaNm => once!(f.lambda_nm, Axis(name)),
+                Key::LambdaNm => once!(f.lambda_nm, LambdaSeed),
+                Key::LambdaRangeNm => once!(f.lambda_range_nm, Axis(name)),
                 Key::OrderMin => once!(f.order_min, core::marker::PhantomData::<Loose>),
                 Key::OrderMax => once!(f.order_max, core::marker::PhantomData::<Loose>),
                 Key::Te => once!(f.te, CubeSeed(name)),
@@ -428,7 +435,7 @@ impl Fields {
         }
         let version = match self.version.ok_or_else(|| missing("version"))? {
             Loose::Int(v) if VERSIONS.contains(&v) => v,
-            other => return Err(text(format!("version: expected 1 or 2, got {other}"))),
+            other => return Err(text(format!("version: expected 1, 2 or 3, got {other}"))),
         };
         let period = self
             .period_nm
@@ -450,8 +457,55 @@ impl Fields {
                 Some(b)
             }
         };
-        let lam = self.lambda_nm.ok_or_else(|| missing("lambda_nm"))?;
-        check_axis("lambda_nm", &lam, None).map_err(typed)?;
+        let (lam, planes) =
+            match (version, self.lambda_nm.ok_or_else(|| missing("lambda_nm"))?) {
+                (3, Lambda::Planes(p)) => (Vec::new(), Some(p)),
+                (3, Lambda::Flat(_)) => return Err(text(
+                    "lambda_nm: version 3 holds one array of wavelengths per |beta| plane, got \
+                     an array of numbers"
+                        .to_string(),
+                )),
+                (_, Lambda::Planes(_)) => {
+                    return Err(text(format!(
+                    "lambda_nm: one array of wavelengths per |beta| plane needs version 3, got \
+                     version {version}"
+                )))
+                }
+                (_, Lambda::Flat(l)) => {
+                    check_axis("lambda_nm", &l, None).map_err(typed)?;
+                    (l, None)
+                }
+            };
+        let band = match (version, self.lambda_range_nm) {
+            (3, Some(r)) if r.len() == 2 => Some((r[0], r[1])),
+            (3, Some(r)) => {
+                return Err(text(format!(
+                    "lambda_range_nm: expected [min, max], got {} values",
+                    r.len()
+                )))
+            }
+            (3, None) => return Err(missing("lambda_range_nm")),
+            (_, Some(_)) => {
+                return Err(text(format!(
+                    "lambda_range_nm: a band of a reduced conical table (version 3), got \
+                     version {version}"
+                )))
+            }
+            (_, None) => None,
+        };
+        if let (Some(p), Some(b)) = (&planes, &beta) {
+            if p.len() != b.len() {
+                let requirement = Requirement::Count {
+                    min: b.len(),
+                    max: b.len(),
+                };
+                return Err(typed(Error::invalid(
+                    "lambda_nm",
+                    p.len() as f64,
+                    requirement,
+                )));
+            }
+        }
         let order_min = self.order_min.ok_or_else(|| missing("order_min"))?;
         let order_min = integer("order_min", order_min).map_err(text)?;
         let order_max = self.order_max.ok_or_else(|| missing("order_max"))?;
@@ -491,13 +545,48 @@ impl Fields {
                 requirement,
             )));
         }
-        // The expected shape, outermost first: [order][λ][s] or [order][|β|][λ][s].
+        // The expected shape, outermost first: [order][λ][s] or [order][|β|][λ][s] (version
+        // 3: [order][plane][λ of the plane][s], the first plane's rows in `want`).
         let mut want = vec![n_o as usize];
         want.extend(beta.as_ref().map(Vec::len));
-        want.extend([lam.len(), sin.len()]);
+        let plane_rows: Vec<usize> = planes.iter().flatten().map(Vec::len).collect();
+        want.extend([plane_rows.first().copied().unwrap_or(lam.len()), sin.len()]);
         let mut flat = [Vec::new(), Vec::new()];
         for (k, (name, cube)) in [("te", self.te), ("tm", self.tm)].into_iter().enumerate() {
             let cube = cube.ok_or_else(|| missing(name))?;
+            if planes.is_some() {
+                let rows = |r: &[usize]| r.iter().map(|n| n.to_string()).collect::<Vec<_>>();
+                let got = if cube.leaf == 4 {
+                    rows(&cube.plane_rows)
+                } else {
+                    Vec::new()
+                };
+                let total: usize = plane_rows.iter().sum();
+                let values = n_o as usize * total * sin.len();
+                let same = cube.leaf == 4
+                    && cube.shape[0] == n_o as usize
+                    && cube.plane_rows == plane_rows
+                    && cube.shape[3] == sin.len()
+                    && cube.values.len() == values;
+                if !same {
+                    let dims = |d: &[usize], r: &[String]| {
+                        format!("[{}][{}][{}][{}]", d[0], d[1], r.join(","), d[3])
+                    };
+                    let mut shape = cube.shape;
+                    if cube.leaf != 4 {
+                        shape = [cube.shape[0], cube.shape[1], 0, 0];
+                    }
+                    let wanted = [n_o as usize, plane_rows.len(), 0, sin.len()];
+                    return Err(text(format!(
+                        "{name}: has shape {}, expected {} ([order][plane][lambda of the \
+                         plane][sin])",
+                        dims(&shape, &got),
+                        dims(&wanted, &rows(&plane_rows))
+                    )));
+                }
+                flat[k] = cube.values;
+                continue;
+            }
             // An empty level leaves the levels inside it unread (0); a 4-level array in a
             // version-1 file (or a 3-level one in version 2) has the wrong shape.
             let depth = if cube.leaf == 0 {
@@ -528,9 +617,18 @@ impl Fields {
             flat[k] = cube.values;
         }
         let [te, tm] = flat;
-        match beta {
-            None => EfficiencyTable::new(period, first, sin, lam, te, tm),
-            Some(b) => EfficiencyTable::new_conical(period, first, sin, b, lam, te, tm),
+        match (beta, planes, band) {
+            (Some(b), Some(p), Some(band)) => {
+                let grid = ReducedGrid {
+                    sin_theta_i: sin,
+                    abs_beta: b,
+                    lambda_range_nm: band,
+                    lambda_nm: p,
+                };
+                EfficiencyTable::new_reduced(period, first, grid, te, tm)
+            }
+            (Some(b), _, _) => EfficiencyTable::new_conical(period, first, sin, b, lam, te, tm),
+            (None, _, _) => EfficiencyTable::new(period, first, sin, lam, te, tm),
         }
         .map_err(typed)
     }
@@ -538,9 +636,12 @@ impl Fields {
 
 /// The JSON table of `docs/efficiency_tables.md` (features `serde` and `alloc`; a
 /// self-describing format such as JSON), checked as [`EfficiencyTable::new`] checks (and
-/// `format` = `"diffraction-efficiency-table"`, `version` = the integer 1, `order_min` and
-/// `order_max` integers with `order_max` ≥ `order_min`, `te` and `tm` of shape
-/// `[order_max − order_min + 1][n_λ][n_s]`); each error names the field, and the element
+/// `format` = `"diffraction-efficiency-table"`, `version` = the integer 1, 2 or 3, `order_min`
+/// and `order_max` integers with `order_max` ≥ `order_min`, `te` and `tm` of shape
+/// `[order_max − order_min + 1][n_λ][n_s]`, with `abs_beta` `[…][n_β][n_λ][n_s]` (version 2,
+/// [`EfficiencyTable::new_conical`]'s checks), or `[…][n_β][rows of plane p][n_s]` with
+/// `abs_beta`, `lambda_range_nm` and `lambda_nm` one array per plane (version 3,
+/// [`EfficiencyTable::new_reduced`]'s checks)); each error names the field, and the element
 /// (`te[2][0][1]: expected a number, got null`), also where the parser itself refuses a value
 /// (`lambda_nm[1]: number out of range`). Fields the crate does not use (`name`,
 /// `description`, `symmetric`, `solver`, `validation`, `command`, `sha256`, the grating's
@@ -561,7 +662,7 @@ impl Fields {
 /// assert!((t.efficiency(0, 0.2, 550.0).tm - 0.8).abs() < 1e-15);
 /// let bad = json.replace("\"version\": 1", "\"version\": 1.0");
 /// let e = serde_json::from_str::<EfficiencyTable>(&bad).unwrap_err();
-/// assert!(e.to_string().starts_with("version: expected 1 or 2, got 1.0"));
+/// assert!(e.to_string().starts_with("version: expected 1, 2 or 3, got 1.0"));
 /// let bad = json.replace("[500.0, 600.0]", "[500.0, 1e400]");
 /// let e = serde_json::from_str::<EfficiencyTable>(&bad).unwrap_err();
 /// assert!(e.to_string().starts_with("lambda_nm[1]: number out of range"));

@@ -1,5 +1,6 @@
 //! The `te` and `tm` arrays of a JSON table, read straight into a flat vector with bounded
-//! memory: 3 levels (`[order][λ][s]`, version 1) or 4 (`[order][|β|][λ][s]`, version 2).
+//! memory: 3 levels (`[order][λ][s]`, version 1) or 4 (`[order][|β|][λ][s]`, version 2, and
+//! `[order][plane][λ of the plane][s]`, version 3, whose planes may have different row counts).
 
 use alloc::string::ToString;
 use core::fmt;
@@ -21,6 +22,9 @@ pub(super) struct Cube {
     pub(super) shape: [usize; 4],
     /// The depth of the numbers, 3 or 4, once the first is read (0 before).
     pub(super) leaf: usize,
+    /// A 4-level array's rows per plane, as the first order has them (every other order is
+    /// checked against them; `shape[2]` is the first plane's).
+    pub(super) plane_rows: Vec<usize>,
 }
 
 /// One level of a [`Cube`]: depth 0 the orders, 1 an order's rows (or |β| planes), 2 and 3
@@ -134,6 +138,30 @@ impl<'de> Visitor<'de> for &mut Level<'_> {
         }
         let (_, what) = self.level(depth);
         let at = self.path(depth).to_string();
+        if depth == 2 && self.cube.leaf == 4 {
+            // A plane's rows: each plane its own count, the same in every order.
+            let (order, plane) = (self.index[0], self.index[1]);
+            let rows = &mut self.cube.plane_rows;
+            if order == 0 {
+                if plane == 0 {
+                    self.cube.shape[2] = count;
+                }
+                rows.push(count);
+            } else if let Some(&want) = rows.get(plane) {
+                if count != want {
+                    return Err(de::Error::custom(format_args!(
+                        "{at}: has {count} {what}, expected {want} (as the first order's plane \
+                         {plane})"
+                    )));
+                }
+            } else {
+                let planes = rows.len();
+                return Err(de::Error::custom(format_args!(
+                    "{at}: beyond the first order's {planes} |beta| planes"
+                )));
+            }
+            return Ok(());
+        }
         if self.fixed[depth] {
             let want = self.cube.shape[depth];
             if count != want {

@@ -1,0 +1,425 @@
+//! Reduced conical tables (version 3, `docs/efficiency_tables.md`, "Reduced conical tables"):
+//! the rule reproduces a q affine in (s′, λ′, √(1 − β²)) exactly (its closed form), a table
+//! whose planes hold one classical table at the same reduced nodes reads as that table at
+//! (s′, λ′) whatever β (the conical-to-classical mapping of a perfect conductor), one order read
+//! alone equals its entry of the normalised set to the bit, and the JSON file (version 3) loads
+//! with every refusal naming the field and the element.
+
+#[path = "support/efficiency_tolerance.rs"]
+mod efficiency_tolerance;
+
+use diffraction::relief::{EfficiencyTable, Polarised, Preset, ReducedGrid};
+use efficiency_tolerance as tol;
+
+fn rng(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn cb(b: f64) -> f64 {
+    (1.0 - b * b).sqrt()
+}
+
+/// The wavelengths plane `p` must reach (the loader's rule, written out).
+fn reach(b: &[f64], band: (f64, f64), p: usize) -> (f64, f64) {
+    let lo = if p > 0 {
+        band.0 * cb(b[p]) / cb(b[p - 1])
+    } else {
+        band.0
+    };
+    let hi = if p + 1 < b.len() {
+        band.1 * cb(b[p]) / cb(b[p + 1])
+    } else {
+        band.1
+    };
+    (lo, hi)
+}
+
+/// Random ragged planes: `n` nodes per plane reaching a little past what each must.
+fn ragged(next: &mut impl FnMut() -> f64, b: &[f64], band: (f64, f64)) -> Vec<Vec<f64>> {
+    (0..b.len())
+        .map(|p| {
+            let (lo, hi) = reach(b, band, p);
+            let (lo, hi) = (lo * (1.0 - 0.05 * next()), hi * (1.0 + 0.05 * next()));
+            let n = 3 + (5.0 * next()) as usize;
+            (0..n)
+                .map(|j| {
+                    let jitter = if j == 0 || j == n - 1 {
+                        0.0
+                    } else {
+                        0.4 * next()
+                    };
+                    lo + (hi - lo) * (j as f64 + jitter) / (n - 1) as f64
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A reduced table of order 0 alone (which propagates wherever the incidence is real, with
+/// cos θ0 = cos θi, so η0 = q) holding q = 0.3 + 0.1·s′ + 2·10⁻⁴·λ′ + 0.2·c at its nodes,
+/// c = √(1 − β²): bilinear interpolation on each plane reproduces an affine function of
+/// (s′, λ′) exactly, and the blend linear in c its c term, so every query in the band reads
+/// q itself at the query's (s′, λ′ = λ/c, c).
+#[test]
+fn an_affine_q_is_read_exactly() {
+    let mut next = rng(3);
+    let q = |s: f64, lp: f64, c: f64| 0.3 + 0.1 * s + 2e-4 * lp + 0.2 * c;
+    let mut worst = 0.0f64;
+    for _ in 0..20 {
+        let b = [0.0, 0.35 + 0.1 * next(), 0.7 + 0.1 * next(), 0.9];
+        let band = (380.0 + 20.0 * next(), 700.0 + 100.0 * next());
+        let s: Vec<f64> = vec![-0.95, -0.4 + 0.2 * next(), 0.3, 0.95];
+        let planes = ragged(&mut next, &b, band);
+        let (mut te, mut tm) = (Vec::new(), Vec::new());
+        for (p, nodes) in planes.iter().enumerate() {
+            for &l in nodes {
+                for &x in &s {
+                    let v = q(x, l / cb(b[p]), cb(b[p]));
+                    te.push(v);
+                    tm.push(0.5 * v);
+                }
+            }
+        }
+        let grid = ReducedGrid {
+            sin_theta_i: s,
+            abs_beta: b.to_vec(),
+            lambda_range_nm: band,
+            lambda_nm: planes,
+        };
+        let t = EfficiencyTable::new_reduced(1000.0, 0, grid, te, tm).unwrap();
+        for _ in 0..500 {
+            let beta = 0.9 * next();
+            let c = cb(beta);
+            let sp = -0.95 + 1.9 * next();
+            let lam = band.0 + (band.1 - band.0) * next();
+            let e = t.efficiency_conical(0, sp * c, beta, lam);
+            let want = q(sp, lam / c, c);
+            worst = worst
+                .max((e.te - want).abs())
+                .max((e.tm - 0.5 * want).abs());
+        }
+    }
+    println!("affine q: worst {worst:.2e}");
+    assert!(worst < tol::REDUCED_AFFINE, "{worst}");
+}
+
+/// A reduced table whose planes all hold the CD preset's values at the preset's own nodes in
+/// reduced coordinates (plane p's wavelengths c_p·λ_j): every plane is the same function of
+/// (s′, λ′), which the rule then reads at (s′, λ′) = (α, λ)/c for every β — what a perfect
+/// conductor's exact conical-to-classical mapping gives.
+fn cd_planes(betas: &[f64], band: (f64, f64)) -> EfficiencyTable {
+    let cd = Preset::Cd.table();
+    let s: Vec<f64> = cd.sin_theta_i().collect();
+    let l: Vec<f64> = cd.lambda_nm().collect();
+    let (lo, n_o, d) = (*cd.orders().start(), cd.order_count(), cd.period_nm());
+    let slice = s.len() * l.len() * betas.len();
+    let (mut te, mut tm) = (vec![0.0; n_o * slice], vec![0.0; n_o * slice]);
+    let mut out = vec![Polarised::default(); n_o];
+    for (p, &b) in betas.iter().enumerate() {
+        let c = cb(b);
+        for (j, &lam) in l.iter().enumerate() {
+            for (i, &x) in s.iter().enumerate() {
+                cd.efficiencies(x, lam, &mut out);
+                for (k, e) in out.iter().enumerate() {
+                    // The loader's test of evanescence at the node (physical λ = c·λ′).
+                    let am = x * c + f64::from(lo + k as i32) * (c * lam) / d;
+                    if 1.0 - am * am - b * b > 0.0 {
+                        let at = k * slice + (p * l.len() + j) * s.len() + i;
+                        te[at] = e.te;
+                        tm[at] = e.tm;
+                    }
+                }
+            }
+        }
+    }
+    let grid = ReducedGrid {
+        sin_theta_i: s,
+        abs_beta: betas.to_vec(),
+        lambda_range_nm: band,
+        lambda_nm: betas
+            .iter()
+            .map(|&b| l.iter().map(|&x| cb(b) * x).collect())
+            .collect(),
+    };
+    EfficiencyTable::new_reduced(d, lo, grid, te, tm).unwrap()
+}
+
+#[test]
+fn planes_of_one_classical_table_read_it_in_reduced_coordinates() {
+    let cd = Preset::Cd.table();
+    let betas = [0.0, 0.3, 0.5];
+    // The band the planes' nodes c_p·(360..830) cover: up to 830·c(0.5).
+    let band = (360.0, 830.0 * cb(0.5));
+    let t = cd_planes(&betas, band);
+    assert!(t.is_reduced() && t.is_conical());
+    let n = cd.order_count();
+    let (mut a, mut r) = (vec![Polarised::default(); n], vec![Polarised::default(); n]);
+    let mut next = rng(9);
+    let mut worst = 0.0f64;
+    for _ in 0..3000 {
+        let beta = 0.5 * next();
+        let c = cb(beta);
+        let sp = -0.999 + 1.998 * next();
+        let lam = band.0 + (band.1 - band.0) * next();
+        cd.efficiencies(sp, lam / c, &mut a);
+        let total = t.efficiencies_conical(sp * c, beta, lam, &mut r);
+        assert!(total <= 1.0);
+        for (x, y) in a.iter().zip(&r) {
+            worst = worst.max((x.te - y.te).abs()).max((x.tm - y.tm).abs());
+        }
+        // |β| only.
+        let mut m = vec![Polarised::default(); n];
+        t.efficiencies_conical(sp * c, -beta, lam, &mut m);
+        assert_eq!(m, r);
+    }
+    println!("reduced CD against the CD at (s', lambda'): worst {worst:.2e}");
+    assert!(worst < tol::REDUCED_MAPPING, "{worst}");
+    // An order appears exactly where α_m² + β² = 1: order 1 at β = 0.4, λ = 600 nm.
+    let (beta, lam) = (0.4, 600.0);
+    let edge = cb(beta) - lam / 1600.0;
+    assert_eq!(t.efficiency_conical(1, edge + 1e-9, beta, lam).te, 0.0);
+    assert!(t.efficiency_conical(1, edge - 1e-3, beta, lam).te > 0.0);
+    // Beyond the incidence, and non-finite queries: nothing.
+    assert_eq!(t.efficiency_conical(0, 0.8, 0.6, lam), Polarised::default());
+    assert_eq!(
+        t.efficiency_conical(0, f64::NAN, 0.1, lam),
+        Polarised::default()
+    );
+    assert_eq!(t.efficiencies_conical(0.1, f64::INFINITY, lam, &mut r), 0.0);
+}
+
+/// A random reduced table with node sums close to 1 (TE in [0.9, 1], TM in [0.97, 1]), where
+/// the interpolation overshoots 1 between nodes and the normalisation acts.
+fn near_unit_reduced(next: &mut impl FnMut() -> f64) -> EfficiencyTable {
+    let d = 900.0 + 800.0 * next();
+    let (orders, first) = (5usize, -2i32);
+    let n_s = 4 + (4.0 * next()) as usize;
+    let s: Vec<f64> = (0..n_s)
+        .map(|i| (-0.99 + 1.98 * (i as f64 + 0.3 * next()) / (n_s - 1) as f64).min(0.999))
+        .collect();
+    let b0 = if next() < 0.5 { 0.0 } else { 0.3 * next() };
+    let b: Vec<f64> = vec![b0, b0 + 0.15 + 0.2 * next(), 0.8 + 0.1 * next()];
+    let band = (380.0 + 30.0 * next(), 650.0 + 150.0 * next());
+    let planes = ragged(next, &b, band);
+    let rows: usize = planes.iter().map(Vec::len).sum();
+    let slice = n_s * rows;
+    let (mut te, mut tm) = (vec![0.0; orders * slice], vec![0.0; orders * slice]);
+    let mut row = 0;
+    for (&beta, nodes) in b.iter().zip(&planes) {
+        let c = cb(beta);
+        for &lam in nodes {
+            for (i, &x) in s.iter().enumerate() {
+                let at = row * n_s + i;
+                let mut raw = vec![(0.0, 0.0); orders];
+                let (mut st, mut sm) = (0.0, 0.0);
+                for (k, r) in raw.iter_mut().enumerate() {
+                    let am = x * c + f64::from(first + k as i32) * lam / d;
+                    if 1.0 - am * am - beta * beta > 0.0 {
+                        *r = (next(), next());
+                        st += r.0;
+                        sm += r.1;
+                    }
+                }
+                let (gt, gm) = (0.9 + 0.1 * next(), 0.97 + 0.03 * next());
+                for (k, r) in raw.iter().enumerate() {
+                    if st > 0.0 {
+                        te[k * slice + at] = r.0 / st * gt;
+                    }
+                    if sm > 0.0 {
+                        tm[k * slice + at] = r.1 / sm * gm;
+                    }
+                }
+            }
+            row += 1;
+        }
+    }
+    let grid = ReducedGrid {
+        sin_theta_i: s,
+        abs_beta: b,
+        lambda_range_nm: band,
+        lambda_nm: planes,
+    };
+    EfficiencyTable::new_reduced(d, first, grid, te, tm).unwrap()
+}
+
+/// One order's efficiency (read alone in the cells whose bound needs no normalisation) equals
+/// its entry of the full normalised set to the bit, on reduced tables: the CD's planes and
+/// random tables with sums close to 1, at queries over the band and beyond it (clamped).
+#[test]
+fn one_order_equals_its_entry_of_the_normalised_set() {
+    let mut next = rng(13);
+    let mut tables = vec![cd_planes(&[0.0, 0.3, 0.5], (360.0, 830.0 * cb(0.5)))];
+    for _ in 0..40 {
+        tables.push(near_unit_reduced(&mut next));
+    }
+    let (mut checked, mut normalised) = (0usize, 0usize);
+    for t in &tables {
+        let mut all = vec![Polarised::default(); t.order_count()];
+        let (l0, l1) = t.lambda_range_nm();
+        for q in 0..3000 {
+            let wide = if q % 10 == 0 { 50.0 } else { 0.0 };
+            let lam = l0 - wide + (l1 - l0 + 2.0 * wide) * next();
+            let beta = 0.95 * next();
+            let alpha = cb(beta) * (-1.0 + 2.0 * next());
+            t.efficiencies_conical(alpha, beta, lam, &mut all);
+            let (st, sm) = all
+                .iter()
+                .fold((0.0, 0.0), |(p, r), e| (p + e.te, r + e.tm));
+            if st > 1.0 - 1e-9 || sm > 1.0 - 1e-9 {
+                normalised += 1;
+            }
+            for (k, m) in t.orders().enumerate() {
+                let one = t.efficiency_conical(m, alpha, beta, lam);
+                assert!(
+                    one.te.to_bits() == all[k].te.to_bits()
+                        && one.tm.to_bits() == all[k].tm.to_bits(),
+                    "order {m} at α = {alpha}, β = {beta}, λ = {lam}: {one:?} alone, {:?} in the set",
+                    all[k]
+                );
+                checked += 1;
+            }
+        }
+    }
+    println!("{checked} orders checked, {normalised} normalised queries");
+    assert!(normalised > 1000, "{normalised} normalised queries");
+    assert!(checked > 500_000, "{checked}");
+}
+
+/// A version-3 JSON table: two planes (|β| = 0 and 0.6) of one order over 400-700 nm.
+#[cfg(feature = "serde")]
+fn v3(edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let mut v = serde_json::json!({
+        "format": "diffraction-efficiency-table", "version": 3, "name": "t", "description": "",
+        "grating": {"profile": "lamellar", "period_nm": 1000.0},
+        "sin_theta_i": [-0.5, 0.5], "abs_beta": [0.0, 0.6], "lambda_range_nm": [400.0, 700.0],
+        "lambda_nm": [[400.0, 600.0, 875.0], [320.0, 700.0]],
+        "order_min": 0, "order_max": 0,
+        "te": [[[[0.9, 0.9], [0.9, 0.9], [0.9, 0.9]], [[0.9, 0.9], [0.9, 0.9]]]],
+        "tm": [[[[0.8, 0.8], [0.8, 0.8], [0.8, 0.8]], [[0.8, 0.8], [0.8, 0.8]]]],
+        "solver": {}, "validation": {}, "sha256": "0"
+    });
+    edit(&mut v);
+    v.to_string()
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn version_3_files_load_and_bad_ones_name_the_field_and_element() {
+    let t: EfficiencyTable = serde_json::from_str(&v3(|_| {})).unwrap();
+    assert!(t.is_reduced());
+    assert_eq!(
+        t.plane_lambda_nm(0).collect::<Vec<_>>(),
+        [400.0, 600.0, 875.0]
+    );
+    assert!((t.efficiency_conical(0, 0.1, 0.3, 550.0).te - 0.9).abs() < 1e-15);
+    let err = |edit: fn(&mut serde_json::Value)| {
+        serde_json::from_str::<EfficiencyTable>(&v3(edit))
+            .unwrap_err()
+            .to_string()
+    };
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(Edit, &str); 10] = [
+        (
+            |v| v["lambda_nm"][1][1] = serde_json::Value::Null,
+            "lambda_nm[1][1]: expected a number, got null",
+        ),
+        (
+            |v| v["version"] = 4.into(),
+            "version: expected 1, 2 or 3, got 4",
+        ),
+        (
+            |v| v["version"] = 2.into(),
+            "lambda_nm: one array of wavelengths per |beta| plane needs version 3, got version 2",
+        ),
+        (
+            |v| v["lambda_nm"] = serde_json::json!([400.0, 875.0]),
+            "lambda_nm: version 3 holds one array of wavelengths per |beta| plane",
+        ),
+        (
+            |v| {
+                v.as_object_mut().unwrap().remove("lambda_range_nm");
+            },
+            "missing field `lambda_range_nm`",
+        ),
+        (
+            |v| v["lambda_range_nm"] = serde_json::json!([400.0]),
+            "lambda_range_nm: expected [min, max], got 1 values",
+        ),
+        (
+            |v| v["lambda_nm"][0][2] = 800.0.into(),
+            "invalid lambda_nm = 800: must let plane 0 (lambda_nm[0]) reach from 400 to 875 nm",
+        ),
+        (
+            |v| v["lambda_nm"][1] = serde_json::json!([700.0, 320.0]),
+            "invalid lambda_nm = 320: must be in plane 1 (lambda_nm[1]): 2 to 4096 finite \
+             wavelengths > 0, strictly increasing",
+        ),
+        (
+            |v| v["te"][0][1] = serde_json::json!([[0.9, 0.9]]),
+            "te: has shape [1][2][3,1][2], expected [1][2][3,2][2] ([order][plane][lambda of \
+             the plane][sin])",
+        ),
+        (
+            |v| v["tm"][0][0][2][1] = serde_json::json!("x"),
+            "tm[0][0][2][1]: expected a number, got \"x\"",
+        ),
+    ];
+    for (edit, want) in cases {
+        let got = err(edit);
+        assert!(got.starts_with(want), "{got}\n  expected: {want}");
+    }
+    // The planes' rows must match lambda_nm's.
+    let got = err(|v| {
+        v["lambda_nm"][0] = serde_json::json!([400.0, 875.0]);
+    });
+    assert!(
+        got.starts_with(
+            "te: has shape [1][2][3,2][2], expected [1][2][2,2][2] ([order][plane][lambda of the plane][sin])"
+        ),
+        "{got}"
+    );
+}
+
+/// The GPU packs a reduced table's first plane as a classical table: the same words as the
+/// classical table of that plane's own nodes and values (to one f32 rounding of the q's), but
+/// no cell marked (a conical table's marks hold for its own reading).
+#[cfg(feature = "gpu")]
+#[test]
+fn the_gpu_packs_the_first_plane() {
+    use diffraction::gpu::pack_efficiency_table;
+    let t = cd_planes(&[0.0, 0.3, 0.5], (360.0, 830.0 * cb(0.5)));
+    let s: Vec<f64> = t.sin_theta_i().collect();
+    let l: Vec<f64> = t.plane_lambda_nm(0).collect();
+    assert_eq!(l, t.lambda_nm().collect::<Vec<_>>());
+    // The first plane's values: the CD's at its own nodes (the planes were made of them).
+    let cd = Preset::Cd.table();
+    let n = cd.order_count() * s.len() * l.len();
+    let (mut te, mut tm) = (vec![0.0; n], vec![0.0; n]);
+    for (k, m) in cd.orders().enumerate() {
+        for (j, &lam) in l.iter().enumerate() {
+            for (i, &x) in s.iter().enumerate() {
+                let e = cd.efficiency(m, x, lam);
+                te[(k * l.len() + j) * s.len() + i] = e.te;
+                tm[(k * l.len() + j) * s.len() + i] = e.tm;
+            }
+        }
+    }
+    let classical =
+        EfficiencyTable::new(cd.period_nm(), *cd.orders().start(), s, l, te, tm).unwrap();
+    let (a, b) = (pack_efficiency_table(&t), pack_efficiency_table(&classical));
+    assert_eq!(a.len(), b.len());
+    let marks = b[6] as usize;
+    let mut worst = 0.0f32;
+    for (x, y) in a[..marks].iter().zip(&b[..marks]) {
+        worst = worst.max((x - y).abs() / y.abs().max(1e-30));
+    }
+    println!("first plane packed against its classical table: worst relative {worst:.2e}");
+    assert!(worst <= 2.0 * f32::EPSILON, "{worst}");
+    assert!(a[marks..].iter().all(|&w| w == 0.0));
+}
