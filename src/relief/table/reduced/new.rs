@@ -6,7 +6,7 @@ use alloc::vec::Vec;
 
 use super::super::load::{check_axis, check_period, SUM_TOLERANCE};
 use super::super::{
-    EfficiencyTable, NodeQ, Storage, UnitCells, MAX_TABLE_ABS_BETA, MAX_TABLE_NODES,
+    EfficiencyTable, Lookup, NodeQ, Storage, UnitCells, MAX_TABLE_ABS_BETA, MAX_TABLE_NODES,
     MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
 };
 use super::{cb, ReducedGrid};
@@ -154,6 +154,7 @@ impl EfficiencyTable {
             },
             unit: UnitCells::new(),
             q: NodeQ::new(),
+            lookup: Lookup::new(),
         })
     }
 }
