@@ -142,7 +142,7 @@ pub enum Requirement {
         max: f64,
     },
     /// An element of plane `plane`'s wavelength nodes (`lambda_nm[plane]`) of a reduced conical
-    /// table: the plane has 2 to [`MAX_TABLE_NODES`](crate::relief::MAX_TABLE_NODES) finite
+    /// table: the plane has 2 to `relief::MAX_TABLE_NODES` finite
     /// wavelengths > 0, strictly increasing (the value is the first that is not, or the count).
     PlaneNodes {
         /// The plane (index into `abs_beta`).

@@ -268,7 +268,7 @@ impl GratingBsdf {
     /// # Errors
     ///
     /// The grating of the table's period cannot be built (ρ·d rounds to 0: an open fraction
-    /// below about 10⁻³⁰⁸/d): the [`Grating`] error, naming `slit_width_nm`. Before, the old
+    /// below about 10⁻³⁰⁸/d): the [`Grating`](crate::Grating) error, naming `slit_width_nm`. Before, the old
     /// period was silently kept.
     ///
     /// ```
