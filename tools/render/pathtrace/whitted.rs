@@ -21,12 +21,13 @@
 
 use diffraction::color::Xyz;
 use diffraction::spectrum::GenericStrategy;
-use diffraction::{ColorTable, SpectralResponse};
+use diffraction::{ColorTable, GratingBsdf, GrooveKind, SpectralResponse};
 use glam::DVec3;
 
 use crate::camera::{self, Camera, CameraRays};
 use crate::colour::Colour;
 use crate::geometry::{nearest, occluded, Ray, SHADOW_REACH};
+use crate::material::GratingMaterial;
 use crate::output::Image;
 use crate::radiometry::{Radiometric, Radiometry};
 use crate::sampling::{Rng, Strata};
@@ -38,6 +39,26 @@ use crate::surface::{nearest_emitter, sample_sphere, Surface};
 /// generic colour (tests/tabulated_color_table.rs).
 const TABLE_ACCURACY: f64 = 1e-3;
 
+/// The cost of a table's `xyz`, ns: measured 86 ns (the CD preset, benches/color_table.rs).
+pub const TABLE_LOOKUP_NS: f64 = 100.0;
+/// The cost of building one table, ns: measured 5-7 s for the CD preset (d = 1600 nm, N = 34);
+/// a finer period or more grooves cost more (the DVD at N = 34: 235 s, docs/color_table.md).
+pub const TABLE_BUILD_NS: f64 = 1e10;
+
+/// Whether the Whitted renderer colours grating material `g` from a colour table: tabulated
+/// efficiencies (classical table, finite N), a groove spread that does not depend on λ, and a
+/// colour that is an integral (`Colour::Integral`).
+pub fn tabled(g: &GratingMaterial<GratingBsdf>) -> bool {
+    let b = &g.model;
+    let classical = b
+        .order_efficiency()
+        .table()
+        .is_some_and(|t| !t.is_conical());
+    let groove = !matches!(b.groove().kind(), GrooveKind::CoherenceLength { .. });
+    let finite = b.grating().slits().as_f64().is_finite();
+    classical && groove && finite && matches!(g.strategy, Colour::Integral(_))
+}
+
 /// The colour tables of the scene's tabulated gratings, one per material (`None` where the
 /// material has no grating, an amplitude one, or one no table takes: a coherence-length
 /// groove, whose colour the generic path integrates).
@@ -48,10 +69,8 @@ impl Tables {
     /// The tables of every tabulated grating of `scene` whose colour is an integral
     /// (`Colour::Integral`), built under its illuminant.
     pub fn new(scene: &Scene<Radiometric>) -> Tables {
-        let table = |g: &crate::material::GratingMaterial<diffraction::GratingBsdf>| {
-            let tabulated = g.model.order_efficiency().is_tabulated();
-            let integral = matches!(g.strategy, Colour::Integral(_));
-            (tabulated && integral)
+        let table = |g: &GratingMaterial<GratingBsdf>| {
+            tabled(g)
                 .then(|| ColorTable::new(&scene.spectral, &g.model, TABLE_ACCURACY).ok())
                 .flatten()
         };
