@@ -115,32 +115,29 @@ pub type RadiometricTable = ColorTable;
 ///
 /// # Tabulated efficiencies
 ///
-/// A radiometric BSDF with tabulated order efficiencies
-/// (`OrderEfficiency::from_table`,
-/// `GratingBsdf::preset`; feature `relief`) has η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)),
-/// which depends on the incidence, so its colour is cos θi · g(v) · C(u, s) with s = wi.x. Its
-/// table holds one pair of graded grids over u (u ≥ 0 and u ≤ 0, C is not even in u) per
-/// incidence node, the nodes placed between the grazing directions at each u and bisected
-/// where a held-out midpoint misses the accuracy (at most 129; the grids and the bisection use
-/// at least 10⁻³: a finer accuracy buys nothing while the interpolation between incidence
-/// nodes dominates the error), and `xyz(wo, wi)` interpolates
-/// linearly between the two nodes around wi.x; each node's colour integrates the BSDF's own
-/// `eval` over panels of the band cut at F_N's zeros, the table's wavelengths and the orders'
-/// Rayleigh wavelengths. [`lookup`](Self::lookup) and [`mean`](Self::mean), which have no
-/// incidence, do not apply: they return black. [`incidence_count`](Self::incidence_count) is
-/// the number of incidence nodes; [`node_count`](Self::node_count),
-/// [`size_bytes`](Self::size_bytes), [`scale`](Self::scale) and
-/// [`error_estimate`](Self::error_estimate) cover all of them. Such a table has no stored form
-/// (serialising it is an error) and a `GpuColorTable` of it holds only its grid of normal
-/// incidence over u ≥ 0. Refused: a conical table (`efficiency`, [`Requirement::Classical`]),
-/// N = ∞ (`slits`) and a coherence-length groove (`groove`).
+/// A radiometric BSDF with tabulated order efficiencies (`OrderEfficiency::from_table`,
+/// `GratingBsdf::preset`; feature `relief`) has η̃_m = min(η_m(−wi.x, λ), η_m(−wo.x, λ)), which
+/// depends on the incidence: its colour is cos θi · g(v) · C(u, s), s = wi.x. Its table holds a
+/// pair of graded grids over u (u ≥ 0 and u ≤ 0: C is not even) per incidence node, the nodes
+/// placed between the grazing directions at each u and bisected where a held-out midpoint
+/// misses the accuracy (at most 129 nodes, each grid within [`MAX_NODES`](Self::MAX_NODES) and
+/// [`MAX_WORK`](Self::MAX_WORK); the accuracy is taken as at least 10⁻³, as the interpolation
+/// between incidence nodes dominates the error), and `xyz(wo, wi)` interpolates linearly
+/// between the two nodes around wi.x. A node's colour integrates the BSDF's `eval` over panels
+/// cut at F_N's zeros, the table's wavelengths and the orders' Rayleigh wavelengths.
+/// [`lookup`](Self::lookup) and [`mean`](Self::mean) have no incidence: they return black.
+/// [`incidence_count`](Self::incidence_count) counts the incidence nodes;
+/// [`node_count`](Self::node_count), [`size_bytes`](Self::size_bytes), [`scale`](Self::scale)
+/// and [`error_estimate`](Self::error_estimate) cover them all. No stored form (serialising is
+/// an error); a `GpuColorTable` of it holds only its grid of normal incidence over u ≥ 0.
+/// Refused: a conical table (`efficiency`, [`Requirement::Classical`]), N = ∞ (`slits`), a
+/// coherence-length groove (`groove`).
 ///
 /// Measured (docs/color_table.md, "Tabulated efficiencies"): the CD preset (N = 34, Gaussian
-/// σ = 0.02, D65) at accuracy 10⁻³ builds in about 5 s (129 incidence nodes, 118,074 nodes,
-/// 9.5 MB) and stays within 0.071 ΔE2000 of the generic colour of the same BSDF, a fine
-/// Gauss-Legendre rule, at 600 random pairs; the interpolation between incidence nodes is the
-/// larger part of that error (the efficiencies are piecewise bilinear in (incidence, λ), so
-/// the colour has kinks along lines that cross the nodes).
+/// σ = 0.02, D65) at 10⁻³ builds in 5-7 s (129 incidence nodes, 118,074 nodes, 9.5 MB) and
+/// is within 0.071 ΔE2000 (600 random pairs; 0.15 over 4000) of the generic colour of the same
+/// BSDF; the error is mostly the interpolation between incidence nodes (the efficiencies are
+/// piecewise bilinear in (incidence, λ): the colour has kinks on lines crossing the nodes).
 ///
 /// ```
 /// # #[cfg(feature = "presets")] {
@@ -320,7 +317,8 @@ impl ColorTable {
     pub const FORMAT_VERSION: u32 = 1;
 
     /// The most nodes a table holds (72 bytes each, 442 KiB): refinement stops there, worst blocks
-    /// first, and [`error_estimate`](Self::error_estimate) says what was reached.
+    /// first, and [`error_estimate`](Self::error_estimate) says what was reached. For tabulated
+    /// efficiencies this bounds each of its grids over u (two per incidence node).
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral};
@@ -340,7 +338,8 @@ impl ColorTable {
     /// [`error_estimate`](Self::error_estimate) says what was reached). Every evaluation does
     /// bounded work, so every build does: the slowest measured are N ≈ 2³² at accuracy 10⁻⁶
     /// (nodes by the peak search over up to 4096 orders, about 0.1-0.3 ms each: 1-2 s for the
-    /// table); tables of N ≤ 10⁶ and d ≤ 100 µm stay below the budget.
+    /// table); tables of N ≤ 10⁶ and d ≤ 100 µm stay below the budget. For tabulated efficiencies
+    /// this bounds the refinement of each first grid over u (the others take their layout).
     ///
     /// ```
     /// use diffraction::spectrum::{Illuminant, Spectral};

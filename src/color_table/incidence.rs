@@ -15,8 +15,10 @@
 //! bisection: an interval's midpoint node is built and compared, at every node of its grids,
 //! with the interpolation of the interval's ends (by the grids' own tolerance, at the table's
 //! error scale); where it misses the accuracy the midpoint is kept and both halves are checked
-//! in turn, down to [`MAX_DEPTH`] halvings. A lookup locates its interval in O(1) from the bins
-//! of the finest level.
+//! in turn, down to [`MAX_DEPTH`] halvings. The nodes after the first take the first nodes'
+//! layout over u (per block their most intervals, at most `ColorTable::MAX_NODES` nodes in
+//! all), so that they cost one evaluation a node and no midpoint checks. A lookup locates its
+//! interval in O(1) from the bins of the finest level.
 
 use alloc::vec::Vec;
 
@@ -186,6 +188,15 @@ impl Incidence {
                     for (l, i) in layout.iter_mut().zip(intervals) {
                         *l = (*l).max(i);
                     }
+                }
+            }
+        }
+        // At most `max_nodes` nodes a grid, as a refined one: the largest blocks halved.
+        for layout in &mut b.layouts {
+            while 1 + layout.iter().map(|&n| n as usize).sum::<usize>() > b.plan.max_nodes {
+                match layout.iter_mut().filter(|n| **n > 2).max_by_key(|n| **n) {
+                    Some(n) => *n /= 2,
+                    None => break,
                 }
             }
         }

@@ -137,7 +137,13 @@ impl TabulatedNodes {
             }
             // The order boundaries and each owning order's Rayleigh wavelengths.
             let sign = if u < 0.0 { -1.0 } else { 1.0 };
-            let (m_lo, m_hi) = (floor(x_lo + 0.5), floor(x_hi + 0.5));
+            // Orders the table does not store carry nothing (no cuts): at most its |m|.
+            let most = self
+                .orders
+                .0
+                .unsigned_abs()
+                .max(self.orders.1.unsigned_abs()) as f64;
+            let (m_lo, m_hi) = (floor(x_lo + 0.5), floor(x_hi + 0.5).min(most + 1.0));
             let mut m = m_lo;
             while m <= m_hi {
                 let b = q / (m + 0.5);
