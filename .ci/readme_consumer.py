@@ -60,6 +60,10 @@ with open(os.path.join(crate, "Cargo.toml"), "w", encoding="utf-8") as f:
         "publish = false\n\n"
         "[dependencies]\n"
         f"diffraction = {{ path = {root!r} }}\n\n"
+        # A snippet that needs the shipped efficiency tables says so with
+        # `#[cfg(feature = "presets")]`, as a user's crate forwarding the feature would.
+        "[features]\n"
+        'presets = ["diffraction/presets"]\n\n'
         "[workspace]\n"
     )
 shutil.copyfile(os.path.join(root, "Cargo.lock"), os.path.join(crate, "Cargo.lock"))
@@ -75,7 +79,7 @@ main.append("fn main() {\n" + "\n".join(calls) + "\n}\n")
 with open(os.path.join(crate, "src", "main.rs"), "w", encoding="utf-8") as f:
     f.write("\n".join(main))
 env = dict(os.environ, CARGO_TARGET_DIR=os.path.join(crate, "target"))
-r = subprocess.run(["cargo", "build", "--quiet"], cwd=crate, env=env)
+r = subprocess.run(["cargo", "build", "--quiet", "--features", "presets"], cwd=crate, env=env)
 if r.returncode != 0:
     sys.exit(f"a README snippet does not compile with `diffraction` as the only dependency ({crate}/src/main.rs)")
 print(f"{len(repo)} README snippets compile with `diffraction` as the only dependency ({len(package)} of them on the registry page)")

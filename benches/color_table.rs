@@ -12,6 +12,12 @@
 //! colour in physical units) against `Spectral::xyz_response`, its builds beside
 //! the paper's table of the same grating, and (feature `serde`) a load of its cached JSON.
 //!
+//! The `tabulated_table` group (feature `presets`) times `xyz(wo, wi)` of the table of the CD
+//! preset (N = 34, Gaussian groove σ = 0.02, D65, accuracy 10⁻³) at 1024 random pairs against
+//! the generic colour of the same BSDF on 16 of them: `GenericStrategy::WINDOWS` (what the
+//! Whitted renderer called before) and 8-point Gauss-Legendre on 512 intervals (the tests'
+//! reference).
+//!
 //! `cargo bench --features serde --bench color_table -- --warm-up-time 1 --measurement-time 2`
 
 use criterion::{black_box, BenchmarkId, Criterion, Throughput};
@@ -213,10 +219,68 @@ fn bench_radiometric(c: &mut Criterion) {
     group.finish();
 }
 
+#[cfg(feature = "presets")]
+fn bench_tabulated(c: &mut Criterion) {
+    use diffraction::relief::Preset;
+    use diffraction::spectrum::GenericStrategy;
+    use diffraction::{GratingBsdf, GrooveSpread};
+    use glam::DVec3;
+    let s = Spectral::new(Illuminant::D65);
+    let b = GratingBsdf::preset(Preset::Cd, 34)
+        .unwrap()
+        .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+    let table = ColorTable::new(&s, &b, 1e-3).unwrap();
+    // wi.x, wo.x uniform in (−0.98, 0.98), v = 0.01 (a fixed LCG: no extra dependency).
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let pairs: Vec<(DVec3, DVec3)> = (0..BATCH)
+        .map(|_| {
+            let (ix, ox) = (1.96 * next() - 0.98, 1.96 * next() - 0.98);
+            let (iy, oy) = (0.0, 0.01);
+            let wi = DVec3::new(ix, iy, (1.0 - ix * ix - iy * iy).sqrt());
+            let wo = DVec3::new(ox, oy, (1.0 - ox * ox - oy * oy).sqrt());
+            (wo, wi)
+        })
+        .collect();
+    let mut group = c.benchmark_group("tabulated_table/cd_n34");
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("xyz", |bch| {
+        bch.iter(|| {
+            pairs
+                .iter()
+                .map(|&(o, i)| table.xyz(black_box(o), i).y)
+                .sum::<f64>()
+        })
+    });
+    group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
+    let rules = [
+        ("windows", GenericStrategy::WINDOWS),
+        ("gl512", GenericStrategy::gauss_legendre(512).unwrap()),
+    ];
+    for (name, rule) in rules {
+        group.bench_function(BenchmarkId::new("xyz_brdf", name), |bch| {
+            bch.iter(|| {
+                pairs[..BASELINE_BATCH]
+                    .iter()
+                    .map(|&(o, i)| s.xyz_brdf(&b, black_box(o), i, rule).y)
+                    .sum::<f64>()
+            })
+        });
+    }
+    group.finish();
+}
+
 fn main() {
     let mut c = Criterion::default().configure_from_args();
     bench_lookup(&mut c);
     bench_build(&mut c);
     bench_radiometric(&mut c);
+    #[cfg(feature = "presets")]
+    bench_tabulated(&mut c);
     c.final_summary();
 }

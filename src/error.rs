@@ -152,9 +152,13 @@ pub enum Requirement {
     /// width λ/L changes with λ): the value is the rejected length.
     IndependentOfWavelength,
     /// Order efficiencies that are the same at every incidence and wavelength (the amplitude
-    /// reading): a tabulated model's colour does not factorise into one function of u. The value
-    /// is the number of orders the table stores.
+    /// reading): a colour table of a tabulated model, whose colour depends on the incidence
+    /// too, has no stored form. The value is the number of orders the table stores.
     NotTabulated,
+    /// A classical table (efficiencies of incidences in the plane of the grating vector, no
+    /// conical slices): a colour table tabulates those. The value is the number of orders the
+    /// table stores.
+    Classical,
 }
 
 impl Error {
@@ -243,7 +247,8 @@ impl fmt::Display for Error {
             } => write!(
                 f,
                 "invalid {name}: tabulated order efficiencies depend on the incidence and the \
-                 wavelength, so the colour is no function of u alone (no table over u)"
+                 wavelength, so the colour is no function of u alone (a colour table of them \
+                 has no stored form: rebuild it)"
             ),
             Error::InvalidParameter {
                 name,
@@ -304,6 +309,10 @@ impl fmt::Display for Error {
                     Requirement::IndependentOfWavelength => {
                         write!(f, "be the same at every wavelength")
                     }
+                    Requirement::Classical => write!(
+                        f,
+                        "be a classical table (a conical table has no colour table)"
+                    ),
                 }
             }
         }

@@ -84,7 +84,7 @@ pub(super) struct Grid {
 /// that moves CIELAB's f(t) = t^(1/3) (linear below t = (6/29)³) by 1/3, at the exposure
 /// Y' = max(`scale`, Y) (t = channel / (white · Y')). So it is white_c·Y'·max(t, (6/29)³)^(2/3):
 /// at most white_c·Y' for channels up to the white, 0.043·white_c·Y_b where the colour is dark.
-fn tolerance(exact: &[f64; 3], c: usize, scale: f64, white: [f64; 3]) -> f64 {
+pub(super) fn tolerance(exact: &[f64; 3], c: usize, scale: f64, white: [f64; 3]) -> f64 {
     const DARK: f64 = (6.0 / 29.0) * (6.0 / 29.0) * (6.0 / 29.0);
     let exposure = scale.max(exact[1]);
     let t = (exact[c] / (white[c] * exposure)).max(DARK);
@@ -496,6 +496,57 @@ impl Grid {
         // t ≥ 0 (a ≥ u0); `as` truncates toward 0, which is floor here, and saturates.
         let j = (t as u32).min(b.n - 1);
         ((b.first + j) as usize, t - j as f64, b.h)
+    }
+
+    /// The number of intervals of every block.
+    #[cfg(feature = "relief")]
+    pub(super) fn intervals(&self) -> Vec<u32> {
+        self.blocks.iter().map(|b| b.n).collect()
+    }
+
+    /// The grid whose blocks after block 0 = [0, `u_lo`) have `intervals` (one per block of
+    /// that layout, powers of two: the caller's), its node values from `eval`, its error scale
+    /// `scale` and no error estimate (its nodes are not checked).
+    #[cfg(feature = "relief")]
+    pub(super) fn on_layout(
+        u_lo: f64,
+        intervals: &[u32],
+        scale: f64,
+        eval: &dyn Fn(f64) -> [f64; 3],
+    ) -> Grid {
+        let bounds = bounds(u_lo);
+        let mut work: Vec<Work> = Vec::with_capacity(intervals.len());
+        for (b, &n) in bounds.windows(2).zip(intervals) {
+            let n = n.max(1) as usize;
+            let h = (b[1] - b[0]) / n as f64;
+            let mut vals = Vec::with_capacity(n + 1);
+            // A block's first node is the last of the block before.
+            match work.last() {
+                Some(w) => vals.push(w.vals[w.n]),
+                None => vals.push(eval(b[0])),
+            }
+            vals.extend((1..=n).map(|j| eval(b[0] + j as f64 * h)));
+            work.push(Work {
+                u0: b[0],
+                h,
+                n,
+                vals,
+                mids: Vec::new(),
+                capped: false,
+                err: 0.0,
+            });
+        }
+        Grid::assembled(&work, u_lo, scale, 0.0)
+    }
+
+    /// The positions of the nodes.
+    #[cfg(feature = "relief")]
+    pub(super) fn positions(&self) -> impl Iterator<Item = f64> + '_ {
+        let last = self.blocks.last().map(|b| b.u0 + b.n as f64 * b.h);
+        self.blocks
+            .iter()
+            .flat_map(|b| (0..b.n).map(move |j| b.u0 + j as f64 * b.h))
+            .chain(last)
     }
 
     /// The number of nodes.

@@ -132,6 +132,11 @@ struct TableIn {
 
 impl Serialize for ColorTable {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if self.incidence_count().is_some() {
+            return Err(serde::ser::Error::custom(
+                "a colour table of tabulated order efficiencies has no stored form: rebuild it",
+            ));
+        }
         let (grating, bsdf) = match self.source() {
             TableSource::Paper(g) => (Some(g), None),
             TableSource::Radiometric(b) => (None, Some(b)),
@@ -165,6 +170,18 @@ impl<'de> Deserialize<'de> for ColorTable {
             check_version(r.format_version)?;
             check_accuracy(r.accuracy)?;
             let (source, nodes) = Source::new(source, &Spectral::new(r.illuminant))?;
+            #[cfg(feature = "relief")]
+            if let Source::Tabulated { bsdf, .. } = &source {
+                let orders = bsdf
+                    .order_efficiency()
+                    .table()
+                    .map_or(0, |t| t.orders().count());
+                return Err(Error::invalid(
+                    "efficiency",
+                    orders as f64,
+                    Requirement::NotTabulated,
+                ));
+            }
             let (u_lo, _) = source.first_block();
             let limits = source.stored_limits(r.illuminant);
             let grid = r.grid.load(u_lo, ColorTable::MAX_NODES, &limits)?;

@@ -253,13 +253,27 @@ impl run::Renderer for Integrator {
                         } else {
                             Integrand::Grating(*g.model.grating())
                         };
-                        let ns = budget::colour_ns(&scene.spectral, integrand, g.strategy);
+                        let ns = if whitted::tabled(g) {
+                            whitted::TABLE_LOOKUP_NS
+                        } else {
+                            budget::colour_ns(&scene.spectral, integrand, g.strategy)
+                        };
                         (
                             ns,
                             format!("strategy {} of objects[{i}].material", g.strategy),
                         )
                     })
                     .fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a });
+                let tables = scene
+                    .materials
+                    .iter()
+                    .filter(|m| m.grating.as_ref().is_some_and(whitted::tabled))
+                    .count() as f64;
+                est.add(
+                    format!("{tables} colour tables of tabulated gratings"),
+                    tables * whitted::TABLE_BUILD_NS,
+                    "a coherence-length groove (the generic colour, no table)",
+                );
                 let colours = samples * pilot.lit_samples;
                 est.add(
                     format!(

@@ -1,0 +1,274 @@
+//! The table of a tabulated grating (feature `relief`): its colour C(u, s) depends on the
+//! incidence s = wi.x as well as on u, so the table holds one pair of graded grids over u (one
+//! for u ≥ 0, one for u ≤ 0, each by [`Grid::build`]) per incidence node, and interpolates
+//! linearly between the two nodes around a lookup.
+//!
+//! The incidence is parametrised by τ ∈ [0, 1], its place between the two grazing directions
+//! at that u: s = max(−1, u − 1) + τ·(2 − |u|) (τ = 0 where wo grazes, 1 where wi does). So a
+//! node's grid follows the directions above the surface, and no interval of nodes straddles
+//! the horizon of wo (at fixed s, interpolation would cross the line |u − s| = 1 where the
+//! colour falls to 0). Near either end the efficiencies of the grazing direction rise as the
+//! square root of its cosine², so the nodes are uniform in σ with τ = σ²/(σ² + (1 − σ)²),
+//! which makes that square root linear in σ at both ends.
+//!
+//! The nodes start every 1/[`BASE_INTERVALS`] of σ and are refined by
+//! bisection: an interval's midpoint node is built and compared, at every node of its grids,
+//! with the interpolation of the interval's ends (by the grids' own tolerance, at the table's
+//! error scale); where it misses the accuracy the midpoint is kept and both halves are checked
+//! in turn, down to [`MAX_DEPTH`] halvings. The nodes after the first take the first nodes'
+//! layout over u (per block their most intervals, at most `ColorTable::MAX_NODES` nodes in
+//! all), so that they cost one evaluation a node and no midpoint checks. A lookup locates its
+//! interval in O(1) from the bins of the finest level.
+
+use alloc::vec::Vec;
+
+use super::grid::{tolerance, Grid, Plan};
+use super::tabulated_nodes::TabulatedNodes;
+use crate::color::Xyz;
+use crate::num::math::sqrt;
+
+/// Intervals of the first incidence nodes over [−1, 1].
+pub(super) const BASE_INTERVALS: usize = 8;
+/// The most halvings of a first interval.
+pub(super) const MAX_DEPTH: u32 = 4;
+
+/// The end nodes are evaluated this far (in τ) inside the grazing directions, where the colour
+/// has its limit (exactly at grazing the BSDF is 0).
+const GRAZING: f64 = 1e-6;
+
+/// The incidence s = wi.x at u of the node σ: s runs over the directions above the surface at
+/// u, from max(−1, u − 1) (σ = 0) to min(1, u + 1) (σ = 1), where wo or wi grazes, as
+/// τ = σ²/(σ² + (1 − σ)²) (see the module docs).
+#[inline]
+fn incidence(u: f64, sigma: f64) -> f64 {
+    let (a, b) = (sigma * sigma, (1.0 - sigma) * (1.0 - sigma));
+    let tau = (a / (a + b)).clamp(GRAZING, 1.0 - GRAZING);
+    u.max(0.0) - 1.0 + tau * (2.0 - u.abs())
+}
+
+/// The node coordinate σ of (u, s) (the inverse of [`incidence`]): σ = √τ/(√τ + √(1 − τ))
+/// with τ = (s − max(−1, u − 1))/(2 − |u|); `None` outside [0, 1] (a direction below the
+/// surface) and where 2 − |u| is not positive.
+#[inline]
+fn coordinate(u: f64, s: f64) -> Option<f64> {
+    let width = 2.0 - u.abs();
+    let tau = (s - u.max(0.0) + 1.0) / width;
+    if !(width > 0.0 && (0.0..=1.0).contains(&tau)) {
+        return None;
+    }
+    let (a, b) = (sqrt(tau), sqrt(1.0 - tau));
+    Some(a / (a + b))
+}
+
+/// One incidence node: τ (its field `s`) and its grids over u ≥ 0 and u ≤ 0 (the latter in
+/// |u|).
+#[derive(Debug, Clone, PartialEq)]
+struct Node {
+    s: f64,
+    pos: Grid,
+    neg: Grid,
+}
+
+/// The grids of every incidence node and the O(1) location of an incidence.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Incidence {
+    nodes: Vec<Node>,
+    /// For each bin of the finest level over [−1, 1], the node starting its interval.
+    bins: Vec<u32>,
+    /// Bins per unit of s.
+    inv_bin: f64,
+    /// The error scale (the largest Y of a diffracted colour) and the worst error found.
+    pub scale: f64,
+    pub error: f64,
+}
+
+/// What the refinement needs.
+struct Build<'a> {
+    nodes: &'a TabulatedNodes,
+    plan: Plan,
+    /// The layouts of the refined nodes over u ≥ 0 and u ≤ 0: per block the most intervals
+    /// of the first nodes' grids.
+    layouts: [Vec<u32>; 2],
+    scale: f64,
+    error: f64,
+}
+
+impl Build<'_> {
+    /// The grids at σ, refined in u (the first nodes).
+    fn refined(&mut self, s: f64) -> Node {
+        let n = self.nodes;
+        // Each grid has its own budget.
+        let start = n.work_done.get();
+        let pos = Grid::build(&self.plan, &|a, _| n.eval(a, incidence(a, s)), &|| {
+            n.work_done.get() - start
+        });
+        let start = n.work_done.get();
+        let neg = Grid::build(&self.plan, &|a, _| n.eval(-a, incidence(-a, s)), &|| {
+            n.work_done.get() - start
+        });
+        self.scale = self.scale.max(pos.scale).max(neg.scale);
+        self.error = self.error.max(pos.error).max(neg.error);
+        Node { s, pos, neg }
+    }
+
+    /// The grids at σ on the layouts.
+    fn node(&mut self, s: f64) -> Node {
+        let (n, u_lo) = (self.nodes, self.plan.u_lo);
+        let pos = Grid::on_layout(u_lo, &self.layouts[0], self.scale, &|a| {
+            n.eval(a, incidence(a, s))
+        });
+        let neg = Grid::on_layout(u_lo, &self.layouts[1], self.scale, &|a| {
+            n.eval(-a, incidence(-a, s))
+        });
+        Node { s, pos, neg }
+    }
+
+    /// The worst error of the interpolation of `a` and `b` at the nodes of `mid`'s grids.
+    fn error(&self, a: &Node, b: &Node, mid: &Node) -> f64 {
+        let white = self.plan.white;
+        let mut worst = 0.0f64;
+        for (ga, gb, gm) in [(&a.pos, &b.pos, &mid.pos), (&a.neg, &b.neg, &mid.neg)] {
+            for u in gm.positions() {
+                let exact = gm.value(u);
+                let (x, y) = (ga.value(u), gb.value(u));
+                let exact = [exact.x, exact.y, exact.z];
+                let interp = [0.5 * (x.x + y.x), 0.5 * (x.y + y.y), 0.5 * (x.z + y.z)];
+                for c in 0..3 {
+                    let tol = tolerance(&exact, c, self.scale, white);
+                    worst = worst.max((interp[c] - exact[c]).abs() / tol);
+                }
+            }
+        }
+        worst
+    }
+
+    /// Appends the nodes between the last of `out` and `right` (bisected while the midpoint
+    /// misses the accuracy), then `right`.
+    fn refine(&mut self, out: &mut Vec<(Node, u32)>, right: Node, depth: u32) {
+        if depth < MAX_DEPTH {
+            let left = &out[out.len() - 1].0;
+            let mid = self.node(0.5 * (left.s + right.s));
+            let err = self.error(left, &right, &mid);
+            if err > self.plan.accuracy {
+                self.refine(out, mid, depth + 1);
+                self.refine(out, right, depth + 1);
+                return;
+            }
+            self.error = self.error.max(err);
+        }
+        out.push((right, depth));
+    }
+}
+
+impl Incidence {
+    /// The table of `nodes` with the grids' `plan`: the first nodes refined in u (normal
+    /// incidence first, whose error scale becomes the floor of the others, so that every node
+    /// is refined at the table's one scale), the others on the layouts of the first ones.
+    /// Returns the grid of normal incidence over u ≥ 0 too.
+    pub(super) fn build(nodes: &TabulatedNodes, mut plan: Plan) -> (Incidence, Grid) {
+        let normal = Grid::build(&plan, &|u, _| nodes.eval(u, 0.0), &|| nodes.work_done.get());
+        plan.floor = plan.floor.max(normal.scale);
+        let mut b = Build {
+            nodes,
+            scale: plan.floor,
+            plan,
+            layouts: [Vec::new(), Vec::new()],
+            error: 0.0,
+        };
+        let base = |k: usize| k as f64 / BASE_INTERVALS as f64;
+        let first: Vec<Node> = (0..=BASE_INTERVALS).map(|k| b.refined(base(k))).collect();
+        for (side, layout) in b.layouts.iter_mut().enumerate() {
+            // The grazing ends' grids resolve their square-root edges, which no inner node needs.
+            for n in &first[1..BASE_INTERVALS] {
+                let grid = if side == 0 { &n.pos } else { &n.neg };
+                let intervals = grid.intervals();
+                if layout.is_empty() {
+                    *layout = intervals;
+                } else {
+                    for (l, i) in layout.iter_mut().zip(intervals) {
+                        *l = (*l).max(i);
+                    }
+                }
+            }
+        }
+        // At most `max_nodes` nodes a grid, as a refined one: the largest blocks halved.
+        for layout in &mut b.layouts {
+            while 1 + layout.iter().map(|&n| n as usize).sum::<usize>() > b.plan.max_nodes {
+                match layout.iter_mut().filter(|n| **n > 2).max_by_key(|n| **n) {
+                    Some(n) => *n /= 2,
+                    None => break,
+                }
+            }
+        }
+        let mut first = first.into_iter();
+        let mut out: Vec<(Node, u32)> = Vec::new();
+        if let Some(n) = first.next() {
+            out.push((n, 0));
+        }
+        for right in first {
+            b.refine(&mut out, right, 0);
+        }
+        // Each node after the first closes an interval of 2^(MAX_DEPTH − depth) finest bins.
+        let mut bins = Vec::with_capacity(BASE_INTERVALS << MAX_DEPTH);
+        for (i, (_, depth)) in out.iter().enumerate().skip(1) {
+            for _ in 0..1usize << (MAX_DEPTH - depth) {
+                bins.push((i - 1) as u32);
+            }
+        }
+        let inv_bin = bins.len() as f64;
+        let table = Incidence {
+            nodes: out.into_iter().map(|(n, _)| n).collect(),
+            bins,
+            inv_bin,
+            scale: b.scale,
+            error: b.error,
+        };
+        (table, normal)
+    }
+
+    /// C(u, s) interpolated: Hermite in u on both nodes around τ(u, s), linear between them;
+    /// `u` in [−2, 2] and `s` in [−1, 1] (the caller's ranges).
+    #[inline]
+    pub(super) fn value(&self, u: f64, s: f64) -> Xyz {
+        let Some(s) = coordinate(u, s) else {
+            return Xyz::default();
+        };
+        let t = s * self.inv_bin;
+        // t ≥ 0; `as` truncates toward 0 and saturates.
+        let bin = (t as usize).min(self.bins.len() - 1);
+        let i = self.bins[bin] as usize;
+        let (a, b) = (&self.nodes[i], &self.nodes[i + 1]);
+        let w = ((s - a.s) / (b.s - a.s)).clamp(0.0, 1.0);
+        let m = u.abs();
+        let (x, y) = if u >= 0.0 {
+            (a.pos.value(m), b.pos.value(m))
+        } else {
+            (a.neg.value(m), b.neg.value(m))
+        };
+        x.scale(1.0 - w) + y.scale(w)
+    }
+
+    /// The incidence nodes.
+    pub(super) fn incidence_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The nodes of all grids.
+    pub(super) fn node_count(&self) -> usize {
+        self.nodes
+            .iter()
+            .map(|n| n.pos.node_count() + n.neg.node_count())
+            .sum()
+    }
+
+    /// Heap memory, bytes.
+    pub(super) fn heap_bytes(&self) -> usize {
+        self.bins.capacity() * core::mem::size_of::<u32>()
+            + self.nodes.capacity() * core::mem::size_of::<Node>()
+            + self
+                .nodes
+                .iter()
+                .map(|n| n.pos.heap_bytes() + n.neg.heap_bytes())
+                .sum::<usize>()
+    }
+}

@@ -1,0 +1,192 @@
+//! `ColorTable` of a `GratingBsdf` with tabulated order efficiencies (the presets): lookups
+//! `xyz(wo, wi)` at random pairs against the crate's generic colour of the same BSDF,
+//! `Spectral::xyz_brdf` with 8-point Gauss-Legendre on 512 equal intervals of the band (0.11 nm
+//! between wavelengths: the reference of the same model, independent of the table's panels);
+//! bad input.
+//!
+//! Errors per channel relative to the exposure max(cos θi·g(v)·Y_b, Y) (Y_b the table's error
+//! scale, the brightest diffracted C), and ΔE2000 at that exposure, as tests/radiometric_table.rs.
+//! `cargo test --release --all-features --test tabulated_color_table -- --nocapture` prints them.
+#![cfg(feature = "presets")]
+
+#[path = "support/rng.rs"]
+mod rng;
+#[path = "support/tabulated_table_tolerance.rs"]
+mod tolerance;
+
+use std::time::Instant;
+
+use diffraction::color::{WhitePoint, Xyz};
+use diffraction::glam::DVec3;
+use diffraction::relief::Preset;
+use diffraction::spectrum::{GenericStrategy, Illuminant, Spectral};
+use diffraction::{ColorTable, GratingBsdf, GrooveSpread};
+use rng::Rng;
+
+/// The reference rule: 8-point Gauss-Legendre on 512 intervals of the band.
+fn reference() -> GenericStrategy {
+    GenericStrategy::gauss_legendre(512).unwrap()
+}
+
+/// The preset with `n` coherent grooves and a Gaussian groove spread of σ = 0.02.
+fn preset(p: Preset, n: u32) -> GratingBsdf {
+    GratingBsdf::preset(p, n)
+        .unwrap()
+        .with_groove(GrooveSpread::gaussian(0.02).unwrap())
+}
+
+/// `count` pairs (wo, wi) above the surface near the plane of incidence of the groove lobe
+/// (v = wi.y + wo.y within ±0.02, where g(v) is not negligible), wi.x and wo.x uniform in
+/// (−0.98, 0.98).
+fn pairs(count: usize, seed: u64) -> Vec<(DVec3, DVec3)> {
+    let mut rng = Rng::new(seed);
+    let mut out = Vec::with_capacity(count);
+    while out.len() < count {
+        let ix = 1.96 * rng.next_f64() - 0.98;
+        let ox = 1.96 * rng.next_f64() - 0.98;
+        let iy = 0.4 * rng.next_f64() - 0.2;
+        let oy = -iy + 0.04 * rng.next_f64() - 0.02;
+        let (iz, oz) = (1.0 - ix * ix - iy * iy, 1.0 - ox * ox - oy * oy);
+        if iz > 1e-4 && oz > 1e-4 {
+            out.push((DVec3::new(ox, oy, oz.sqrt()), DVec3::new(ix, iy, iz.sqrt())));
+        }
+    }
+    out
+}
+
+/// The worst (relative, ΔE2000) of `table.xyz` against the reference at `count` pairs, and
+/// the pair (wo, wi) of the worst ΔE2000.
+fn errors(
+    s: &Spectral,
+    b: &GratingBsdf,
+    table: &ColorTable,
+    count: usize,
+    seed: u64,
+) -> (f64, f64, (DVec3, DVec3)) {
+    let white = WhitePoint::new(s.white()).unwrap();
+    let rule = reference();
+    let (mut rel, mut de, mut at) = (0.0f64, 0.0f64, (DVec3::Z, DVec3::Z));
+    for (wo, wi) in pairs(count, seed) {
+        let want = s.xyz_brdf(b, wo, wi, rule);
+        let got = table.xyz(wo, wi);
+        let weight = wi.z * b.groove().value(wi.y + wo.y, 550.0);
+        let k = 1.0 / (weight * table.scale()).max(want.y);
+        if !k.is_finite() {
+            continue;
+        }
+        let r = [got.x - want.x, got.y - want.y, got.z - want.z]
+            .iter()
+            .fold(0.0f64, |m, d| m.max(d.abs()))
+            * k;
+        let e = got
+            .scale(k)
+            .to_lab(white)
+            .delta_e2000(want.scale(k).to_lab(white));
+        rel = rel.max(r);
+        if e > de {
+            (de, at) = (e, (wo, wi));
+        }
+    }
+    (rel, de, at)
+}
+
+/// Builds the table of `b` at `accuracy` and measures it at `count` pairs; prints what it
+/// found.
+fn measure(name: &str, s: &Spectral, b: &GratingBsdf, accuracy: f64, count: usize) -> (f64, f64) {
+    let t0 = Instant::now();
+    let table = ColorTable::new(s, b, accuracy).unwrap();
+    let build = t0.elapsed().as_secs_f64();
+    let (rel, de, (wo, wi)) = errors(s, b, &table, count, 0x7ab1e);
+    println!(
+        "{name}: build {build:.2} s, {} incidence nodes, {} nodes, {} evaluations, {:.1} MB, \
+         error estimate {:.2e}; worst rel {rel:.2e}, worst ΔE2000 {de:.4} at wo.x {:.3}, \
+         wi.x {:.3} (u {:.3})",
+        table.incidence_count().unwrap(),
+        table.node_count(),
+        table.evaluations(),
+        table.size_bytes() as f64 / 1e6,
+        table.error_estimate(),
+        wo.x,
+        wi.x,
+        wo.x + wi.x,
+    );
+    (rel, de)
+}
+
+#[test]
+fn cd_within_target() {
+    let s = Spectral::new(Illuminant::D65);
+    let b = preset(Preset::Cd, 34);
+    let (rel, de) = measure("CD, N = 34, D65, 1e-3", &s, &b, 1e-3, 600);
+    assert!(rel <= tolerance::CD_REL, "relative {rel:.3e}");
+    assert!(de <= tolerance::CD_DE2000, "ΔE2000 {de:.4}");
+}
+
+#[test]
+#[ignore = "the CD under D65 and E and the DVD under D65, 4000 pairs each: minutes in release"]
+fn presets_within_target() {
+    for (p, ill, illuminant) in [
+        (Preset::Cd, "D65", Illuminant::D65),
+        (Preset::Cd, "E", Illuminant::E),
+        (Preset::Dvd, "D65", Illuminant::D65),
+    ] {
+        let s = Spectral::new(illuminant);
+        let name = format!("{p}, N = 34, {ill}, 1e-3");
+        let (rel, de) = measure(&name, &s, &preset(p, 34), 1e-3, 4000);
+        assert!(rel <= tolerance::SWEEP_REL, "{p} {ill}: relative {rel:.3e}");
+        assert!(de <= tolerance::SWEEP_DE2000, "{p} {ill}: ΔE2000 {de:.4}");
+    }
+}
+
+#[test]
+fn lookup_and_mean_do_not_apply() {
+    let s = Spectral::new(Illuminant::E);
+    let t = ColorTable::new(&s, &preset(Preset::Dvd, 8), 1e-2).unwrap();
+    assert_eq!(t.lookup(0.3), Xyz::default());
+    assert_eq!(t.mean(0.2, 0.4), Xyz::default());
+    assert!(t.incidence_count().unwrap() >= 9);
+    // Below the surface and non-finite input: black.
+    assert_eq!(t.xyz(DVec3::NEG_Z, DVec3::Z), Xyz::default());
+    assert_eq!(t.xyz(DVec3::splat(f64::NAN), DVec3::Z), Xyz::default());
+}
+
+#[test]
+fn bad_sources_are_refused() {
+    let s = Spectral::new(Illuminant::E);
+    // N = ∞: delta lobes.
+    let ideal = GratingBsdf::preset(Preset::Cd, diffraction::Slits::Infinite).unwrap();
+    let e = ColorTable::new(&s, &ideal, 1e-3).unwrap_err();
+    assert_eq!(e.parameter(), "slits");
+    // The default groove spread, a coherence length, depends on λ.
+    let coherent = GratingBsdf::preset(Preset::Cd, 34).unwrap();
+    let e = ColorTable::new(&s, &coherent, 1e-3).unwrap_err();
+    assert_eq!(e.parameter(), "groove");
+}
+
+#[test]
+fn conical_tables_are_refused() {
+    use diffraction::grating_bsdf::OrderEfficiency;
+    use diffraction::relief::EfficiencyTable;
+    use diffraction::Grating;
+    use std::sync::Arc;
+    // Order 0 alone, 0.5 of the power in each polarisation, on a 2 × 2 × 2 grid.
+    let (s, b, l) = (vec![-0.99, 0.99], vec![0.0, 0.5], vec![360.0, 830.0]);
+    let t = EfficiencyTable::new_conical(1600.0, 0, s, b, l, vec![0.5; 8], vec![0.5; 8]).unwrap();
+    let efficiency = OrderEfficiency::from_table(Arc::new(t)).unwrap();
+    let bsdf = GratingBsdf::new(Grating::new(1600.0, 800.0, 34).unwrap())
+        .with_groove(GrooveSpread::gaussian(0.02).unwrap())
+        .with_efficiency(efficiency)
+        .unwrap();
+    let e = ColorTable::new(&Spectral::new(Illuminant::E), &bsdf, 1e-3).unwrap_err();
+    assert_eq!(e.parameter(), "efficiency");
+    assert!(e.to_string().contains("classical"), "{e}");
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn no_stored_form() {
+    let s = Spectral::new(Illuminant::E);
+    let t = ColorTable::new(&s, &preset(Preset::Dvd, 8), 1e-2).unwrap();
+    let e = serde_json::to_string(&t).unwrap_err();
+    assert!(e.to_string().contains("no stored form"), "{e}");
+}
