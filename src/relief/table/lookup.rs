@@ -636,14 +636,20 @@ impl EfficiencyTable {
                 *c += b;
             }
         }
+        let (inv_ds, inv_dl) = (inv(&s), inv(&l));
+        // A node spacing so small (below about 10⁻³⁰⁸) that its reciprocal or the binning's
+        // scale overflows: the parent module's rule, whose divisions are exact there.
+        if inv_ds.iter().chain(&inv_dl).any(|x| !x.is_finite()) {
+            return None;
+        }
         Some(Fast {
             period_nm: self.period_nm,
             order_min: self.order_min,
             order_count: k_count,
-            inv_ds: inv(&s),
-            inv_dl: inv(&l),
-            s_bins: Bins::new(&s),
-            l_bins: Bins::new(&l),
+            inv_ds,
+            inv_dl,
+            s_bins: Bins::new(&s)?,
+            l_bins: Bins::new(&l)?,
             s,
             l,
             unit,
