@@ -109,6 +109,20 @@ fn axis(r: &mut Rng, lo: f64, hi: f64, ends: bool) -> Vec<f64> {
     v
 }
 
+/// The next float above x (finite x; `f64::next_up` needs Rust 1.86, above the MSRV).
+fn up(x: f64) -> f64 {
+    if x == 0.0 {
+        return 5e-324;
+    }
+    let b = x.to_bits();
+    f64::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
+}
+
+/// The next float below x (finite x).
+fn down(x: f64) -> f64 {
+    -up(-x)
+}
+
 /// c = √(1 − β²).
 fn cb(b: f64) -> f64 {
     (1.0 - b * b).sqrt()
@@ -279,15 +293,15 @@ fn directions(r: &mut Rng, t: &EfficiencyTable) -> Vec<(f64, f64)> {
     vec![
         (on, sign * bn),
         (on + 5e-324, bn),
-        (on.next_up(), bn.next_down()),
+        (up(on), down(bn)),
         (cb(bn), bn),
-        (cb(bn).next_down(), bn),
+        (down(cb(bn)), bn),
         (0.0, 1.0),
-        (0.0, 1.0_f64.next_down()),
-        (0.0, -(1.0_f64.next_down())),
+        (0.0, down(1.0)),
+        (0.0, -(down(1.0))),
         (1e-300, 0.999_999_999),
         (0.8, 0.6),
-        (0.6_f64.next_up(), 0.8),
+        (up(0.6), 0.8),
         (5e-324, 5e-324),
         (-1.0, 0.0),
         (value(r, -1.0, 1.0), b_rand),
@@ -301,7 +315,7 @@ fn wavelengths(r: &mut Rng, t: &EfficiencyTable) -> [f64; 5] {
     let (l0, l1) = t.lambda_range_nm();
     [
         l0,
-        l1.next_up(),
+        up(l1),
         l0 * 0.5,
         value(r, l0, l1),
         value(r, 100.0, 2000.0),
@@ -466,7 +480,7 @@ fn sweep_bsdf(t: &Arc<EfficiencyTable>, r: &mut Rng, case: usize, tally: &mut Ta
         }
     }
     cases.push((DVec3::Z, DVec3::new(1.0, 0.0, 0.0)));
-    cases.push((DVec3::new(0.0, 1.0_f64.next_down(), 2e-8), DVec3::Z));
+    cases.push((DVec3::new(0.0, down(1.0), 2e-8), DVec3::Z));
     for (k, (wo, wi)) in cases.into_iter().enumerate() {
         tally.bsdf_calls += check_bsdf(&b, wo, wi, r, k == 0);
     }
@@ -491,25 +505,19 @@ fn sweep_classical(t: &Arc<EfficiencyTable>, r: &mut Rng, tally: &mut Tally) {
     let rayleigh = [1.0 - m * ln / d, -1.0 - m * ln / d];
     let mut alphas = vec![
         sn,
-        sn.next_up(),
+        up(sn),
         sn + 5e-324,
         s[0],
         s[s.len() - 1],
-        s[0].next_down(),
-        s[s.len() - 1].next_up(),
+        down(s[0]),
+        up(s[s.len() - 1]),
         rayleigh[0],
         rayleigh[1],
-        rayleigh[0].next_down(),
+        down(rayleigh[0]),
         value(r, -1.0, 1.0),
     ];
     alphas.retain(|a| a.abs() < 1.0);
-    let lambdas = [
-        ln,
-        l[0],
-        l[l.len() - 1],
-        l[0].next_down(),
-        l[l.len() - 1].next_up(),
-    ];
+    let lambdas = [ln, l[0], l[l.len() - 1], down(l[0]), up(l[l.len() - 1])];
     for &a in &alphas {
         let Some(wi) = dir(-a, 0.0) else { continue };
         let wo = match r.next_u64() % 3 {
