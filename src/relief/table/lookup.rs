@@ -33,7 +33,8 @@
 //! Measured against the parent module's (`tests`, presets and random tables): every read
 //! within 2.8·10⁻¹⁶ of its rounding's scale (the corners' q's times cos θm/cos θi), the
 //! proposals' orders the same, their sums within 2.1·10⁻¹⁶ of the running sums. Without
-//! `std`, for a conical table and for a larger table every read is the parent module's.
+//! `std`, for a conical table, for a larger table and for one with a node spacing below about
+//! 10⁻³⁰⁸ (whose reciprocal or bin scale overflows) every read is the parent module's.
 
 use core::ops::RangeInclusive;
 
