@@ -56,7 +56,7 @@ impl fmt::Display for Error {
                 parameter,
                 value,
                 requirement,
-            } => write!(f, "{parameter} = {value}: must be {requirement}"),
+            } => write!(f, "{parameter} = {}: must be {requirement}", Num(*value)),
             Error::NotConverged {
                 harmonics,
                 change,
@@ -71,6 +71,22 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// A value as a person reads it in a message: the shortest round-trip form, in scientific
+/// notation when it is very large or very small (`f64::MAX` as `1.7976931348623157e308`, not
+/// 309 digits; a subnormal as `5e-324`), as the `diffraction` crate's errors print theirs.
+struct Num(f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a != 0.0 && a.is_finite() && !(1e-4..1e16).contains(&a) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
 
 /// Checks `lo < value <= hi` (finite) or returns [`Error::Invalid`].
 pub(crate) fn check_range(

@@ -7,6 +7,12 @@ use crate::error::{check_range, Error};
 
 /// Largest period accepted, nm (0.1 mm: far above any visible-light grating).
 pub const MAX_PERIOD_NM: f64 = 1e5;
+/// Smallest period accepted, nm (below any ruled or holographic grating: λ/d ≤ 2·10⁴ over
+/// [`WAVELENGTH_RANGE_NM`]). Far below it the evanescent orders' k_z ~ m·λ/d overflow the
+/// methods' arithmetic: periods of 10⁻¹⁰ nm gave Σ η of 3.4 to 202 from the Fourier modal
+/// method, 10⁻¹⁰⁰ nm 1.3·10³⁷ from the C method; at 10⁻² nm and above every probe stayed
+/// below 1.
+pub const MIN_PERIOD_NM: f64 = 1.0;
 /// Largest profile depth accepted, nm, and at most [`MAX_ASPECT`] periods.
 pub const MAX_DEPTH_NM: f64 = 1e5;
 /// Largest depth / period accepted.
@@ -259,13 +265,10 @@ impl Grating {
     /// Checks every field; errors name `period_nm`, `depth_nm`, `duty`, `blaze`, `levels`,
     /// `ridges`, `samples`, `cover.index` or `cover.thickness_nm`.
     pub fn validate(&self) -> Result<(), Error> {
-        let d = check_range(
-            "period_nm",
-            self.period_nm,
-            0.0,
-            MAX_PERIOD_NM,
-            "finite, in (0, 1e5] nm",
-        )?;
+        let d = self.period_nm;
+        if !(d.is_finite() && (MIN_PERIOD_NM..=MAX_PERIOD_NM).contains(&d)) {
+            return Err(Error::invalid("period_nm", d, "finite, in [1, 1e5] nm"));
+        }
         let max_depth = MAX_DEPTH_NM.min(MAX_ASPECT * d);
         let depth = |h: f64| -> Result<(), Error> {
             if h.is_finite() && h >= 0.0 && h <= max_depth {

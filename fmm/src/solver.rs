@@ -245,8 +245,18 @@ impl Solver {
     }
 
     /// One solve at a fixed odd harmonic count (an even count is raised by one), no convergence
-    /// loop; `Solution::error` is NaN.
+    /// loop; `Solution::error` is NaN. A result whose TE or TM sum over orders exceeds 1 by
+    /// more than [`ENERGY_SLACK`] is [`Error::Numerical`] (an ill-conditioned solve).
     pub fn solve_at(
+        &self,
+        g: &Grating,
+        inc: Incidence,
+        harmonics: usize,
+    ) -> Result<Solution, Error> {
+        physical(self.solve_at_unchecked(g, inc, harmonics)?)
+    }
+
+    fn solve_at_unchecked(
         &self,
         g: &Grating,
         inc: Incidence,
@@ -286,8 +296,13 @@ impl Solver {
 
     /// Solves to the options' tolerance: the harmonic count starts at max(21, 4·n·d/λ + 11) and
     /// grows ×1.5 until two successive steps agree (or, extrapolated, three successive
-    /// extrapolations); [`Error::NotConverged`] at the cap.
+    /// extrapolations); [`Error::NotConverged`] at the cap. A result whose TE or TM sum over
+    /// orders exceeds 1 by more than [`ENERGY_SLACK`] is [`Error::Numerical`].
     pub fn solve(&self, g: &Grating, inc: Incidence) -> Result<Solution, Error> {
+        physical(self.solve_unchecked(g, inc)?)
+    }
+
+    fn solve_unchecked(&self, g: &Grating, inc: Incidence) -> Result<Solution, Error> {
         let cap = self.options.max_harmonics;
         self.check(g, &inc, cap)?;
         let n_c = g.cover_n(inc.wavelength_nm);
@@ -387,6 +402,25 @@ impl Solver {
             prev_n = next;
         }
     }
+}
+
+/// How far a solution's TE or TM sum over the reflected orders may exceed 1 (the incident
+/// power) before the solve is refused as [`Error::Numerical`]: a passive grating reflects at
+/// most what it receives, so more is the method's ill-conditioning, not truncation noise. The
+/// C method on a sinusoid of aspect 2 (d = 1000 nm, h = 2000 nm, Al, λ = 5 µm, s = 0.3) at 101
+/// harmonics gave Σ TE = 1.17; of aspect 10 at λ = 20 µm, Σ TM = 1.92.
+pub const ENERGY_SLACK: f64 = 1e-3;
+
+/// `sol`, or [`Error::Numerical`] where its TE or TM sum exceeds 1 + [`ENERGY_SLACK`].
+fn physical(sol: Solution) -> Result<Solution, Error> {
+    let (te, tm) = sol.total();
+    if te > 1.0 + ENERGY_SLACK || tm > 1.0 + ENERGY_SLACK {
+        return Err(Error::Numerical(
+            "the reflected orders carry more than the incident power (an ill-conditioned \
+             solve: too deep a profile for the harmonic count?)",
+        ));
+    }
+    Ok(sol)
 }
 
 pub(crate) fn max_change(a: &[Order], b: &[Order]) -> f64 {

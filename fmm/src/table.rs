@@ -57,6 +57,11 @@ use spec::check_spec;
 pub use json::TableMeta;
 pub use rigorous::{Mapped, Rigorous};
 
+/// The most random held-out points a build checks ([`TableSpec::validation_points`]): the
+/// points are made before their solves are counted against [`TableSpec::max_solves`], so their
+/// number is bounded on its own.
+pub const MAX_VALIDATION_POINTS: usize = 100_000;
+
 /// The reflected orders of one solve: `te[k]`, `tm[k]` are the efficiencies of order
 /// `order_min + k`. Orders not listed, and evanescent ones, count as 0.
 #[derive(Debug, Clone, PartialEq)]
@@ -171,7 +176,8 @@ pub struct TableSpec {
     pub min_sin_step: f64,
     /// Intervals narrower than this in λ (nm) are not bisected; default 1 nm.
     pub min_lambda_step_nm: f64,
-    /// Random held-out points checked after the midpoints pass; default 64.
+    /// Random held-out points checked after the midpoints pass, at most
+    /// [`MAX_VALIDATION_POINTS`]; default 64.
     pub validation_points: usize,
     /// The seed of those points.
     pub seed: u64,

@@ -25,11 +25,11 @@ fn bad_inputs_have_exact_messages() {
     let inc = Incidence::new(0.2, 0.0, 550.0).unwrap();
     assert_eq!(
         message(s.solve(&lamellar(-5.0, 50.0), inc)),
-        "period_nm = -5: must be finite, in (0, 1e5] nm"
+        "period_nm = -5: must be finite, in [1, 1e5] nm"
     );
     assert_eq!(
         message(s.solve(&lamellar(f64::NAN, 50.0), inc)),
-        "period_nm = NaN: must be finite, in (0, 1e5] nm"
+        "period_nm = NaN: must be finite, in [1, 1e5] nm"
     );
     assert_eq!(
         message(s.solve(&lamellar(1000.0, 20000.0), inc)),

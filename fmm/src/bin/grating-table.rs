@@ -224,7 +224,7 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
                 spec.validation_points = v
                     .parse::<usize>()
                     .ok()
-                    .filter(|n| (1..=100_000).contains(n))
+                    .filter(|n| (1..=diffraction_fmm::table::MAX_VALIDATION_POINTS).contains(n))
                     .ok_or_else(|| bad(flag, v, "expected an integer in [1, 100000]"))?;
             }
             "--nodes-of" => nodes_of = Some(PathBuf::from(v)),

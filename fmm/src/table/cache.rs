@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::sync::mpsc;
 use std::time::Instant;
 
-use diffraction::relief::EfficiencyTable;
+use diffraction::relief::{EfficiencyTable, MAX_TABLE_ORDERS};
 
 use super::{OrderSolver, Orders, Progress, TableError};
 
@@ -21,6 +21,31 @@ pub(super) struct Cache<'a, S: OrderSolver> {
     pub(super) solves: usize,
     pub(super) threads: usize,
     pub(super) start: Instant,
+}
+
+/// A solver's answer as the builder keeps it: TE and TM lists of one length, order numbers
+/// (and their mirror images) within ±`MAX_TABLE_ORDERS` (a table holds at most that many; an
+/// `i32` overflowed past them), every efficiency finite. Else the message of a solver failure.
+fn checked(o: &Orders) -> Result<(), String> {
+    let n = o.te.len();
+    if o.tm.len() != n {
+        return Err(format!("te lists {n} orders and tm {}", o.tm.len()));
+    }
+    let bound = MAX_TABLE_ORDERS as i64;
+    let (first, last) = (
+        i64::from(o.order_min),
+        i64::from(o.order_min) + n as i64 - 1,
+    );
+    if n > MAX_TABLE_ORDERS || first < -bound || last > bound {
+        return Err(format!(
+            "orders {first}..={last}: must be at most {MAX_TABLE_ORDERS}, numbered within \
+             ±{MAX_TABLE_ORDERS}"
+        ));
+    }
+    if let Some(x) = o.te.iter().chain(&o.tm).find(|x| !x.is_finite()) {
+        return Err(format!("an efficiency of {x}: must be finite"));
+    }
+    Ok(())
 }
 
 fn key((s, b, l): Point, symmetric: bool) -> (u64, u64, u64) {
@@ -88,7 +113,7 @@ impl<'a, S: OrderSolver> Cache<'a, S> {
             drop(tx);
             let mut done = 0;
             for (p, r) in rx {
-                match r {
+                match r.and_then(|(o, mark)| checked(&o).map(|()| (o, mark))) {
                     Ok((o, mark)) => {
                         self.map.insert(key(p, sym), o);
                         if let Some(change) = mark {

@@ -65,6 +65,17 @@ pub(super) fn check_spec(spec: &TableSpec, period_nm: f64) -> Result<(), TableEr
             return Err(invalid(name, v, Requirement::Positive));
         }
     }
+    if spec.validation_points > super::MAX_VALIDATION_POINTS {
+        let r = Requirement::Within {
+            min: 0.0,
+            max: super::MAX_VALIDATION_POINTS as f64,
+        };
+        return Err(invalid(
+            "validation_points",
+            spec.validation_points as f64,
+            r,
+        ));
+    }
     if spec.max_solves == 0 {
         return Err(invalid("max_solves", 0.0, Requirement::AtLeastOne));
     }

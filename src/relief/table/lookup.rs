@@ -33,7 +33,8 @@
 //! Measured against the parent module's (`tests`, presets and random tables): every read
 //! within 2.8·10⁻¹⁶ of its rounding's scale (the corners' q's times cos θm/cos θi), the
 //! proposals' orders the same, their sums within 2.1·10⁻¹⁶ of the running sums. Without
-//! `std`, for a conical table and for a larger table every read is the parent module's.
+//! `std`, for a conical table, for a larger table and for one with a node spacing below about
+//! 10⁻³⁰⁸ (whose reciprocal or bin scale overflows) every read is the parent module's.
 
 use core::ops::RangeInclusive;
 
@@ -636,14 +637,20 @@ impl EfficiencyTable {
                 *c += b;
             }
         }
+        let (inv_ds, inv_dl) = (inv(&s), inv(&l));
+        // A node spacing so small (below about 10⁻³⁰⁸) that its reciprocal or the binning's
+        // scale overflows: the parent module's rule, whose divisions are exact there.
+        if inv_ds.iter().chain(&inv_dl).any(|x| !x.is_finite()) {
+            return None;
+        }
         Some(Fast {
             period_nm: self.period_nm,
             order_min: self.order_min,
             order_count: k_count,
-            inv_ds: inv(&s),
-            inv_dl: inv(&l),
-            s_bins: Bins::new(&s),
-            l_bins: Bins::new(&l),
+            inv_ds,
+            inv_dl,
+            s_bins: Bins::new(&s)?,
+            l_bins: Bins::new(&l)?,
             s,
             l,
             unit,

@@ -42,8 +42,9 @@ const MAX_BINS_PER_INTERVAL: usize = 8;
 
 impl Bins {
     /// The binning of the strictly increasing `nodes` (at least 2, at most
-    /// `MAX_TABLE_NODES`).
-    pub(super) fn new(nodes: &[f64]) -> Bins {
+    /// `MAX_TABLE_NODES`); `None` where the bins' scale count/span overflows (a span below
+    /// about 10⁻³⁰⁸: a bin index would saturate past the bins).
+    pub(super) fn new(nodes: &[f64]) -> Option<Bins> {
         let n = nodes.len();
         let span = nodes[n - 1] - nodes[0];
         let gap = nodes
@@ -58,10 +59,14 @@ impl Bins {
             node: [0.0; 2],
             inv: [0.0; 2],
         };
+        let scale = count as f64 / span;
+        if !scale.is_finite() {
+            return None;
+        }
         let mut b = Bins {
             x0: nodes[0],
             x1: nodes[n - 1],
-            scale: count as f64 / span,
+            scale,
             bins: std::vec![empty; count + 1],
         };
         // Per bin (0..=count), the inner nodes inside it; the last node is left out (the
@@ -84,7 +89,7 @@ impl Bins {
                 bin.inv[up] = 1.0 / (nodes[i + 1] - nodes[i]);
             }
         }
-        b
+        Some(b)
     }
 
     /// How many bins hold several nodes (searched at a query).

@@ -130,7 +130,7 @@ fn bins_locate_as_the_binary_search() {
         grids.push(t.lambda_nm().collect());
     }
     for nodes in &grids {
-        let bins = Bins::new(nodes);
+        let bins = Bins::new(nodes).unwrap();
         let inv: Vec<f64> = nodes.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect();
         several += bins.crowded();
         let (lo, hi) = (nodes[0], nodes[nodes.len() - 1]);
