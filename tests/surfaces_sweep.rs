@@ -30,14 +30,12 @@ use diffraction::{
 #[path = "support/rng.rs"]
 mod rng;
 use rng::Rng;
+#[path = "support/sweep.rs"]
+mod sweep;
+use sweep::{MAX_MESSAGE, SUM_ROUNDING};
 
 /// Cases drawn by the quick sweep.
 const QUICK_CASES: usize = 400;
-/// How far a sum over orders may exceed 1: the rounding of a sum of at most a few hundred
-/// terms each ≤ 1, each rescaled once (a few ulps per term).
-const SUM_ROUNDING: f64 = 1e-12;
-/// The longest refusal message accepted (strings are quoted to 40 characters).
-const MAX_MESSAGE: usize = 400;
 
 /// Values that break arithmetic: subnormals, the ends of the range, exact grid values.
 const EXTREMES: [f64; 14] = [
@@ -74,13 +72,9 @@ struct Tally {
     wavelength_calls: u64,
 }
 
-/// A number from the extremes, or random in a range, or a random bit pattern's float.
+/// A number from [`EXTREMES`], or random in a range, or a random bit pattern's float.
 fn value(r: &mut Rng, lo: f64, hi: f64) -> f64 {
-    match r.next_u64() % 8 {
-        0 => EXTREMES[(r.next_u64() % EXTREMES.len() as u64) as usize],
-        1 => f64::from_bits(r.next_u64()),
-        _ => lo + (hi - lo) * r.next_f64(),
-    }
+    sweep::value(r, &EXTREMES, lo, hi)
 }
 
 /// A strictly increasing axis most of the time (sometimes not: the check must refuse it).
