@@ -38,8 +38,8 @@ use crate::error::Error;
 use crate::grating::{Grating, Incidence};
 use crate::modal::toeplitz;
 use crate::solver::{
-    max_change, odd, off_rayleigh, through_cover, Channel, Options, Order, Raw, Solution, GROWTH,
-    MIN_HARMONICS,
+    max_change, odd, off_rayleigh, through_cover, work, Channel, Options, Order, Raw, Solution,
+    GROWTH, MIN_HARMONICS,
 };
 use crate::surface::{Phases, Surface};
 
@@ -333,17 +333,28 @@ pub(crate) fn first_harmonics(g: &Grating, inc: &Incidence) -> usize {
 }
 
 /// The convergence loop: ×[`GROWTH`] from [`first_harmonics`] until two successive counts agree
-/// to the tolerance (every order, TE and TM); [`Error::NotConverged`] at the cap. No
+/// to the tolerance (every order, TE and TM); [`Error::NotConverged`] at the cap, or before a
+/// step that would take the call's [`work`] past `Options::max_work`. No
 /// extrapolation: the C method converges much faster than 1/N on these profiles.
 pub(crate) fn solve(g: &Grating, inc: &Incidence, opt: &Options) -> Result<Solution, Error> {
     let cap = opt.max_harmonics;
     let tol = opt.tolerance;
+    let conical = inc.beta != 0.0 || opt.always_conical;
     let mut n = first_harmonics(g, inc);
+    let mut done = work(n, 0, conical, true);
+    if done > opt.max_work {
+        return Err(Error::invalid(
+            "harmonics",
+            n as f64,
+            "a first step within the options' max_work (fmm::work)",
+        ));
+    }
     let mut prev = solve_raw(g, inc, n, opt)?;
     let mut change = f64::NAN;
     loop {
         let next = odd(n as f64 * GROWTH);
-        if next > cap {
+        let step = work(next, 0, conical, true);
+        if next > cap || done + step > opt.max_work {
             return Err(Error::NotConverged {
                 harmonics: n,
                 change,
@@ -351,6 +362,7 @@ pub(crate) fn solve(g: &Grating, inc: &Incidence, opt: &Options) -> Result<Solut
             });
         }
         let cur = solve_raw(g, inc, next, opt)?;
+        done += step;
         change = max_change(&prev.orders, &cur.orders);
         if change < tol {
             return Ok(Solution {

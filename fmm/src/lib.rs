@@ -45,8 +45,9 @@ pub use grating::{
     WAVELENGTH_RANGE_NM,
 };
 pub use solver::{
-    CoverPasses, Extrapolation, Method, Options, Order, Solution, Solver, DEFAULT_MAX_HARMONICS,
-    DEFAULT_TOLERANCE, ENERGY_SLACK, GROWTH, MAX_HARMONICS, MIN_HARMONICS,
+    work, CoverPasses, Extrapolation, Method, Options, Order, Solution, Solver,
+    DEFAULT_MAX_HARMONICS, DEFAULT_MAX_WORK, DEFAULT_TOLERANCE, ENERGY_SLACK, GROWTH,
+    MAX_HARMONICS, MAX_WORK, MIN_HARMONICS,
 };
 
 pub mod table;

@@ -189,3 +189,99 @@ fn not_converged_within_the_cap_is_an_error() {
         "{e}"
     );
 }
+
+fn sinusoid(depth_nm: f64) -> Grating {
+    Grating {
+        period_nm: 1000.0,
+        profile: Profile::Sinusoid { depth_nm },
+        metal: Metal::AL,
+        cover: None,
+    }
+}
+
+#[test]
+fn the_work_cap_is_validated() {
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 2e11] {
+        let e = Solver::new(Options {
+            max_work: bad,
+            ..Options::default()
+        })
+        .unwrap_err();
+        assert_eq!(e.parameter(), "max_work", "{bad}: {e}");
+    }
+    assert_eq!(
+        message(Solver::new(Options {
+            max_work: 0.0,
+            ..Options::default()
+        })),
+        "max_work = 0: must be in (0, 1e11]"
+    );
+}
+
+/// The convergence loop stops before a step that would pass `max_work`: a 40-slab staircase
+/// of a sinusoid (the Fourier modal method) starts at 21 harmonics (4·d/λ + 11 < 21 at
+/// 1000/550 nm), whose work is 40·21³; the next step, at least 31 harmonics, costs 40·31³, more
+/// than 2.5× the first, so a cap of 2.5× the first step's work stops after one solve.
+#[test]
+fn the_work_cap_stops_the_convergence_loop() {
+    let first = 40.0 * 21f64.powi(3);
+    assert_eq!(diffraction_fmm::work(21, 40, false, false), first);
+    let s = Solver::new(Options {
+        method: diffraction_fmm::Method::Fmm,
+        slabs: Some(40),
+        tolerance: 1e-9,
+        max_work: 2.5 * first,
+        ..Options::default()
+    })
+    .unwrap();
+    let inc = Incidence::new(0.2, 0.0, 550.0).unwrap();
+    let e = s.solve(&sinusoid(100.0), inc).unwrap_err();
+    assert!(
+        matches!(e, Error::NotConverged { harmonics: 21, .. }),
+        "{e}"
+    );
+    // A cap below the first step's work: refused before any solve, naming the slabs.
+    let s = Solver::new(Options {
+        max_work: 0.5 * first,
+        ..*s.options()
+    })
+    .unwrap();
+    assert_eq!(
+        s.solve(&sinusoid(100.0), inc).unwrap_err().parameter(),
+        "slabs"
+    );
+    // The C method's first step (21 harmonics: 4·21³) likewise, naming the harmonics; and a
+    // fixed truncation above the cap.
+    let c = Solver::new(Options {
+        max_work: 4.0 * 21f64.powi(3) - 1.0,
+        ..Options::default()
+    })
+    .unwrap();
+    assert_eq!(
+        c.solve(&sinusoid(100.0), inc).unwrap_err().parameter(),
+        "harmonics"
+    );
+    assert_eq!(
+        c.solve_at(&sinusoid(100.0), inc, 21)
+            .unwrap_err()
+            .parameter(),
+        "harmonics"
+    );
+    // The default admits what it did before: the C method converges on a shallow sinusoid.
+    assert!(Solver::default().solve(&sinusoid(100.0), inc).is_ok());
+}
+
+/// The default cap admits a lamellar solve to the default harmonic cap and the C method to
+/// 1037 harmonics (the presets' solves) with the whole ×1.5 sequence before it, and stops a
+/// 400-slab staircase near 300 harmonics (at the harmonic cap alone it would run for hours).
+#[test]
+fn the_default_work_cap_admits_the_presets_solves() {
+    use diffraction_fmm::{work, DEFAULT_MAX_HARMONICS, DEFAULT_MAX_WORK};
+    // The ×1.5 sequence's total is below 1/(1 − 1.5⁻³) = 1.42 times its last step.
+    let sequence = |last: usize, slabs, conical, c| 1.42 * work(last, slabs, conical, c);
+    assert!(sequence(DEFAULT_MAX_HARMONICS, 1, true, false) < DEFAULT_MAX_WORK);
+    assert!(sequence(1037, 1, false, false) < DEFAULT_MAX_WORK);
+    assert!(sequence(1037, 0, false, true) < DEFAULT_MAX_WORK);
+    assert!(sequence(DEFAULT_MAX_HARMONICS, 0, true, true) < DEFAULT_MAX_WORK);
+    assert!(work(401, 400, false, false) > DEFAULT_MAX_WORK);
+}
