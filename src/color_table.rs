@@ -145,13 +145,13 @@ pub type RadiometricTable = ColorTable;
 /// use diffraction::spectrum::{Illuminant, Spectral};
 /// use diffraction::{color::Xyz, ColorTable, GratingBsdf, GrooveSpread};
 /// use diffraction::glam::DVec3;
-/// let dvd = GratingBsdf::preset(Preset::Dvd, 8)?.with_groove(GrooveSpread::gaussian(0.02)?);
-/// let t = ColorTable::new(&Spectral::new(Illuminant::D65), &dvd, 1e-2)?;
+/// let cd = GratingBsdf::preset(Preset::Cd, 8)?.with_groove(GrooveSpread::gaussian(0.02)?);
+/// let t = ColorTable::new(&Spectral::new(Illuminant::D65), &cd, 1e-2)?;
 /// assert!(t.incidence_count().unwrap() >= 9);
 /// let wi = DVec3::new(0.2, 0.0, 0.96f64.sqrt());
-/// let wo = DVec3::new(0.54, 0.0, (1.0f64 - 0.54 * 0.54).sqrt()); // u = 0.74: order 1 at 548 nm
+/// let wo = DVec3::new(0.144, 0.0, (1.0f64 - 0.144 * 0.144).sqrt()); // u = 0.344: order 1 at 550 nm
 /// assert!(t.xyz(wo, wi).y > 0.0);
-/// assert_eq!(t.lookup(0.74), Xyz::default()); // no incidence
+/// assert_eq!(t.lookup(0.344), Xyz::default()); // no incidence
 /// # }
 /// # Ok::<(), diffraction::Error>(())
 /// ```
