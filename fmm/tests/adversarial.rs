@@ -16,6 +16,9 @@
 
 use std::time::Instant;
 
+mod support;
+use support::SHALLOW_LAMELLAR;
+
 use diffraction::relief::Metal;
 use diffraction_fmm::table::{build_table, OrderSolver, Orders, TableError, TableSpec};
 use diffraction_fmm::{
@@ -770,20 +773,8 @@ const CLI_VALUES: [&str; 20] = [
 fn cli_case(flag: &str, value: &str, out: &std::path::Path) {
     std::fs::write(out, "previous").unwrap();
     let o = out.to_str().unwrap();
-    let mut args = vec![
-        "--period",
-        "1000",
-        "--profile",
-        "lamellar",
-        "--depth",
-        "20",
-        "--duty",
-        "0.5",
-        "--metal",
-        "Al",
-        "--lambda",
-        "500,600",
-    ];
+    let mut args = SHALLOW_LAMELLAR.to_vec();
+    args.extend(["--lambda", "500,600"]);
     args.extend([flag, value, "--max-solves", "2", "--out", o]);
     let t0 = Instant::now();
     let run = std::process::Command::new(env!("CARGO_BIN_EXE_grating-table"))

@@ -15,19 +15,8 @@ fn run(args: &[&str]) -> (i32, String) {
     )
 }
 
-/// A shallow lamellar Al grating of period 1000 nm: cheap solves.
-const SHALLOW_LAMELLAR: [&str; 10] = [
-    "--period",
-    "1000",
-    "--profile",
-    "lamellar",
-    "--depth",
-    "20",
-    "--duty",
-    "0.5",
-    "--metal",
-    "Al",
-];
+mod support;
+use support::SHALLOW_LAMELLAR;
 
 fn temp(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("grating-table-{}-{name}", std::process::id()))

@@ -11,6 +11,21 @@ use diffraction_fmm::{Grating, Profile};
 /// 1e-3 between two harmonic counts, so 1e-3 absolute per order is the agreement asked for.
 pub const REFERENCE_TOLERANCE: f64 = 1e-3;
 
+/// The `grating-table` arguments of a shallow lamellar Al grating of period 1000 nm: cheap
+/// solves (the CLI's tests and sweeps).
+pub const SHALLOW_LAMELLAR: [&str; 10] = [
+    "--period",
+    "1000",
+    "--profile",
+    "lamellar",
+    "--depth",
+    "20",
+    "--duty",
+    "0.5",
+    "--metal",
+    "Al",
+];
+
 /// The `foil` preset (python_ref's C method, converged to 1e-3) against this crate's C method
 /// converged at 100 of its nodes: measured worst 5.0e-7, asserted at 1e-5.
 pub const FOIL_PRESET_TOLERANCE: f64 = 1e-5;
