@@ -148,6 +148,42 @@ fn lookup_and_mean_do_not_apply() {
     // Below the surface and non-finite input: black.
     assert_eq!(t.xyz(DVec3::NEG_Z, DVec3::Z), Xyz::default());
     assert_eq!(t.xyz(DVec3::splat(f64::NAN), DVec3::Z), Xyz::default());
+    // Extreme finite (and non-finite) components, unnormalised directions included: every
+    // colour finite and non-negative.
+    let extremes = [
+        0.0,
+        -0.0,
+        5e-324,
+        -5e-324,
+        1e-300,
+        0.5,
+        -0.5,
+        1.0,
+        -1.0,
+        1.0 + 1e-15,
+        1e300,
+        -1e300,
+        f64::MAX,
+        f64::INFINITY,
+        f64::NAN,
+    ];
+    for &a in &extremes {
+        for &b in &extremes {
+            for &c in &extremes {
+                for (wo, wi) in [
+                    (DVec3::new(a, b, c), DVec3::new(0.3, 0.0, 0.95)),
+                    (DVec3::new(0.3, 0.0, 0.95), DVec3::new(a, b, c)),
+                    (DVec3::new(a, 0.0, 0.8), DVec3::new(b, c, 0.8)),
+                ] {
+                    let x = t.xyz(wo, wi);
+                    assert!(
+                        [x.x, x.y, x.z].iter().all(|v| v.is_finite() && *v >= 0.0),
+                        "{wo:?} {wi:?}: {x:?}"
+                    );
+                }
+            }
+        }
+    }
 }
 
 #[test]
