@@ -197,7 +197,8 @@ impl Incidence {
         Incidence::from_cosines(sin_theta, 0.0, wavelength_nm)
     }
 
-    /// From the direction cosines (α, β) in air, α² + β² < sin²(89.9°).
+    /// From the direction cosines (α, β) in air, α² + β² ≤ sin²(89.9°). Errors name `alpha`,
+    /// `beta` (the larger of the two when only their sum of squares is too large) or `wavelength_nm`.
     pub fn from_cosines(alpha: f64, beta: f64, wavelength_nm: f64) -> Result<Incidence, Error> {
         if !alpha.is_finite() || alpha.abs() > 1.0 {
             return Err(Error::invalid("alpha", alpha, "finite, |alpha| < 1"));
@@ -207,11 +208,20 @@ impl Incidence {
         }
         let s2 = alpha * alpha + beta * beta;
         if s2.sqrt() > MAX_THETA.sin() {
-            return Err(Error::invalid(
-                "alpha",
-                alpha,
-                "with beta, sqrt(alpha² + beta²) <= sin(89.9°)",
-            ));
+            // Name the larger cosine: the one a caller most likely got wrong.
+            return Err(if beta.abs() > alpha.abs() {
+                Error::invalid(
+                    "beta",
+                    beta,
+                    "with alpha, sqrt(alpha² + beta²) <= sin(89.9°)",
+                )
+            } else {
+                Error::invalid(
+                    "alpha",
+                    alpha,
+                    "with beta, sqrt(alpha² + beta²) <= sin(89.9°)",
+                )
+            });
         }
         let wavelength_nm = check_wavelength(wavelength_nm)?;
         let phi = if s2 > 0.0 { beta.atan2(alpha) } else { 0.0 };

@@ -141,6 +141,15 @@ fn bad_inputs_have_exact_messages() {
         message(Incidence::from_cosines(0.8, 0.8, 550.0)),
         "alpha = 0.8: must be with beta, sqrt(alpha² + beta²) <= sin(89.9°)"
     );
+    // Only the sum of squares is too large: the larger cosine is named.
+    assert_eq!(
+        message(Incidence::from_cosines(0.1, 0.9999, 550.0)),
+        "beta = 0.9999: must be with alpha, sqrt(alpha² + beta²) <= sin(89.9°)"
+    );
+    assert_eq!(
+        message(Incidence::from_cosines(-0.9999, 0.1, 550.0)),
+        "alpha = -0.9999: must be with beta, sqrt(alpha² + beta²) <= sin(89.9°)"
+    );
     assert_eq!(
         message(Solver::new(Options {
             tolerance: 0.0,

@@ -236,6 +236,39 @@ fn a_failed_build_writes_nothing_and_keeps_an_existing_file() {
     std::fs::remove_file(&out).unwrap();
 }
 
+/// An `--out` that cannot be written is bad input, refused before the build (exit 2, no round
+/// started), not a failure after it (exit 1); an existing file is not touched by the check.
+#[test]
+fn an_unwritable_out_is_refused_before_any_solve() {
+    let dir = temp("out-dir");
+    std::fs::create_dir_all(&dir).unwrap();
+    let missing = dir.join("no-such-folder").join("t.json");
+    for out in [dir.clone(), missing] {
+        let o = out.to_str().unwrap();
+        let args: Vec<&str> = SHALLOW_LAMELLAR
+            .into_iter()
+            .chain(["--lambda", "500,600", "--out", o])
+            .collect();
+        let (code, err) = run(&args);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("--out"), "{err}");
+        assert!(!err.contains("round"), "{err}");
+    }
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    std::fs::remove_dir(&dir).unwrap();
+    let kept = temp("kept-by-check.json");
+    std::fs::write(&kept, "previous").unwrap();
+    let o = kept.to_str().unwrap();
+    let args: Vec<&str> = SHALLOW_LAMELLAR
+        .into_iter()
+        .chain(["--lambda", "500,600", "--max-solves", "2", "--out", o])
+        .collect();
+    let (code, err) = run(&args);
+    assert_eq!(code, 1, "{err}");
+    assert_eq!(std::fs::read_to_string(&kept).unwrap(), "previous");
+    std::fs::remove_file(&kept).unwrap();
+}
+
 /// `--nodes-of`: the table is solved on the given file's own grid (2 × 2 here, shallow, cheap):
 /// the nodes come back as they were, with no `tolerance` claimed and the random points' error
 /// stored; a file the library's loader refuses is named.

@@ -10,9 +10,10 @@
 //! loads), built by `diffraction_fmm::table::build_table` until the interpolation error at
 //! held-out rigorous solves is below `--tolerance`; the file records the achieved error. The file
 //! is written to a temporary name beside `--out` and renamed: a failed or interrupted run never
-//! leaves a partial file, nor replaces an existing one. Exit codes: 0 written; 1 the build failed
-//! (tolerance not reached within the budget, a solver failure); 2 bad input (the message names
-//! the flag).
+//! leaves a partial file, nor replaces an existing one; an `--out` that cannot be written (a
+//! directory, a missing or read-only folder) is refused before any solve. Exit codes: 0 written;
+//! 1 the build failed (tolerance not reached within the budget, a solver failure); 2 bad input
+//! (the message names the flag).
 
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -500,6 +501,28 @@ fn read_nodes(path: &PathBuf) -> Result<(Vec<f64>, Vec<f64>), String> {
     Ok((table.sin_theta_i().collect(), table.lambda_nm().collect()))
 }
 
+/// Checks, before any solve, that `out` can be written the way [`write_atomic`] writes it: not
+/// a directory, and a file can be created (and is removed again) beside it. An existing `out` is
+/// not touched.
+fn check_out(out: &std::path::Path) -> Result<(), String> {
+    if out.as_os_str().is_empty() {
+        return Err("empty path".into());
+    }
+    if out.is_dir() {
+        return Err("is a directory".into());
+    }
+    let mut probe = out.as_os_str().to_owned();
+    probe.push(format!(".tmp-{}", std::process::id()));
+    let probe = PathBuf::from(probe);
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .map_err(|e| format!("cannot write beside it: {e}"))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
 /// Writes `text` to a temporary file beside `out`, then renames it over `out`.
 fn write_atomic(out: &PathBuf, text: &str) -> std::io::Result<()> {
     let mut tmp = out.clone().into_os_string();
@@ -547,6 +570,10 @@ fn main() -> ExitCode {
         .chain(argv.iter().cloned())
         .collect::<Vec<_>>()
         .join(" ");
+    if let Err(msg) = check_out(&args.out) {
+        eprintln!("grating-table: error: --out {}: {msg}", args.out.display());
+        return ExitCode::from(2);
+    }
     let g = grating(&args);
     if let Err(e) = g.validate() {
         eprintln!(
