@@ -13,8 +13,8 @@
 //! the paper's table of the same grating, and (feature `serde`) a load of its cached JSON.
 //!
 //! The `tabulated_table` group (feature `presets`) times `xyz(wo, wi)` of the table of the CD
-//! preset (N = 34, Gaussian groove σ = 0.02, D65, accuracy 10⁻³) at 1024 random pairs against
-//! the generic colour of the same BSDF on 16 of them: `GenericStrategy::WINDOWS` (what the
+//! preset (N = 34, Gaussian groove σ = 0.02, D65, accuracy 10⁻³; `xyz_fine` at 2.5·10⁻⁴) at
+//! 1024 random pairs against the generic colour of the same BSDF on 16 of them: `GenericStrategy::WINDOWS` (what the
 //! Whitted renderer called before) and 8-point Gauss-Legendre on 512 intervals (the tests'
 //! reference).
 //!
@@ -254,6 +254,17 @@ fn bench_tabulated(c: &mut Criterion) {
             pairs
                 .iter()
                 .map(|&(o, i)| table.xyz(black_box(o), i).y)
+                .sum::<f64>()
+        })
+    });
+    // The finest table (2.5·10⁻⁴: about a minute to build, so only when its benchmark runs).
+    let fine = std::cell::OnceCell::new();
+    group.bench_function("xyz_fine", |bch| {
+        let fine = fine.get_or_init(|| ColorTable::new(&s, &b, 2.5e-4).unwrap());
+        bch.iter(|| {
+            pairs
+                .iter()
+                .map(|&(o, i)| fine.xyz(black_box(o), i).y)
                 .sum::<f64>()
         })
     });

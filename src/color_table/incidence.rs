@@ -14,8 +14,9 @@
 //! The nodes start every 1/[`BASE_INTERVALS`] of σ and are refined by
 //! bisection: an interval's midpoint node is built and compared, at every node of its grids,
 //! with the interpolation of the interval's ends (by the grids' own tolerance, at the table's
-//! error scale); where it misses the accuracy the midpoint is kept and both halves are checked
-//! in turn, down to [`MAX_DEPTH`] halvings. The nodes after the first take the first nodes'
+//! error scale); where it misses the table's accuracy the midpoint is kept and both halves are
+//! checked in turn, down to [`depth`] halvings ([`MAX_DEPTH`] at 10⁻³ and coarser, up to
+//! [`FINE_DEPTH`] for finer accuracies). The nodes after the first take the first nodes'
 //! layout over u (per block their most intervals, at most `ColorTable::MAX_NODES` nodes in
 //! all), so that they cost one evaluation a node and no midpoint checks. A lookup locates its
 //! interval in O(1) from the bins of the finest level.
@@ -29,8 +30,23 @@ use crate::num::math::sqrt;
 
 /// Intervals of the first incidence nodes over [−1, 1].
 pub(super) const BASE_INTERVALS: usize = 8;
-/// The most halvings of a first interval.
+/// The most halvings of a first interval at accuracies of 10⁻³ and coarser.
 pub(super) const MAX_DEPTH: u32 = 4;
+/// The most halvings of a first interval at any accuracy: one more per halving of the
+/// accuracy below 10⁻³, up to this (at most 513 incidence nodes).
+pub(super) const FINE_DEPTH: u32 = 6;
+
+/// The most halvings of a first interval at `accuracy` (the table's, not the grids'):
+/// [`MAX_DEPTH`] at 10⁻³ and coarser, one more per factor 2 below it, at most [`FINE_DEPTH`].
+pub(super) fn depth(accuracy: f64) -> u32 {
+    let mut depth = MAX_DEPTH;
+    let mut a = 1e-3;
+    while depth < FINE_DEPTH && accuracy < a {
+        depth += 1;
+        a *= 0.5;
+    }
+    depth
+}
 
 /// The end nodes are evaluated this far (in τ) inside the grazing directions, where the colour
 /// has its limit (exactly at grazing the BSDF is 0).
@@ -91,6 +107,10 @@ struct Build<'a> {
     layouts: [Vec<u32>; 2],
     scale: f64,
     error: f64,
+    /// The bisection's accuracy (the table's own, finer than the grids' where asked) and its
+    /// most halvings.
+    accuracy: f64,
+    max_depth: u32,
 }
 
 impl Build<'_> {
@@ -145,11 +165,11 @@ impl Build<'_> {
     /// Appends the nodes between the last of `out` and `right` (bisected while the midpoint
     /// misses the accuracy), then `right`.
     fn refine(&mut self, out: &mut Vec<(Node, u32)>, right: Node, depth: u32) {
-        if depth < MAX_DEPTH {
+        if depth < self.max_depth {
             let left = &out[out.len() - 1].0;
             let mid = self.node(0.5 * (left.s + right.s));
             let err = self.error(left, &right, &mid);
-            if err > self.plan.accuracy {
+            if err > self.accuracy {
                 self.refine(out, mid, depth + 1);
                 self.refine(out, right, depth + 1);
                 return;
@@ -164,8 +184,14 @@ impl Incidence {
     /// The table of `nodes` with the grids' `plan`: the first nodes refined in u (normal
     /// incidence first, whose error scale becomes the floor of the others, so that every node
     /// is refined at the table's one scale), the others on the layouts of the first ones.
-    /// Returns the grid of normal incidence over u ≥ 0 too.
-    pub(super) fn build(nodes: &TabulatedNodes, mut plan: Plan) -> (Incidence, Grid) {
+    /// The incidence nodes are bisected to `accuracy` (which may be finer than the plan's, the
+    /// grids'), at most [`depth`]`(accuracy)` times. Returns the grid of normal incidence over
+    /// u ≥ 0 too.
+    pub(super) fn build(
+        nodes: &TabulatedNodes,
+        mut plan: Plan,
+        accuracy: f64,
+    ) -> (Incidence, Grid) {
         let normal = Grid::build(&plan, &|u, _| nodes.eval(u, 0.0), &|| nodes.work_done.get());
         plan.floor = plan.floor.max(normal.scale);
         let mut b = Build {
@@ -174,6 +200,8 @@ impl Incidence {
             plan,
             layouts: [Vec::new(), Vec::new()],
             error: 0.0,
+            accuracy,
+            max_depth: depth(accuracy),
         };
         let base = |k: usize| k as f64 / BASE_INTERVALS as f64;
         let first: Vec<Node> = (0..=BASE_INTERVALS).map(|k| b.refined(base(k))).collect();
@@ -208,10 +236,11 @@ impl Incidence {
         for right in first {
             b.refine(&mut out, right, 0);
         }
-        // Each node after the first closes an interval of 2^(MAX_DEPTH − depth) finest bins.
-        let mut bins = Vec::with_capacity(BASE_INTERVALS << MAX_DEPTH);
+        // Each node after the first closes an interval of 2^(max_depth − depth) finest bins.
+        let max_depth = b.max_depth;
+        let mut bins = Vec::with_capacity(BASE_INTERVALS << max_depth);
         for (i, (_, depth)) in out.iter().enumerate().skip(1) {
-            for _ in 0..1usize << (MAX_DEPTH - depth) {
+            for _ in 0..1usize << (max_depth - depth) {
                 bins.push((i - 1) as u32);
             }
         }
@@ -270,5 +299,21 @@ impl Incidence {
                 .iter()
                 .map(|n| n.pos.heap_bytes() + n.neg.heap_bytes())
                 .sum::<usize>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_grows_one_halving_per_halved_accuracy() {
+        assert_eq!(depth(1.0), MAX_DEPTH);
+        assert_eq!(depth(1e-3), MAX_DEPTH);
+        assert_eq!(depth(7e-4), MAX_DEPTH + 1);
+        assert_eq!(depth(5e-4), MAX_DEPTH + 1);
+        assert_eq!(depth(2.5e-4), MAX_DEPTH + 2);
+        assert_eq!(depth(1e-6), FINE_DEPTH);
+        assert_eq!(depth(f64::MIN_POSITIVE), FINE_DEPTH);
     }
 }
