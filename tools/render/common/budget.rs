@@ -23,7 +23,7 @@
 //! [`BUDGET_S`] seconds of one core (or `--budget`'s). The estimate is deterministic (the same
 //! run, the same number). The path integrator's counts come from its own paths instead
 //! (`pathtrace/path.rs`'s `pilot`: Russian roulette and the sky end most of them at the first
-//! vertex). Against measured CPU time it is 1.10-4.10 times that of every shipped scene on both
+//! vertex). Against measured CPU time it is 0.73-2.47 times that of every shipped scene on both
 //! renderers and of the two reproducers of `tools/render/tests/data` (docs/work_budget.md, made
 //! by `tools/render/calibrate.sh`; the tests check every row stays within 5×).
 
@@ -37,8 +37,8 @@ use crate::scene::{Physics, Scene};
 
 /// The budget of one scene's run by default: seconds of work on one core (two minutes, a minute
 /// of wall time on the two cores of the development machine; `--budget` sets another). Every
-/// shipped scene at its defaults takes under 4 % of it (`cd_preset` by `--integrator whitted`,
-/// which its file says to run smaller); the estimate is within 5× of the measured CPU time
+/// shipped scene at its defaults takes under 4 % of it, but for `cd_preset` and `cd_rainbow`
+/// by `--integrator whitted` (13 %, most of it their colour table's build); the estimate is within 5× of the measured CPU time
 /// (docs/work_budget.md), so a refused run would take at least 24 s of one core.
 pub const BUDGET_S: f64 = 120.0;
 

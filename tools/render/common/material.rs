@@ -94,6 +94,9 @@ pub struct GratingMaterial<G> {
     pub follows_default: bool,
     /// The diffuse colour of the plain (non-grating) squares of a checkerboard.
     pub plain_albedo: DVec3,
+    /// The preset whose efficiencies the model reads (`efficiency` naming one); `None` for a
+    /// table file, the amplitude reading and the models without efficiencies.
+    pub preset: Option<Preset>,
 }
 
 impl<G> GratingMaterial<G> {
@@ -412,12 +415,17 @@ impl<'a> Loader<'a> {
                 ),
             ));
         }
+        let preset = g
+            .efficiency
+            .as_deref()
+            .and_then(|e| e.parse::<Preset>().ok());
         let grating = GratingMaterial {
             model,
             field,
             strategy,
             follows_default,
             plain_albedo,
+            preset,
         };
         Ok((grating, kdiff))
     }

@@ -264,14 +264,17 @@ impl run::Renderer for Integrator {
                         )
                     })
                     .fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a });
-                let tables = scene
+                let tabled: Vec<_> = scene
                     .materials
                     .iter()
-                    .filter(|m| m.grating.as_ref().is_some_and(whitted::tabled))
-                    .count() as f64;
+                    .filter_map(|m| m.grating.as_ref().filter(|g| whitted::tabled(g)))
+                    .collect();
                 est.add(
-                    format!("{tables} colour tables of tabulated gratings"),
-                    tables * whitted::TABLE_BUILD_NS,
+                    format!("{} colour tables of tabulated gratings", tabled.len()),
+                    tabled
+                        .iter()
+                        .map(|g| whitted::table_build_ns(g))
+                        .sum::<f64>(),
                     "a coherence-length groove (the generic colour, no table)",
                 );
                 let colours = samples * pilot.lit_samples;

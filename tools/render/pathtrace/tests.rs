@@ -666,3 +666,42 @@ fn work_limits_that_multiply_are_refused_by_both_integrators() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The Whitted renderer's estimate counts each tabulated grating's colour table at its preset's
+/// measured build (docs/color_table.md: the CD 5-9.5 s, the foil 8.0 s, `blazed600` 60 s, the
+/// DVD 235-357 s on one core), not one figure for all: a DVD's table alone is above the
+/// default budget. The scene is `cd_preset` with its preset swapped.
+#[test]
+fn whitted_estimates_count_each_presets_table_build() {
+    let path = scenes_dir().join("presets/cd_preset.toml");
+    let src = std::fs::read_to_string(&path).unwrap();
+    let dir = path.parent().unwrap();
+    let table_s = |preset: &str| {
+        let text = src.replace("efficiency = \"cd\"", &format!("efficiency = \"{preset}\""));
+        let scene = scene::parse::<Radiometric>(&text, "t.toml", preset, dir).unwrap();
+        let est = Integrator::Whitted.estimate(&scene, 1);
+        let tables: Vec<_> = est
+            .parts
+            .iter()
+            .filter(|p| p.what.contains("colour tables"))
+            .collect();
+        assert_eq!(tables.len(), 1, "{est:?}");
+        (tables[0].ns * 1e-9, est.check(preset, budget::BUDGET_S))
+    };
+    // Each at least its measured build and at most twice its slowest measured build.
+    for (preset, lo, hi) in [
+        ("cd", 9.5, 19.0),
+        ("foil", 8.0, 16.0),
+        ("blazed600", 60.0, 120.0),
+        ("dvd", 357.0, 714.0),
+    ] {
+        let (s, check) = table_s(preset);
+        assert!((lo..=hi).contains(&s), "{preset}: {s} s");
+        // The shipped scene's size fits the default budget with the CD's table, not the DVD's.
+        match preset {
+            "cd" => assert_eq!(check, Ok(())),
+            "dvd" => assert!(check.is_err()),
+            _ => {}
+        }
+    }
+}

@@ -20,6 +20,7 @@
 //! (docs/color_table.md, "Tabulated efficiencies").
 
 use diffraction::color::Xyz;
+use diffraction::relief::Preset;
 use diffraction::spectrum::GenericStrategy;
 use diffraction::{ColorTable, GratingBsdf, GrooveKind, SpectralResponse};
 use glam::DVec3;
@@ -41,9 +42,20 @@ const TABLE_ACCURACY: f64 = 1e-3;
 
 /// The cost of a table's `xyz`, ns: measured 86 ns (the CD preset, benches/color_table.rs).
 pub const TABLE_LOOKUP_NS: f64 = 100.0;
-/// The cost of building one table, ns: measured 5-7 s for the CD preset (d = 1600 nm, N = 34);
-/// a finer period or more grooves cost more (the DVD at N = 34: 235 s, docs/color_table.md).
-pub const TABLE_BUILD_NS: f64 = 1e10;
+/// The cost of building one table at [`TABLE_ACCURACY`], ns, per preset: the measured builds
+/// (one core of the shared 2-core machine, D65, N = 34, Gaussian σ = 0.02; docs/color_table.md)
+/// with a margin. The CD 5-9.5 s, the foil 8.0 s, `blazed600` 60 s, the DVD 235-357 s; with
+/// 8 grooves the CD 2.4 s, the foil 7.7 s and the DVD 59 s, so the N = 34 figures stand for
+/// any N. A table file's cost is not known before its table is built: it counts as the
+/// dearest preset's.
+pub fn table_build_ns(g: &GratingMaterial<GratingBsdf>) -> f64 {
+    match g.preset {
+        Some(Preset::Cd | Preset::Foil) => 1.2e10,
+        Some(Preset::Blazed600) => 7.5e10,
+        // The DVD, a table file (and any preset added later).
+        _ => 4.5e11,
+    }
+}
 
 /// Whether the Whitted renderer colours grating material `g` from a colour table: tabulated
 /// efficiencies (classical table, finite N), a groove spread that does not depend on λ, and a
