@@ -113,13 +113,19 @@ fn measure(name: &str, s: &Spectral, b: &GratingBsdf, accuracy: f64, count: usiz
     (rel, de)
 }
 
-#[test]
-fn cd_within_target() {
+/// The CD preset (N = 34, D65)'s table at `accuracy` within (`rel`, `de`) at `count` pairs.
+fn cd_within(accuracy: f64, count: usize, rel_max: f64, de_max: f64) {
     let s = Spectral::new(Illuminant::D65);
     let b = preset(Preset::Cd, 34);
-    let (rel, de) = measure("CD, N = 34, D65, 1e-3", &s, &b, 1e-3, 600);
-    assert!(rel <= tolerance::CD_REL, "relative {rel:.3e}");
-    assert!(de <= tolerance::CD_DE2000, "ΔE2000 {de:.4}");
+    let name = format!("CD, N = 34, D65, {accuracy:e}");
+    let (rel, de) = measure(&name, &s, &b, accuracy, count);
+    assert!(rel <= rel_max, "relative {rel:.3e}");
+    assert!(de <= de_max, "ΔE2000 {de:.4}");
+}
+
+#[test]
+fn cd_within_target() {
+    cd_within(1e-3, 600, tolerance::CD_REL, tolerance::CD_DE2000);
 }
 
 /// At the finest accuracy (2.5·10⁻⁴: grids over u at 2.5·10⁻⁴, incidence bisected to it, up to
@@ -127,11 +133,7 @@ fn cd_within_target() {
 /// build in release.
 #[test]
 fn cd_at_the_finest_accuracy_within_target() {
-    let s = Spectral::new(Illuminant::D65);
-    let b = preset(Preset::Cd, 34);
-    let (rel, de) = measure("CD, N = 34, D65, 2.5e-4", &s, &b, 2.5e-4, 4000);
-    assert!(rel <= tolerance::FINE_REL, "relative {rel:.3e}");
-    assert!(de <= tolerance::FINE_DE2000, "ΔE2000 {de:.4}");
+    cd_within(2.5e-4, 4000, tolerance::FINE_REL, tolerance::FINE_DE2000);
 }
 
 #[test]
