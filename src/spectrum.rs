@@ -26,7 +26,7 @@
 //! | [`PEAK_SEARCH`](Strategy::PEAK_SEARCH) | O(visible orders), independent of N | [`PEAK_SEARCH_PER_SLIT`](bounds::PEAK_SEARCH_PER_SLIT)/N = 8/N (measured 3.5/N), plus [`PEAK_SEARCH_ORDER0`](bounds::PEAK_SEARCH_ORDER0) = 2·10⁻³ of order 0's own light where its lobe reaches the band |
 //! | [`PEAK_SEARCH_REFINED`](Strategy::PEAK_SEARCH_REFINED) | plus 8 lobes × 8 points per order | the same (barely better, except at N ≈ 30) |
 //! | [`ASYMPTOTIC`](Strategy::ASYMPTOTIC) | O(visible orders), a few hundred evaluations | [`ASYMPTOTIC_ORDERS`](bounds::ASYMPTOTIC_ORDERS) = 5·10⁻⁴ (measured 1.3·10⁻⁴) for N ≥ [`ASYMPTOTIC_MIN_SLITS`](bounds::ASYMPTOTIC_MIN_SLITS) = 5, plus [`ASYMPTOTIC_ORDER0`](bounds::ASYMPTOTIC_ORDER0) = 2·10⁻⁴ (measured 1.9·10⁻⁵) of order 0's own light where its half period reaches the band; below 5 slits F_N as its N cosines, a fixed number of evaluations whatever the period, [`ASYMPTOTIC_SMALL_N`](bounds::ASYMPTOTIC_SMALL_N) = 5·10⁻⁴ of the colour itself (measured 6.7·10⁻⁵) |
-//! | [`EXACT`](Strategy::EXACT) | O(1 nm rows + orders·(16 lobes + log N)) | [`EXACT`](bounds::EXACT) = 10⁻⁷ of the colour itself (measured 8.9·10⁻⁹), of [`DARK_FLOOR`](bounds::DARK_FLOOR) = 10⁻³ of the unit for darker colours |
+//! | [`EXACT`](Strategy::EXACT) | O(1 nm rows + orders·(8 lobes + log N)) | [`EXACT`](bounds::EXACT) = 10⁻⁷ of the colour itself (measured 7.9·10⁻¹⁰), of [`DARK_FLOOR`](bounds::DARK_FLOOR) = 10⁻³ of the unit for darker colours |
 //! | [`auto(a)`](Strategy::auto) | the cheapest of the above whose bound meets `a` | a |
 //!
 //! The paper's own peak colours (its steps 6-8) are not an integral and not a strategy:
@@ -37,7 +37,7 @@
 //! `paper_peaks` shows it colour.
 //!
 //! How each algorithm works, its derivation (the peak search's equivalent widths, the Fejér
-//! expansion behind `ASYMPTOTIC` and its cosines for a few slits, the Filon-Legendre pieces of `EXACT`) and the extreme cases
+//! expansion behind `ASYMPTOTIC` and its cosines for a few slits, the pieces of `EXACT` across the table's rows) and the extreme cases
 //! (the band inside order 0's lobe, more than 4096 orders, N → ∞) are in
 //! `docs/spectral_strategies.md`; the measured error against run time in `docs/accuracy.md`.
 //!
@@ -64,6 +64,7 @@ mod auto;
 mod dense;
 mod exact;
 mod generic;
+mod levin;
 mod lobes;
 mod monte_carlo;
 mod order0;

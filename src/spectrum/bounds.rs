@@ -52,7 +52,7 @@ pub const ASYMPTOTIC_MIN_SLITS: u32 = 5;
 pub const ASYMPTOTIC_SMALL_N: f64 = 5e-4;
 
 /// `Exact`'s bound relative to the colour itself (floored at [`DARK_FLOOR`] of the accuracy
-/// unit): worst measured 8.9·10⁻⁹ against the Python oracle (`tests/spectral_reference.rs`).
+/// unit): worst measured 7.9·10⁻¹⁰ against the Python oracle (`tests/spectral_reference.rs`).
 pub const EXACT: f64 = 1e-7;
 
 /// Relative bounds of the colour itself (`Exact`, `WINDOWS`) apply to colours down to this

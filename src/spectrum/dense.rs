@@ -397,7 +397,7 @@ mod tests {
             assert!(close(dense, walk), "{d} {w} {n}: {dense} vs {walk}");
             let dp = s.dense_paper_peaks(&g, q);
             assert!(close(dp, paper), "{d} {w} {n}: {dp} vs {paper}");
-            // Exact: its own order-by-order walk (Filon pieces between the rows, lobes near
+            // Exact: its own order-by-order walk (pieces across the rows, lobes near
             // every integer) over the whole band.
             let lobes = Lobes::new(&s, &g, q, n as f64);
             let (x_lo, x_hi) = (q / BAND.max_nm(), q / BAND.min_nm());

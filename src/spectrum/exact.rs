@@ -2,23 +2,25 @@
 //!
 //! The integrand in the phase x = d·|u|/λ is sin²(πNx)·R(x), R = E·S·cmf·norm·|dλ/dx| /
 //! (N·sin πx)², with kinks where λ crosses a 1 nm row of the tables. `filon_walk` integrates it
-//! piece by piece between the rows: within WINDOW_LOBES lobes of every integer x (where R has
-//! its double pole) lobe by lobe, each piece of a lobe by the Gauss-Legendre rule its width
+//! piece by piece: within WINDOW_LOBES lobes of every integer x (where R has its double pole)
+//! lobe by lobe, each piece of a lobe (split at the rows) by the Gauss-Legendre rule its width
 //! allows (8 points down to 3); elsewhere on pieces graded by the distance ε to the nearest
-//! integer (w ≤ ε), at most SLIT_SPAN periods of S, by Filon-Legendre quadrature (`filon`): R
-//! interpolated at 8 (or, on pieces below ε/20, 4) Gauss-Legendre nodes and the product with
-//! cos(2πNx) integrated exactly, so a piece costs the same however many lobes it holds. Against
-//! the walk of every lobe it agrees to 4.5·10⁻⁹ relative (`tests`), against the python oracle
-//! to 8.9·10⁻⁹ (`tests/spectral_reference.rs`); the former hybrid mode's mean-½ envelope (an
-//! error up to 6.75·10⁻⁸ there) is gone.
+//! integer (w ≤ ε), at most SLIT_SPAN periods of S and of the envelope, across the rows, by
+//! `levin::piece`: R's smooth factor interpolated at 16 Chebyshev nodes a piece, the tables'
+//! piecewise quadratic weight and both halves of sin² = ½ − ½·cos(2πNx) integrated exactly row by
+//! row, so a piece costs 16 evaluations of the envelope and of the pole however many rows and
+//! lobes it holds, and a row one evaluation of nine polynomials. Against an independent
+//! composite rule (8-point Gauss-Legendre on every eighth of a lobe between the rows) it agrees
+//! to 1.8·10⁻¹¹ relative, against the walk of every lobe to 6.6·10⁻¹¹ (the walk's own error,
+//! 6.3·10⁻¹¹ there), against the python oracle as `tests/spectral_reference.rs` states.
 
 use glam::DVec3;
 
-use super::lobes::{Lobes, Row};
+use super::levin;
+use super::lobes::Lobes;
 use super::smooth_band::Limits;
 use super::{Spectral, BAND};
-use crate::num::math::{ceil, floor};
-use crate::num::quadrature::{GL4, GL8};
+use crate::num::math::floor;
 use crate::{Grating, Slits};
 
 impl Spectral {
@@ -48,30 +50,27 @@ impl Spectral {
 }
 
 /// Lobes on each side of every integer x integrated lobe by lobe by `filon_walk`.
-const WINDOW_LOBES: f64 = 8.0;
-/// A Filon piece outside the windows spans at most this fraction of its distance to the
-/// integer it leaves (or of its end's distance to the integer it approaches).
+/// (The pieces beyond need at least `levin::MIN_LOBES` lobes each: the first is as wide as its
+/// distance, WINDOW_LOBES.)
+const WINDOW_LOBES: f64 = 4.0;
+/// A piece outside the windows spans at most this fraction of its distance to the integer it
+/// leaves (or of its end's distance to the integer it approaches): the double pole of R is then
+/// at least one width away from it, which the interpolant of `levin::piece` resolves.
 const GROWTH: f64 = 1.0;
-/// Pieces of fewer lobes than this are integrated lobe by lobe (a Filon piece interpolates R at
-/// 8 points however few lobes it holds: below one lobe the lobe's own rule is no dearer).
-const FILON_MIN_LOBES: f64 = 1.0;
-/// A Filon piece narrower than this fraction of its distance to the nearest integer, and than
-/// FILON4_SLIT_SPAN periods of S, interpolates R at 4 nodes instead of 8: the error of the cubic
-/// interpolant of the double pole 1/sin²(πx), about 4·(w/4ε)⁴, is then below 10⁻⁸ of the
-/// piece's light before the oscillation divides it by ω ≥ 3π, and that of S's oscillation,
-/// κ⁴/(2³·4!) with κ = π·duty·w, below 10⁻⁹.
-const FILON4_OF_DISTANCE: f64 = 0.05;
-/// See FILON4_OF_DISTANCE.
-const FILON4_SLIT_SPAN: f64 = 0.0067;
+/// GROWTH for the pieces leaving x = 0, where |dλ/dx| = q/x² makes R's pole of order four:
+/// the pole two widths away keeps its interpolant within about 16³·ρ⁻¹⁶ = 5·10⁻¹³ (ρ = 5 + √24).
+const GROWTH_ORDER0: f64 = 0.5;
 /// Relative tolerance on the window edges.
 const EDGE: f64 = 1e-9;
-/// A Filon piece spans at most this many periods of the single-slit factor, 1/duty in x.
+/// A piece spans at most this many periods of the single-slit factor (1/duty in x) and of the
+/// envelope's sinc² (q/L in x, L its length).
 const SLIT_SPAN: f64 = 0.2;
 
 /// ∫ over [x_lo, x_hi] of the full integrand: lobe by lobe (split at the 1 nm rows, each piece by
 /// the rule its width allows) within WINDOW_LOBES lobes of every integer x; elsewhere on pieces
-/// between the rows, graded by the distance to the nearest integer and at most SLIT_SPAN periods
-/// of S, by `filon8`.
+/// graded by the distance to the nearest integer and at most SLIT_SPAN periods of S and of the
+/// envelope, across the rows, by `levin::piece` (lobe by lobe where a piece holds fewer than
+/// `levin::MIN_LOBES` lobes).
 pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
     let mut acc = DVec3::ZERO;
     if x_lo.is_nan() || x_hi.is_nan() || x_hi <= x_lo {
@@ -79,7 +78,9 @@ pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
     }
     let n = l.n;
     let t = WINDOW_LOBES / n;
-    let slit_span = SLIT_SPAN / l.duty.max(1e-300);
+    // Cycles per unit x of S and of the envelope's sinc² (sinc²(π·L/λ) = sinc²(π·(L/q)·x)).
+    let cycles = l.duty + l.s.envelope.band_sinc_cycles() * BAND.min_nm() / l.q;
+    let slit_span = SLIT_SPAN / cycles.max(1e-300);
     let mut cursor = x_lo;
     while cursor < x_hi {
         let m = floor(cursor);
@@ -97,13 +98,12 @@ pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
             Some(end) => end,
             None => {
                 let graded = if r_lo < 0.5 {
-                    (cursor + GROWTH * r_lo).min(m + 0.5)
+                    let growth = if m == 0.0 { GROWTH_ORDER0 } else { GROWTH };
+                    (cursor + growth * r_lo).min(m + 0.5)
                 } else {
                     (m + 1.0 - r_hi / (1.0 + GROWTH)).min(m + 1.0 - t)
                 };
-                // The next 1 nm row: λ = q/x falls to the next integer below q/cursor.
-                let row = l.q / (ceil(l.q / cursor) - 1.0);
-                graded.min(row).min(cursor + slit_span)
+                graded.min(cursor + slit_span)
             }
         };
         let until = until.min(x_hi);
@@ -113,133 +113,15 @@ pub(super) fn filon_walk(l: &Lobes<'_>, x_lo: f64, x_hi: f64) -> DVec3 {
         } else {
             ((cursor + 1.0 / n).min(x_hi), true)
         };
-        if lobewise || n * (until - cursor) < FILON_MIN_LOBES {
+        if lobewise || n * (until - cursor) < levin::MIN_LOBES {
             acc += l.graded_lobes(cursor, until);
         } else {
-            // The piece's distance to the nearest integer.
-            let eps = if r_lo < 0.5 { r_lo } else { m + 1.0 - until };
-            let w = until - cursor;
-            if w <= FILON4_OF_DISTANCE * eps && w * l.duty <= FILON4_SLIT_SPAN {
-                filon(l, cursor, until, &GL4.nodes, &GL4.weights, &mut acc);
-            } else {
-                filon(l, cursor, until, &GL8.nodes, &GL8.weights, &mut acc);
-            }
+            acc += levin::piece(l, cursor, until);
         }
         cursor = until;
     }
     acc
 }
-
-/// Filon-Legendre quadrature of ∫ sin²(πNx)·R(x) dx over [a, b] (b − a ≥ 3 lobes, inside one row
-/// and away from the integers, where R = E·S·cmf·norm·|dλ/dx| / (N·sin πx)² is smooth):
-/// sin² = ½ − ½·cos(2πNx); R is interpolated at the K Gauss-Legendre nodes `xs` (K = 4 or 8),
-/// its Legendre series p = Σ_{k<K} c_k·P_k integrated exactly, ∫ P_k(t)·e^{iωt} dt =
-/// 2·i^k·j_k(ω) over [−1, 1] (j_k the spherical Bessel functions, `spherical_bessel`), so the
-/// cost does not depend on the number of lobes.
-fn filon(l: &Lobes<'_>, a: f64, b: f64, xs: &[f64], ws: &[f64], acc: &mut DVec3) {
-    use crate::num::kernel::sinpi;
-    use crate::num::math::rint;
-    use core::f64::consts::PI;
-    let terms = xs.len().min(8);
-    let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
-    let n = l.n;
-    let omega = 2.0 * PI * n * h;
-    let nc = n * c;
-    let (sp, cp) = sincos_2pi(nc);
-    // osc[k] = (2k + 1)·j_k(ω)·cos(φ + kπ/2), φ = 2π·N·c.
-    let cycle = [cp, -sp, -cp, sp];
-    let j = spherical_bessel(omega, sincos_2pi(n * h), terms);
-    // The piece lies inside one row of the tables: its interpolation coefficients once.
-    let row = Row::new(l.s.illuminant(), l.q / c);
-    let mut osc = [0.0; 8];
-    for (k, o) in osc.iter_mut().enumerate().take(terms) {
-        *o = (2 * k + 1) as f64 * j[k] * cycle[k % 4];
-    }
-    let mut sum = DVec3::ZERO;
-    for (&ti, &wi) in xs.iter().zip(ws.iter()) {
-        let x = c + h * ti;
-        let den = n * sinpi(x - rint(x));
-        let r = row.envelope_at(l, x) / (den * den);
-        // Σ_k osc_k·P_k(t_i), Legendre polynomials by their recurrence.
-        let (mut p_prev, mut p) = (1.0, ti);
-        let mut o = osc[0] + osc[1] * ti;
-        for (k, ok) in osc.iter().enumerate().take(terms).skip(2) {
-            let kf = k as f64;
-            let p_next = ((2.0 * kf - 1.0) * ti * p - (kf - 1.0) * p_prev) / kf;
-            p_prev = p;
-            p = p_next;
-            o += ok * p;
-        }
-        sum += r * (wi * (1.0 - o));
-    }
-    *acc += sum * (0.5 * h);
-}
-
-/// (sin 2πt, cos 2πt), from sin and cos of π·(t − round(t)) by the polynomial `sinpi`.
-#[inline]
-fn sincos_2pi(t: f64) -> (f64, f64) {
-    use crate::num::kernel::sinpi;
-    use crate::num::math::rint;
-    let r = t - rint(t);
-    let (s, c) = (sinpi(r), sinpi(0.5 - r.abs()));
-    (2.0 * s * c, (c - s) * (c + s))
-}
-
-/// j_0(ω) … j_{terms−1}(ω) (terms ≤ 8, ω ≥ FILON_MIN_LOBES·π) from ω and (sin ω, cos ω): by
-/// the upward recurrence j_{k+1} = (2k + 1)/ω·j_k − j_{k−1} from the closed forms of j_0 and j_1
-/// where ω ≥ terms (it is stable for k < ω), and below by Miller's downward recurrence from
-/// MILLER_START, normalised by Σ_k (2k + 1)·j_k² = 1 and signed by the larger of the closed forms
-/// of j_0 and j_1.
-fn spherical_bessel(omega: f64, (sw, cw): (f64, f64), terms: usize) -> [f64; 8] {
-    use crate::num::math::sqrt;
-    let (j0, j1) = (sw / omega, sw / (omega * omega) - cw / omega);
-    let mut j = [0.0; 8];
-    if omega >= terms as f64 {
-        j[0] = j0;
-        j[1] = j1;
-        for k in 1..terms - 1 {
-            j[k + 1] = (2 * k + 1) as f64 / omega * j[k] - j[k - 1];
-        }
-        return j;
-    }
-    // Downward: f_{k−1} = (2k + 1)/ω·f_k − f_{k+1}, from f_{MILLER_START + 1} = 0 and a small
-    // f_{MILLER_START}; for ω ≥ ½ the values grow by at most 10⁷³ on the way, so neither they
-    // nor their squares leave the range of f64.
-    let (mut next, mut f) = (0.0, 1e-30);
-    let mut norm = 0.0;
-    let inv = 1.0 / omega;
-    let mut k = MILLER_START;
-    loop {
-        norm += (2 * k + 1) as f64 * f * f;
-        if k < 8 {
-            j[k] = f;
-        }
-        if k == 0 {
-            break;
-        }
-        let prev = (2 * k + 1) as f64 * inv * f - next;
-        next = f;
-        f = prev;
-        k -= 1;
-    }
-    let mut scale = 1.0 / sqrt(norm);
-    let sign = if j0.abs() >= j1.abs() {
-        j0 * j[0]
-    } else {
-        j1 * j[1]
-    };
-    if sign < 0.0 {
-        scale = -scale;
-    }
-    for v in j.iter_mut() {
-        *v *= scale;
-    }
-    j
-}
-
-/// The first order of Miller's downward recurrence in `spherical_bessel` (ω < 8): j_40(8) is
-/// 1.1·10⁻²⁴ of j_7(8) (mpmath), so starting there leaves the orders 0-7 exact to rounding.
-const MILLER_START: usize = 40;
 
 #[cfg(test)]
 mod tests {
@@ -248,39 +130,9 @@ mod tests {
 
     /// `filon_walk` against the walk of every lobe (8-point rule on each piece between the
     /// zeros of sin(πNx) and the rows, `Lobes::lobes`), relative to each component. Measured
-    /// 4.53e-9 (d=10000 w=5000 N=300 u=0.7 D65, Z); margin 9×.
-    const FILON_WALK: f64 = 4e-8;
-
-    /// `spherical_bessel` against the closed forms of j_0 … j_3 and, for j_4 … j_7, the
-    /// three-term recurrence (which with two correct orders determines the rest), on both sides
-    /// of the switch between Miller's recurrence and the upward one. Measured 1.8e-16 (absolute:
-    /// |j_k| ≤ 1); margin 5×.
-    const BESSEL: f64 = 1e-15;
-
-    #[test]
-    fn spherical_bessel_matches_its_closed_forms() {
-        let mut worst = 0.0f64;
-        for i in 0..=2000 {
-            let w = core::f64::consts::PI + (12.0 - core::f64::consts::PI) * i as f64 / 2000.0;
-            let j = spherical_bessel(w, (w.sin(), w.cos()), 8);
-            let (s, c) = (w.sin(), w.cos());
-            let closed = [
-                s / w,
-                s / (w * w) - c / w,
-                (3.0 / (w * w) - 1.0) * s / w - 3.0 * c / (w * w),
-                (15.0 / (w * w * w) - 6.0 / w) * s / w - (15.0 / (w * w) - 1.0) * c / w,
-            ];
-            for k in 0..4 {
-                worst = worst.max((j[k] - closed[k]).abs());
-            }
-            for k in 1..7 {
-                let residual = j[k + 1] - ((2 * k + 1) as f64 / w * j[k] - j[k - 1]);
-                worst = worst.max(residual.abs());
-            }
-        }
-        assert!(worst <= BESSEL, "worst {worst:e}");
-        std::println!("spherical Bessel: worst {worst:.2e}");
-    }
+    /// 6.6e-11 (d=740 w=370 N=1000 u=0.9 E, where the lobe walk itself is 6.3e-11 off the
+    /// composite rule of `COMPOSITE`); margin 10×.
+    const FILON_WALK: f64 = 7e-10;
 
     #[test]
     fn filon_walk_matches_the_lobe_walk() {
@@ -314,5 +166,72 @@ mod tests {
             }
         }
         std::println!("filon walk against the lobe walk: worst {worst:.3e}");
+    }
+
+    /// `Exact` against an independent composite rule in wavelength: I(u, λ) from
+    /// `Grating::intensity`, the weight E·cmf·norm from `Spectral::weight`, 8-point
+    /// Gauss-Legendre on equal pieces of each 1 nm row of at most an eighth of a lobe of F_N
+    /// (λ²/(8·q·N) at the row's short end), relative to each component. Measured 2.6e-11
+    /// (d=100000 w=50000 N=10⁶ u=3e-7 D65); margin 7.7×.
+    const COMPOSITE: f64 = 2e-10;
+
+    /// The composite rule of `COMPOSITE` over the band.
+    fn composite(s: &Spectral, g: &Grating, u: f64) -> DVec3 {
+        use crate::num::quadrature::GL8;
+        let q = g.period_nm() * u;
+        let n = g.slits().as_f64();
+        let mut acc = DVec3::ZERO;
+        let (first, last) = (BAND.min_nm() as u32, BAND.max_nm() as u32);
+        for row in first..last {
+            let lambda = row as f64;
+            let pieces = (8.0 * q * n / (lambda * lambda)).ceil().max(1.0) as u32;
+            let step = 1.0 / pieces as f64;
+            for p in 0..pieces {
+                let a = lambda + p as f64 * step;
+                let (mid, half) = (a + 0.5 * step, 0.5 * step);
+                for (t, w) in GL8.nodes.iter().zip(GL8.weights) {
+                    let l = mid + half * t;
+                    acc += s.weight(l) * (g.intensity(u, l) * w * half);
+                }
+            }
+        }
+        acc
+    }
+
+    #[test]
+    fn exact_matches_a_fine_composite_rule() {
+        let mut worst = 0.0f64;
+        // D65 with an envelope λ⁻²·sinc²(π·5 µm/λ) too: its 14 periods over the band bound the
+        // pieces like S's.
+        let enveloped =
+            Spectral::new(Illuminant::D65).with_envelope(crate::Envelope::new(2, 5000.0).unwrap());
+        for s in [
+            Spectral::new(Illuminant::E),
+            Spectral::new(Illuminant::D65),
+            enveloped,
+        ] {
+            let ill = (s.illuminant(), s.envelope());
+            for (d, w, n, u) in [
+                (1600.0, 800.0, 1000u32, 0.37),
+                (740.0, 370.0, 1000, 0.9),
+                (1600.0, 800.0, 1000, 1.21),
+                (1600.0, 800.0, 1000, 1.93),
+                (740.0, 370.0, 3000, 0.8),
+                (1600.0, 160.0, 100, 1.3),
+                (10000.0, 5000.0, 300, 0.7),
+                // Order 0's half period only, where |dλ/dx| adds to R's pole at x = 0.
+                (1600.0, 1600.0, 30_000, 0.001),
+                (100_000.0, 50_000.0, 1_000_000, 3e-7),
+            ] {
+                let g = Grating::new(d, w, n).unwrap();
+                let want = composite(&s, &g, u);
+                let got = s.exact(&g, u);
+                let rel = ((got - want).abs() / want.abs()).max_element();
+                std::println!("{d} {w} {n} {u} {ill:?}: {rel:.2e}");
+                assert!(rel <= COMPOSITE, "{d} {w} {n} {u} {ill:?}: {got} vs {want}");
+                worst = worst.max(rel);
+            }
+        }
+        std::println!("exact against the composite rule: worst {worst:.3e}");
     }
 }

@@ -245,6 +245,17 @@ impl Row {
         }
     }
 
+    /// E·cmf in this row (without the envelope and the norm) as w₀ + w₁·τ + w₂·τ², τ = λ − λ_c:
+    /// the row's two linear interpolants, extended beyond the row, multiplied out around λ_c.
+    #[inline]
+    pub(super) fn tau_expansion(&self, lambda_c: f64) -> [DVec3; 3] {
+        use crate::data::cie_data::FIRST_NM;
+        let d = (lambda_c - FIRST_NM as f64) - self.start;
+        let e = self.e0 + self.de * d;
+        let c = self.c0 + self.dc * d;
+        [c * e, self.dc * e + c * self.de, self.dc * self.de]
+    }
+
     /// E·cmf·env·norm at λ in this row.
     #[inline]
     fn weight(&self, l: &Lobes<'_>, lambda: f64) -> DVec3 {
@@ -262,18 +273,6 @@ impl Row {
         let r = num / den;
         let i = (r * r).min(1.0);
         self.weight(l, lambda) * (i * (lambda / x))
-    }
-
-    /// `Lobes::envelope_at` at x for an x whose wavelength lies in this row.
-    #[inline]
-    pub(super) fn envelope_at(&self, l: &Lobes<'_>, x: f64) -> DVec3 {
-        use crate::data::cie_data::FIRST_NM;
-        use crate::num::kernel::single_slit_cycles;
-        let lambda = l.q / x;
-        let t = (lambda - FIRST_NM as f64) - self.start;
-        let e = (self.e0 + t * self.de) * l.s.envelope_norm(lambda);
-        let c = self.c0 + self.dc * t;
-        c * (e * (single_slit_cycles(l.duty * x) * (lambda / x)))
     }
 }
 
