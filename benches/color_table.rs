@@ -247,26 +247,20 @@ fn bench_tabulated(c: &mut Criterion) {
             (wo, wi)
         })
         .collect();
+    let lookups = |t: &ColorTable| {
+        pairs
+            .iter()
+            .map(|&(o, i)| t.xyz(black_box(o), i).y)
+            .sum::<f64>()
+    };
     let mut group = c.benchmark_group("tabulated_table/cd_n34");
     group.throughput(Throughput::Elements(BATCH as u64));
-    group.bench_function("xyz", |bch| {
-        bch.iter(|| {
-            pairs
-                .iter()
-                .map(|&(o, i)| table.xyz(black_box(o), i).y)
-                .sum::<f64>()
-        })
-    });
+    group.bench_function("xyz", |bch| bch.iter(|| lookups(&table)));
     // The finest table (2.5·10⁻⁴: about a minute to build, so only when its benchmark runs).
     let fine = std::cell::OnceCell::new();
     group.bench_function("xyz_fine", |bch| {
         let fine = fine.get_or_init(|| ColorTable::new(&s, &b, 2.5e-4).unwrap());
-        bch.iter(|| {
-            pairs
-                .iter()
-                .map(|&(o, i)| fine.xyz(black_box(o), i).y)
-                .sum::<f64>()
-        })
+        bch.iter(|| lookups(fine))
     });
     group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
     let rules = [

@@ -120,11 +120,11 @@ pub type RadiometricTable = ColorTable;
 /// depends on the incidence: its colour is cos θi · g(v) · C(u, s), s = wi.x. Its table holds a
 /// pair of graded grids over u (u ≥ 0 and u ≤ 0: C is not even) per incidence node, the nodes
 /// placed between the grazing directions at each u and bisected where a held-out midpoint
-/// misses the accuracy (at most 129 nodes at 10⁻³ and coarser, one more halving per halved
-/// accuracy below it, at most 513 nodes; each grid within [`MAX_NODES`](Self::MAX_NODES) and
-/// [`MAX_WORK`](Self::MAX_WORK), its accuracy taken as at least 2.5·10⁻⁴), and `xyz(wo, wi)`
-/// interpolates linearly between the two nodes around wi.x. A node's colour integrates the BSDF's `eval` over panels
-/// cut at F_N's zeros, the table's wavelengths and the orders' Rayleigh wavelengths.
+/// misses the accuracy (at most 129 nodes at 10⁻³, one more halving per halved accuracy below,
+/// at most 513; each grid within [`MAX_NODES`](Self::MAX_NODES) and [`MAX_WORK`](Self::MAX_WORK)
+/// at an accuracy of at least 2.5·10⁻⁴), and `xyz(wo, wi)` interpolates linearly between the
+/// two nodes around wi.x. A node's colour integrates the BSDF's `eval` over panels cut at F_N's
+/// zeros, the table's wavelengths and the orders' Rayleigh wavelengths.
 /// [`lookup`](Self::lookup) and [`mean`](Self::mean) have no incidence: they return black.
 /// [`incidence_count`](Self::incidence_count) counts the incidence nodes;
 /// [`node_count`](Self::node_count), [`size_bytes`](Self::size_bytes), [`scale`](Self::scale)
@@ -137,9 +137,8 @@ pub type RadiometricTable = ColorTable;
 /// σ = 0.02, D65) at 10⁻³ builds in 5-7 s (129 incidence nodes, 118,074 nodes, 9.5 MB) and
 /// is within 0.071 ΔE2000 (600 random pairs; 0.15 over 4000) of the generic colour of the same
 /// BSDF; at 2.5·10⁻⁴ in about 70 s (509 incidence nodes, 81 MB) within 0.043 over the 4000.
-/// The efficiencies are piecewise bilinear in (incidence, λ), so the colour has kinks on lines
-/// that cross both the incidence nodes and the grids over u: both must be finer than the
-/// accuracy alone would ask.
+/// The efficiencies are piecewise bilinear in (incidence, λ): the colour's kinks cross both the
+/// incidence nodes and the grids over u, so both are refined together.
 ///
 /// ```
 /// # #[cfg(feature = "presets")] {
