@@ -129,7 +129,7 @@ pub type RadiometricTable = ColorTable;
 /// [`incidence_count`](Self::incidence_count) counts the incidence nodes;
 /// [`node_count`](Self::node_count), [`size_bytes`](Self::size_bytes), [`scale`](Self::scale)
 /// and [`error_estimate`](Self::error_estimate) cover them all. No stored form (serialising is
-/// an error); a `GpuColorTable` of it holds only its grid of normal incidence over u ≥ 0.
+/// an error); a `GpuColorTable` of it holds every node's grids (`diffraction_table_colour`).
 /// Refused: a conical table (`efficiency`, [`Requirement::Classical`]), N = ∞ (`slits`), a
 /// coherence-length groove (`groove`).
 ///

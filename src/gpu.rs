@@ -11,6 +11,7 @@
 //! | [`KERNEL_WGSL`] | `diffraction_single_slit_cycles(y)`, `diffraction_n_slit_cycles(x, n)`, `diffraction_intensity_cycles(x, y, n)` | nothing |
 //! | [`TYPES_WGSL`] | the structs of [`GpuGrating`], [`GpuIllumination`], [`GpuTableHeader`], [`GpuTableBlock`], [`GpuTableNode`] | nothing |
 //! | [`COLOR_TABLE_WGSL`] | `diffraction_table_lookup(u) -> XYZ` | types, [`color_table_bindings`] |
+//! | [`INCIDENCE_WGSL`] | `diffraction_table_colour(u, s) -> XYZ`: the table's colour at the incidence s = wi.x (a table of tabulated efficiencies) | colour table, [`incidence_bindings`] |
 //! | [`SHADING_WGSL`] | `diffraction_shade` (eq. 12), `diffraction_shade_grating`, `diffraction_xyz_to_linear_srgb`, `diffraction_phase_u` | types, colour table |
 //! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`, `diffraction_bsdf_sample`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
 //! | [`TABULATED_WGSL`] | `diffraction_bsdf_tabulated_f`, `_pdf`, `_sample`, `diffraction_eta`: a tabulated model from its packed table (`GpuEfficiencyTables`, feature `relief`) | types, kernels, BSDF, [`efficiency_table_bindings`] |
@@ -64,6 +65,26 @@ pub const TYPES_WGSL: &str = include_str!("gpu/types.wgsl");
 /// The colour table's lookup, `diffraction_table_lookup(u) -> vec3<f32>` (XYZ); needs
 /// [`TYPES_WGSL`] and the bindings of [`color_table_bindings`].
 pub const COLOR_TABLE_WGSL: &str = include_str!("gpu/color_table.wgsl");
+/// The colour at an incidence, `diffraction_table_colour(u, s) -> vec3<f32>` (XYZ; a table of
+/// tabulated efficiencies depends on s = wi.x, the others give `diffraction_table_lookup(u)`);
+/// needs [`COLOR_TABLE_WGSL`], its bindings and the binding of [`incidence_bindings`].
+pub const INCIDENCE_WGSL: &str = include_str!("gpu/incidence.wgsl");
+
+/// The declaration of the colour table's incidence ([`GpuColorTable::incidence`]) at `group`,
+/// `binding`: a read-only storage `array<u32>`.
+///
+/// ```
+/// let b = diffraction::gpu::incidence_bindings(1, 5);
+/// assert!(b.contains("@binding(5) var<storage, read> diffraction_table_incidence"));
+/// ```
+#[must_use]
+pub fn incidence_bindings(group: u32, binding: u32) -> String {
+    format!(
+        "@group({group}) @binding({binding}) var<storage, read> diffraction_table_incidence: \
+         array<u32>;\n"
+    )
+}
+
 /// The paper's eq. 12 and a grating pixel shaded from its colour table; needs
 /// [`TYPES_WGSL`] and [`COLOR_TABLE_WGSL`].
 pub const SHADING_WGSL: &str = include_str!("gpu/shading.wgsl");
@@ -119,8 +140,9 @@ pub fn efficiency_table_bindings(group: u32, binding: u32) -> String {
 /// Every source of this module with the colour table's bindings at `group`, bindings
 /// `binding` to `binding + 2` ([`color_table_bindings`]), the BSDF's order data at
 /// `binding + 3` ([`bsdf_bindings`]) and the efficiency tables at `binding + 4`
-/// ([`efficiency_table_bindings`]): the kernels, the types, the lookup, eq. 12 and the BSDF of
-/// both efficiency models.
+/// ([`efficiency_table_bindings`]) and the colour table's incidence at `binding + 5`
+/// ([`incidence_bindings`]): the kernels, the types, the lookups, eq. 12 and the BSDF of both
+/// efficiency models.
 #[must_use]
 pub fn shading_source(group: u32, binding: u32) -> String {
     let mut s = String::new();
@@ -129,8 +151,10 @@ pub fn shading_source(group: u32, binding: u32) -> String {
         &color_table_bindings(group, binding),
         &bsdf_bindings(group, binding.saturating_add(3)),
         &efficiency_table_bindings(group, binding.saturating_add(4)),
+        &incidence_bindings(group, binding.saturating_add(5)),
         KERNEL_WGSL,
         COLOR_TABLE_WGSL,
+        INCIDENCE_WGSL,
         SHADING_WGSL,
         BSDF_WGSL,
         TABULATED_WGSL,
@@ -139,6 +163,68 @@ pub fn shading_source(group: u32, binding: u32) -> String {
         s.push('\n');
     }
     s
+}
+
+/// Appends the grids of `table`'s incidence nodes to `blocks` and `nodes` (grid g's blocks
+/// from g·(blocks of grid 0) on: node k's over u ≥ 0 is grid 1 + 2k, over u ≤ 0 2 + 2k; every
+/// grid of a table has the same blocks) and returns the incidence words of
+/// [`GpuColorTable::incidence`].
+#[cfg(feature = "relief")]
+fn append_incidence(
+    table: &ColorTable,
+    blocks: &mut Vec<GpuTableBlock>,
+    nodes: &mut Vec<GpuTableNode>,
+) -> Vec<u32> {
+    let Some(t) = table.gpu_incidence() else {
+        return Vec::from([0, 0]);
+    };
+    let block_count = blocks.len();
+    for (grid_blocks, grid_nodes) in t.grids {
+        debug_assert_eq!(grid_blocks.len(), block_count);
+        let first = nodes.len() as u32;
+        blocks.extend(
+            grid_blocks
+                .into_iter()
+                .map(|(u0, h, f, n)| gpu_block((u0, h, first + f, n))),
+        );
+        nodes.extend(grid_nodes.into_iter().map(gpu_node));
+    }
+    let mut words = Vec::with_capacity(2 + t.bins.len() + 2 * t.nodes.len());
+    words.extend([t.nodes.len() as u32, t.bins.len() as u32]);
+    words.extend_from_slice(t.bins);
+    for (sigma, inv_next) in t.nodes {
+        words.extend([(sigma as f32).to_bits(), (inv_next as f32).to_bits()]);
+    }
+    words
+}
+
+/// Without the feature `relief` no table has incidence nodes.
+#[cfg(not(feature = "relief"))]
+fn append_incidence(
+    _: &ColorTable,
+    _: &mut Vec<GpuTableBlock>,
+    _: &mut Vec<GpuTableNode>,
+) -> Vec<u32> {
+    Vec::from([0, 0])
+}
+
+/// A block of `ColorTable::grid` in f32.
+fn gpu_block((u0, h, first, n): (f64, f64, u32, u32)) -> GpuTableBlock {
+    GpuTableBlock {
+        u0: u0 as f32,
+        h: h as f32,
+        inv_h: (1.0 / h) as f32,
+        first,
+        n,
+    }
+}
+
+/// A node of `ColorTable::grid` in f32.
+fn gpu_node((f, d): ([f64; 3], [f64; 3])) -> GpuTableNode {
+    GpuTableNode {
+        f: [f[0] as f32, f[1] as f32, f[2] as f32, 0.0],
+        d: [d[0] as f32, d[1] as f32, d[2] as f32, 0.0],
+    }
 }
 
 /// Little-endian bytes of a list of 4-byte words (what every struct here is made of).
@@ -263,7 +349,8 @@ pub struct GpuTableHeader {
     pub u_lo: f32,
     /// The key (f32 bits >> 20) of block 1: `u_lo.to_bits() >> 20`.
     pub base_key: u32,
-    /// The number of blocks.
+    /// The number of blocks of a grid (a table of tabulated efficiencies has several grids,
+    /// see [`GpuColorTable`]).
     pub block_count: u32,
     /// The number of nodes.
     pub node_count: u32,
@@ -307,6 +394,13 @@ pub struct GpuTableNode {
 /// A [`ColorTable`] for the GPU: its grid in f32, uploaded as one uniform (the header) and two
 /// read-only storage buffers (blocks, nodes) and read by `diffraction_table_lookup`.
 ///
+/// A table of tabulated efficiencies (feature `relief`) also holds every incidence node's two
+/// grids after its grid of normal incidence (grid g's blocks from g·`block_count` on: node k's
+/// over u ≥ 0 is grid 1 + 2k, over u ≤ 0 grid 2 + 2k) and the nodes' places in
+/// [`incidence`](Self::incidence), a third storage buffer ([`incidence_bindings`]) read by
+/// `diffraction_table_colour(u, s)`, the CPU's interpolation in f32 (docs/gpu.md, "Colour
+/// tables of tabulated efficiencies").
+///
 /// The lookup is the CPU's algorithm in f32 (same blocks, same Hermite cells): within a few f32
 /// roundings of the nodes' scale of [`ColorTable::lookup`] (docs/gpu.md). Where the table does
 /// not resolve order 0's lobe (N·d > 3.3·10²⁰ nm, [`resolved`](Self::resolved) false) the CPU
@@ -319,6 +413,11 @@ pub struct GpuColorTable {
     pub blocks: Vec<GpuTableBlock>,
     /// The nodes (storage).
     pub nodes: Vec<GpuTableNode>,
+    /// The incidence of a table of tabulated efficiencies (storage, `array<u32>`, read by
+    /// `diffraction_table_colour`): K (its incidence nodes), M (its bins), the M bins (the node
+    /// starting each finest interval of σ), then per node σ and 1/(next σ − σ) as f32 bits;
+    /// `[0, 0]` for a table without incidence.
+    pub incidence: Vec<u32>,
     resolved: bool,
 }
 
@@ -327,31 +426,21 @@ impl GpuColorTable {
     #[must_use]
     pub fn new(table: &ColorTable) -> GpuColorTable {
         let (u_lo, exact_below, blocks, nodes) = table.grid();
-        let blocks: Vec<GpuTableBlock> = blocks
-            .map(|(u0, h, first, n)| GpuTableBlock {
-                u0: u0 as f32,
-                h: h as f32,
-                inv_h: (1.0 / h) as f32,
-                first,
-                n,
-            })
-            .collect();
-        let nodes: Vec<GpuTableNode> = nodes
-            .map(|(f, d)| GpuTableNode {
-                f: [f[0] as f32, f[1] as f32, f[2] as f32, 0.0],
-                d: [d[0] as f32, d[1] as f32, d[2] as f32, 0.0],
-            })
-            .collect();
+        let mut blocks: Vec<GpuTableBlock> = blocks.map(gpu_block).collect();
+        let mut nodes: Vec<GpuTableNode> = nodes.map(gpu_node).collect();
+        let block_count = blocks.len() as u32;
+        let incidence = append_incidence(table, &mut blocks, &mut nodes);
         let u_lo = u_lo as f32;
         GpuColorTable {
             header: GpuTableHeader {
                 u_lo,
                 base_key: u_lo.to_bits() >> 20,
-                block_count: blocks.len() as u32,
+                block_count,
                 node_count: nodes.len() as u32,
             },
             blocks,
             nodes,
+            incidence,
             resolved: exact_below <= 0.0,
         }
     }
@@ -391,6 +480,14 @@ impl GpuColorTable {
                 &mut out,
             );
         }
+        out
+    }
+
+    /// The incidence's bytes (4 a word, the storage buffer's array).
+    #[must_use]
+    pub fn incidence_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(4 * self.incidence.len());
+        words_to_bytes(&self.incidence, &mut out);
         out
     }
 

@@ -11,9 +11,10 @@ mod gpu_cases;
 mod gpu_tolerance;
 
 use diffraction::gpu::{
-    bsdf_bindings, color_table_bindings, efficiency_table_bindings, shading_source, GpuBsdf,
-    GpuGrating, GpuIllumination, GpuTableBlock, GpuTableHeader, GpuTableNode, BSDF_WGSL,
-    COLOR_TABLE_WGSL, KERNEL_WGSL, SHADING_WGSL, TABULATED_WGSL, TYPES_WGSL,
+    bsdf_bindings, color_table_bindings, efficiency_table_bindings, incidence_bindings,
+    shading_source, GpuBsdf, GpuGrating, GpuIllumination, GpuTableBlock, GpuTableHeader,
+    GpuTableNode, BSDF_WGSL, COLOR_TABLE_WGSL, INCIDENCE_WGSL, KERNEL_WGSL, SHADING_WGSL,
+    TABULATED_WGSL, TYPES_WGSL,
 };
 use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
 use gpu_cases::{stiff_phases, ulps, Mix, SLITS};
@@ -37,6 +38,10 @@ fn every_module_validates() {
     validate("TYPES_WGSL", TYPES_WGSL);
     let table = [TYPES_WGSL, &color_table_bindings(0, 0), COLOR_TABLE_WGSL].join("\n");
     validate("COLOR_TABLE_WGSL", &table);
+    validate(
+        "INCIDENCE_WGSL",
+        &[&table, &incidence_bindings(0, 3), INCIDENCE_WGSL].join("\n"),
+    );
     let shading = [
         TYPES_WGSL,
         &color_table_bindings(3, 4),
@@ -67,6 +72,7 @@ fn every_module_validates() {
         "diffraction_single_slit_cycles",
         "diffraction_intensity_cycles",
         "diffraction_table_lookup",
+        "diffraction_table_colour",
         "diffraction_shade",
         "diffraction_shade_grating",
         "diffraction_bsdf_f",

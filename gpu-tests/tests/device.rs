@@ -11,6 +11,7 @@ mod gpu_tolerance;
 
 use std::time::Instant;
 
+use diffraction::glam::DVec3;
 use diffraction::gpu::{shading_source, GpuColorTable, KERNEL_WGSL};
 use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
 use diffraction::spectrum::{Illuminant, Spectral};
@@ -48,7 +49,8 @@ fn gpu() -> Option<Gpu> {
 impl Gpu {
     /// Runs `entry` of `source` over `count` invocations (workgroups of 256) with the storage
     /// buffers `inputs` (read-only, bindings 0..) and one output (the next binding) of
-    /// `out_bytes`, and `extra` (uniform header, storage, storage) at group 1 if given.
+    /// `out_bytes`, and `extra` at group 1 if given (bindings 0.., the first a uniform, the others
+    /// read-only storage).
     /// Returns the output and the seconds of the dispatch (submit to read-back).
     fn run(
         &self,
@@ -57,7 +59,7 @@ impl Gpu {
         inputs: &[&[u8]],
         out_bytes: usize,
         count: usize,
-        extra: Option<[&[u8]; 3]>,
+        extra: Option<&[&[u8]]>,
     ) -> (Vec<u8>, f64) {
         let d = &self.device;
         let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -112,12 +114,18 @@ impl Gpu {
             layout: &pipeline.get_bind_group_layout(0),
             entries: &entries,
         });
-        let table_buffers: Option<Vec<wgpu::Buffer>> = extra.map(|[h, b, n]| {
-            vec![
-                storage(h, wgpu::BufferUsages::UNIFORM),
-                storage(b, wgpu::BufferUsages::STORAGE),
-                storage(n, wgpu::BufferUsages::STORAGE),
-            ]
+        let table_buffers: Option<Vec<wgpu::Buffer>> = extra.map(|bufs| {
+            bufs.iter()
+                .enumerate()
+                .map(|(i, b)| {
+                    let usage = if i == 0 {
+                        wgpu::BufferUsages::UNIFORM
+                    } else {
+                        wgpu::BufferUsages::STORAGE
+                    };
+                    storage(b, usage)
+                })
+                .collect()
         });
         let group1 = table_buffers.as_ref().map(|bufs| {
             d.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -272,7 +280,7 @@ fn table_lookup_matches_the_cpu_table() {
         &[&bytes],
         16 * COUNT,
         COUNT,
-        Some([&h, &b, &n]),
+        Some(&[&h, &b, &n]),
     );
     let out = f32s(&out);
     let (mut worst, mut worst_abs) = (0.0f64, 0.0f64);
@@ -302,15 +310,22 @@ fn table_lookup_matches_the_cpu_table() {
 }
 
 /// Per channel, the sum of the magnitudes of the cell's four Hermite terms at u and twice the
-/// cell's largest slope (the scales of the lookup's rounding, see TABLE_ROUNDINGS).
+/// cell's largest slope (the scales of the lookup's rounding, see TABLE_ROUNDINGS), in grid 0.
 fn cell_scale(t: &GpuColorTable, u: f32) -> ([f64; 3], [f64; 3]) {
-    let a = u.abs().min(2.0);
+    let (_, m, dm) = cell(t, 0, u.abs().min(2.0));
+    (m, dm)
+}
+
+/// Grid g's interpolant at a ∈ [0, 2] in f64 from its f32 nodes, and the rounding scales of
+/// `cell_scale`.
+fn cell(t: &GpuColorTable, g: usize, a: f32) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let k = if a >= t.header.u_lo {
         ((a.to_bits() >> 20) - t.header.base_key + 1) as usize
     } else {
         0
     };
-    let b = t.blocks[k.min(t.blocks.len() - 1)];
+    let count = t.header.block_count as usize;
+    let b = t.blocks[g * count + k.min(count - 1)];
     let s_all = ((a - b.u0) * b.inv_h) as f64;
     let j = (s_all as u32).min(b.n - 1);
     let s = s_all - j as f64;
@@ -321,19 +336,170 @@ fn cell_scale(t: &GpuColorTable, u: f32) -> ([f64; 3], [f64; 3]) {
     let h = b.h as f64;
     let (s2, s3) = (s * s, s * s * s);
     let w = [
-        (2.0 * s3 - 3.0 * s2 + 1.0).abs(),
-        ((s3 - 2.0 * s2 + s) * h).abs(),
-        (3.0 * s2 - 2.0 * s3).abs(),
-        ((s3 - s2) * h).abs(),
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        (s3 - 2.0 * s2 + s) * h,
+        3.0 * s2 - 2.0 * s3,
+        (s3 - s2) * h,
     ];
-    let mut m = [0.0; 3];
-    let mut dm = [0.0; 3];
+    let (mut v, mut m, mut dm) = ([0.0; 3], [0.0; 3], [0.0; 3]);
     for c in 0..3 {
         let (fp, dp, fq, dq) = (p.f[c] as f64, p.d[c] as f64, q.f[c] as f64, q.d[c] as f64);
-        m[c] = w[0] * fp.abs() + w[1] * dp.abs() + w[2] * fq.abs() + w[3] * dq.abs();
+        v[c] = (w[0] * fp + w[1] * dp + w[2] * fq + w[3] * dq).max(0.0);
+        m[c] = w[0].abs() * fp.abs()
+            + w[1].abs() * dp.abs()
+            + w[2].abs() * fq.abs()
+            + w[3].abs() * dq.abs();
         dm[c] = 2.0 * dp.abs().max(dq.abs()).max(((fq - fp) / h).abs());
     }
-    (m, dm)
+    (v, m, dm)
+}
+
+const COLOUR_MAIN: &str = "
+struct Query { u: f32, s: f32 }
+@group(0) @binding(0) var<storage, read> queries: array<Query>;
+@group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
+@compute @workgroup_size(256)
+fn colour_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&out) {
+        let q = queries[id.x];
+        out[id.x] = vec4<f32>(diffraction_table_colour(q.u, q.s), 0.0);
+    }
+}
+";
+
+/// σ of the incidence s at u (the CPU's place between the grazing directions, in f64).
+fn sigma_of(tau: f64) -> f64 {
+    let (a, b) = (
+        tau.clamp(0.0, 1.0).sqrt(),
+        (1.0 - tau.clamp(0.0, 1.0)).sqrt(),
+    );
+    a / (a + b)
+}
+
+#[test]
+fn table_colour_at_an_incidence_matches_the_cpu_table() {
+    use diffraction::relief::Preset;
+    use diffraction::{GratingBsdf, GrooveSpread};
+    let Some(gpu) = gpu() else { return };
+    // The blazed grating (its colour is not even in u: a symmetric profile's grids over u ≥ 0
+    // and u ≤ 0 are the same by reciprocity and mirror symmetry) with 8 grooves lit, at 10⁻¹
+    // (a build of seconds unoptimised).
+    let b = GratingBsdf::preset(Preset::Blazed600, 8)
+        .unwrap()
+        .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+    let start = Instant::now();
+    let table = ColorTable::new(&Spectral::new(Illuminant::D65), &b, 1e-1).unwrap();
+    let build = start.elapsed().as_secs_f64();
+    let t = GpuColorTable::new(&table);
+    let words = &t.incidence;
+    let (k, bins) = (words[0] as usize, words[1] as usize);
+    assert!(k >= 9 && bins >= 8, "{k} nodes, {bins} bins");
+    let node = |i: usize| {
+        let at = 2 + bins + 2 * i;
+        (
+            f32::from_bits(words[at]) as f64,
+            f32::from_bits(words[at + 1]) as f64,
+        )
+    };
+    const QUERIES: usize = 1 << 18;
+    let mut rng = Mix(11);
+    // wi.x and wo.x uniform in (−0.99, 0.99), u = wi.x + wo.x rounded to f32.
+    let queries: Vec<(f32, f32)> = (0..QUERIES)
+        .map(|_| {
+            let s = (1.98 * rng.next() - 0.99) as f32;
+            let u = (s as f64 + 1.98 * rng.next() - 0.99) as f32;
+            (u, s)
+        })
+        .collect();
+    let bytes: Vec<u8> = queries
+        .iter()
+        .flat_map(|&(u, s)| [u.to_le_bytes(), s.to_le_bytes()])
+        .flatten()
+        .collect();
+    let source = [
+        diffraction::gpu::TYPES_WGSL,
+        &diffraction::gpu::color_table_bindings(1, 0),
+        &diffraction::gpu::incidence_bindings(1, 3),
+        diffraction::gpu::COLOR_TABLE_WGSL,
+        diffraction::gpu::INCIDENCE_WGSL,
+        COLOUR_MAIN,
+    ]
+    .join("\n");
+    let (h, bl, n, inc) = (
+        t.header_bytes(),
+        t.blocks_bytes(),
+        t.nodes_bytes(),
+        t.incidence_bytes(),
+    );
+    let (out, secs) = gpu.run(
+        &source,
+        "colour_main",
+        &[&bytes],
+        16 * QUERIES,
+        QUERIES,
+        Some(&[&h, &bl, &n, &inc]),
+    );
+    let out = f32s(&out);
+    let g0 = b.groove().value(0.0, 550.0);
+    let (mut worst, mut worst_abs, mut checked) = (0.0f64, 0.0f64, 0usize);
+    for (q, &(u, s)) in queries.iter().enumerate() {
+        let (uf, sf) = (u as f64, s as f64);
+        let wi = DVec3::new(sf, 0.0, (1.0 - sf * sf).sqrt());
+        let ox = uf - sf;
+        if ox.abs() >= 0.995 {
+            continue;
+        }
+        let wo = DVec3::new(ox, 0.0, (1.0 - ox * ox).sqrt());
+        let xyz = table.xyz(wo, wi);
+        let c = [xyz.x, xyz.y, xyz.z].map(|v| v / (wi.z * g0));
+        // The place σ and its f32 rounding: τ's (three roundings of |s| + |u| + 1 over the
+        // width), carried exactly through σ(τ), plus the square roots, sum and quotient.
+        let a = u.abs();
+        let width = 2.0 - a as f64;
+        let tau = (sf - uf.max(0.0) + 1.0) / width;
+        let dtau = 16.0 * U * (1.0 + sf.abs() + uf.abs()) / width + 2.0 * U * tau;
+        let sigma = sigma_of(tau);
+        let dsigma = sigma_of(tau + dtau) - sigma_of(tau - dtau) + 24.0 * U * sigma;
+        let i = ((sigma * bins as f64) as usize).min(bins - 1);
+        let i = words[2 + i] as usize;
+        // Over the nodes the GPU may use (the neighbouring intervals where σ is near a node):
+        // the grids' roundings and the largest slope in σ.
+        let side = if u >= 0.0 { 1 } else { 2 };
+        let lo = i.saturating_sub(1);
+        let hi = (i + 2).min(k - 1);
+        let cells: Vec<_> = (lo..=hi).map(|j| cell(&t, side + 2 * j, a)).collect();
+        for ch in 0..3 {
+            let mut grid_tol = 0.0f64;
+            let mut slope = 0.0f64;
+            for (jj, j) in (lo..=hi).enumerate() {
+                let (v, m, dm) = cells[jj];
+                grid_tol = grid_tol
+                    .max(TABLE_ROUNDINGS * U * m[ch] + 2.0 * U * a as f64 * dm[ch] + U * v[ch]);
+                if j < hi {
+                    slope = slope.max((cells[jj + 1].0[ch] - v[ch]).abs() * node(j).1);
+                }
+            }
+            let tol = grid_tol + slope * (dsigma + 4.0 * U) + 1e-12 * c[ch].abs();
+            let e = (out[4 * q + ch] as f64 - c[ch]).abs();
+            assert!(
+                e <= tol,
+                "u={u} s={s} channel {ch}: {} vs {} (tol {tol:e})",
+                out[4 * q + ch],
+                c[ch]
+            );
+            worst = worst.max(e / tol);
+            worst_abs = worst_abs.max(e);
+        }
+        checked += 1;
+    }
+    assert!(checked > QUERIES / 2, "{checked} checked");
+    println!(
+        "table colour at an incidence: {k} incidence nodes ({build:.1} s to build), \
+         {checked} queries in {:.1} ms, worst error {:.2e} of the table's scale, {worst:.3} of \
+         its bound",
+        secs * 1e3,
+        worst_abs / table.scale()
+    );
 }
 
 const BSDF_MAIN: &str = "

@@ -81,6 +81,8 @@ fn coordinate(u: f64, s: f64) -> Option<f64> {
 #[derive(Debug, Clone, PartialEq)]
 struct Node {
     s: f64,
+    /// 1/(s of the next node − s), 0 on the last node (set once the nodes are placed).
+    inv_next: f64,
     pos: Grid,
     neg: Grid,
 }
@@ -128,7 +130,12 @@ impl Build<'_> {
         });
         self.scale = self.scale.max(pos.scale).max(neg.scale);
         self.error = self.error.max(pos.error).max(neg.error);
-        Node { s, pos, neg }
+        Node {
+            s,
+            inv_next: 0.0,
+            pos,
+            neg,
+        }
     }
 
     /// The grids at σ on the layouts.
@@ -140,7 +147,12 @@ impl Build<'_> {
         let neg = Grid::on_layout(u_lo, &self.layouts[1], self.scale, &|a| {
             n.eval(-a, incidence(-a, s))
         });
-        Node { s, pos, neg }
+        Node {
+            s,
+            inv_next: 0.0,
+            pos,
+            neg,
+        }
     }
 
     /// The worst error of the interpolation of `a` and `b` at the nodes of `mid`'s grids.
@@ -245,8 +257,12 @@ impl Incidence {
             }
         }
         let inv_bin = bins.len() as f64;
+        let mut nodes: Vec<Node> = out.into_iter().map(|(n, _)| n).collect();
+        for i in 1..nodes.len() {
+            nodes[i - 1].inv_next = 1.0 / (nodes[i].s - nodes[i - 1].s);
+        }
         let table = Incidence {
-            nodes: out.into_iter().map(|(n, _)| n).collect(),
+            nodes,
             bins,
             inv_bin,
             scale: b.scale,
@@ -267,7 +283,7 @@ impl Incidence {
         let bin = (t as usize).min(self.bins.len() - 1);
         let i = self.bins[bin] as usize;
         let (a, b) = (&self.nodes[i], &self.nodes[i + 1]);
-        let w = ((s - a.s) / (b.s - a.s)).clamp(0.0, 1.0);
+        let w = ((s - a.s) * a.inv_next).clamp(0.0, 1.0);
         let m = u.abs();
         let (x, y) = if u >= 0.0 {
             (a.pos.value(m), b.pos.value(m))
@@ -299,6 +315,42 @@ impl Incidence {
                 .iter()
                 .map(|n| n.pos.heap_bytes() + n.neg.heap_bytes())
                 .sum::<usize>()
+    }
+}
+
+/// One grid for `gpu::GpuColorTable`: its blocks (u0, h, first node, intervals) and nodes
+/// (value, derivative), as [`Grid::gpu_parts`].
+#[cfg(feature = "gpu")]
+pub(crate) type GpuGrid = (Vec<(f64, f64, u32, u32)>, Vec<([f64; 3], [f64; 3])>);
+
+/// The incidence of a tabulated table for `gpu::GpuColorTable`: the bins (the node starting
+/// each finest interval), per node σ and 1/(next σ − σ) (0 on the last), and per node its grids
+/// over u ≥ 0 and u ≤ 0, in that order.
+#[cfg(feature = "gpu")]
+pub(crate) struct GpuIncidence<'a> {
+    pub bins: &'a [u32],
+    pub nodes: Vec<(f64, f64)>,
+    pub grids: Vec<GpuGrid>,
+}
+
+#[cfg(feature = "gpu")]
+impl super::ColorTable {
+    /// The incidence nodes and their grids (`None` for a table without incidence).
+    pub(crate) fn gpu_incidence(&self) -> Option<GpuIncidence<'_>> {
+        let t = self.tabulated()?;
+        let parts = |g: &Grid| {
+            let (blocks, nodes) = g.gpu_parts();
+            (blocks.collect(), nodes.collect())
+        };
+        Some(GpuIncidence {
+            bins: &t.bins,
+            nodes: t.nodes.iter().map(|n| (n.s, n.inv_next)).collect(),
+            grids: t
+                .nodes
+                .iter()
+                .flat_map(|n| [parts(&n.pos), parts(&n.neg)])
+                .collect(),
+        })
     }
 }
 
