@@ -48,6 +48,12 @@ pub(super) fn depth(accuracy: f64) -> u32 {
     depth
 }
 
+/// The grids over u ≤ 0 are those over u ≥ 0 where the efficiencies are mirror symmetric
+/// (`TabulatedNodes::mirror_symmetric`) to within this fraction of the table's accuracy: an
+/// efficiency off by δ moves the colour by at most δ times that of an order of efficiency 1,
+/// which the error scale is at least.
+const MIRROR_SHARE: f64 = 16.0;
+
 /// The end nodes are evaluated this far (in τ) inside the grazing directions, where the colour
 /// has its limit (exactly at grazing the BSDF is 0).
 const GRAZING: f64 = 1e-6;
@@ -76,15 +82,28 @@ fn coordinate(u: f64, s: f64) -> Option<f64> {
     Some(a / (a + b))
 }
 
-/// One incidence node: τ (its field `s`) and its grids over u ≥ 0 and u ≤ 0 (the latter in
-/// |u|).
+/// One incidence node: σ (its field `s`) and its grids over u ≥ 0 and u ≤ 0 (the latter in
+/// |u|; `None` where it is the former, see [`mirror_symmetric`]).
 #[derive(Debug, Clone, PartialEq)]
 struct Node {
     s: f64,
     /// 1/(s of the next node − s), 0 on the last node (set once the nodes are placed).
     inv_next: f64,
     pos: Grid,
-    neg: Grid,
+    neg: Option<Grid>,
+}
+
+impl Node {
+    /// The grid over u ≤ 0 (in |u|).
+    #[inline]
+    fn neg(&self) -> &Grid {
+        self.neg.as_ref().unwrap_or(&self.pos)
+    }
+
+    /// The grids over u ≥ 0 and, where it is its own, over u ≤ 0.
+    fn grids(&self) -> impl Iterator<Item = &Grid> {
+        core::iter::once(&self.pos).chain(self.neg.as_ref())
+    }
 }
 
 /// The grids of every incidence node and the O(1) location of an incidence.
@@ -113,6 +132,8 @@ struct Build<'a> {
     /// most halvings.
     accuracy: f64,
     max_depth: u32,
+    /// Whether the grids over u ≤ 0 are those over u ≥ 0 ([`mirror_symmetric`]).
+    mirrored: bool,
 }
 
 impl Build<'_> {
@@ -124,12 +145,16 @@ impl Build<'_> {
         let pos = Grid::build(&self.plan, &|a, _| n.eval(a, incidence(a, s)), &|| {
             n.work_done.get() - start
         });
-        let start = n.work_done.get();
-        let neg = Grid::build(&self.plan, &|a, _| n.eval(-a, incidence(-a, s)), &|| {
-            n.work_done.get() - start
+        let neg = (!self.mirrored).then(|| {
+            let start = n.work_done.get();
+            Grid::build(&self.plan, &|a, _| n.eval(-a, incidence(-a, s)), &|| {
+                n.work_done.get() - start
+            })
         });
-        self.scale = self.scale.max(pos.scale).max(neg.scale);
-        self.error = self.error.max(pos.error).max(neg.error);
+        for g in core::iter::once(&pos).chain(neg.as_ref()) {
+            self.scale = self.scale.max(g.scale);
+            self.error = self.error.max(g.error);
+        }
         Node {
             s,
             inv_next: 0.0,
@@ -144,8 +169,10 @@ impl Build<'_> {
         let pos = Grid::on_layout(u_lo, &self.layouts[0], self.scale, &|a| {
             n.eval(a, incidence(a, s))
         });
-        let neg = Grid::on_layout(u_lo, &self.layouts[1], self.scale, &|a| {
-            n.eval(-a, incidence(-a, s))
+        let neg = (!self.mirrored).then(|| {
+            Grid::on_layout(u_lo, &self.layouts[1], self.scale, &|a| {
+                n.eval(-a, incidence(-a, s))
+            })
         });
         Node {
             s,
@@ -159,7 +186,7 @@ impl Build<'_> {
     fn error(&self, a: &Node, b: &Node, mid: &Node) -> f64 {
         let white = self.plan.white;
         let mut worst = 0.0f64;
-        for (ga, gb, gm) in [(&a.pos, &b.pos, &mid.pos), (&a.neg, &b.neg, &mid.neg)] {
+        for ((ga, gb), gm) in a.grids().zip(b.grids()).zip(mid.grids()) {
             for u in gm.positions() {
                 let exact = gm.value(u);
                 let (x, y) = (ga.value(u), gb.value(u));
@@ -214,13 +241,14 @@ impl Incidence {
             error: 0.0,
             accuracy,
             max_depth: depth(accuracy),
+            mirrored: nodes.mirror_symmetric(accuracy / MIRROR_SHARE),
         };
         let base = |k: usize| k as f64 / BASE_INTERVALS as f64;
         let first: Vec<Node> = (0..=BASE_INTERVALS).map(|k| b.refined(base(k))).collect();
         for (side, layout) in b.layouts.iter_mut().enumerate() {
             // The grazing ends' grids resolve their square-root edges, which no inner node needs.
             for n in &first[1..BASE_INTERVALS] {
-                let grid = if side == 0 { &n.pos } else { &n.neg };
+                let grid = if side == 0 { &n.pos } else { n.neg() };
                 let intervals = grid.intervals();
                 if layout.is_empty() {
                     *layout = intervals;
@@ -288,7 +316,7 @@ impl Incidence {
         let (x, y) = if u >= 0.0 {
             (a.pos.value(m), b.pos.value(m))
         } else {
-            (a.neg.value(m), b.neg.value(m))
+            (a.neg().value(m), b.neg().value(m))
         };
         x.scale(1.0 - w) + y.scale(w)
     }
@@ -302,7 +330,8 @@ impl Incidence {
     pub(super) fn node_count(&self) -> usize {
         self.nodes
             .iter()
-            .map(|n| n.pos.node_count() + n.neg.node_count())
+            .flat_map(Node::grids)
+            .map(Grid::node_count)
             .sum()
     }
 
@@ -313,7 +342,8 @@ impl Incidence {
             + self
                 .nodes
                 .iter()
-                .map(|n| n.pos.heap_bytes() + n.neg.heap_bytes())
+                .flat_map(Node::grids)
+                .map(Grid::heap_bytes)
                 .sum::<usize>()
     }
 }
@@ -348,7 +378,7 @@ impl super::ColorTable {
             grids: t
                 .nodes
                 .iter()
-                .flat_map(|n| [parts(&n.pos), parts(&n.neg)])
+                .flat_map(|n| [parts(&n.pos), parts(n.neg())])
                 .collect(),
         })
     }

@@ -44,16 +44,16 @@ const TABLE_ACCURACY: f64 = 1e-3;
 pub const TABLE_LOOKUP_NS: f64 = 100.0;
 /// The cost of building one table at [`TABLE_ACCURACY`], ns, per preset: the measured builds
 /// (one core of the shared 2-core machine, D65, N = 34, Gaussian σ = 0.02; docs/color_table.md)
-/// with a margin. The CD 5-9.5 s, the foil 8.0 s, `blazed600` 60 s, the DVD 235-357 s; with
-/// 8 grooves the CD 2.4 s, the foil 7.7 s and the DVD 59 s, so the N = 34 figures stand for
-/// any N. A table file's cost is not known before its table is built: it counts as the
-/// dearest preset's.
+/// with a margin. The CD 4.3 s, the foil 4.2 s, the DVD 35 s (the mirror-symmetric presets
+/// build one grid per incidence node), `blazed600` 60-66 s; with 8 grooves the CD 1.7 s, the
+/// foil 3.1 s and the DVD 26 s, so the N = 34 figures stand for any N. A table file's cost is
+/// not known before its table is built: it counts as the dearest preset's.
 pub fn table_build_ns(g: &GratingMaterial<GratingBsdf>) -> f64 {
     match g.preset {
-        Some(Preset::Cd | Preset::Foil) => 1.2e10,
-        Some(Preset::Blazed600) => 7.5e10,
-        // The DVD, a table file (and any preset added later).
-        _ => 4.5e11,
+        Some(Preset::Cd | Preset::Foil) => 8e9,
+        Some(Preset::Dvd) => 6e10,
+        // `blazed600`, a table file (and any preset added later).
+        _ => 7.5e10,
     }
 }
 
