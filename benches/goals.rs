@@ -9,8 +9,11 @@
 //!   `uniform:471` at the same u: the slowest of a scan of the report's 64 u for d ∈ {400, 740,
 //!   1600, 10⁴, 10⁵} nm and N ∈ {5, …, 10⁶} (coarse gratings with few slits: d = 100 µm,
 //!   N = 5 and 10), the slowest of the same scan for N = 2-4 (d = 30 and 100 µm, where
-//!   `Asymptotic` writes F_N as its cosines), and the slowest of earlier scans (near the mirror
-//!   direction with huge N).
+//!   `Asymptotic` writes F_N as its cosines), the slowest of a scan (instructions per colour)
+//!   for N = 5-10, 12, 15, 20 at d = 10, 30 and 100 µm (d = 30 µm, N = 5 and 6, the walk's
+//!   slowest before F_N's cosines took N ≤ 7; d = 30 µm, N = 7, the cosines' slowest; d =
+//!   100 µm, N = 8, the walk's slowest since), and the slowest of earlier scans (near the
+//!   mirror direction with huge N).
 //! * `goals/table_build/*`: `ColorTable::new` at `ColorTable::DEFAULT_ACCURACY` for the gratings of the
 //!   goal (d ≤ 2 µm and a coarse one), against one `uniform:471` XYZ.
 //! * `goals/bsdf/*`: `sample` + `pdf` of `GratingBsdf` against `AguHill::eval`, batches of 1024
@@ -80,6 +83,10 @@ fn bench_asymptotic_worst(c: &mut Criterion) {
         (100_000.0, 5, 0.669_886_363_636_363_7),
         (100_000.0, 5, 0.877_840_909_090_909_1),
         (100_000.0, 10, 0.586_704_545_454_545_4),
+        (100_000.0, 8, 0.545_113_636_363_636_4),
+        (30_000.0, 5, 1.959_204_545_454_545_5),
+        (30_000.0, 6, 1.959_204_545_454_545_5),
+        (30_000.0, 7, 1.127_386_363_636_363_7),
         (100_000.0, 2, 1.418_522_727_272_727_2),
         (100_000.0, 3, 1.335_340_909_090_909),
         (100_000.0, 4, 0.836_25),

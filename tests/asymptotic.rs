@@ -15,6 +15,11 @@ use diffraction::spectrum::{bounds, Illuminant, Spectral, Strategy};
 use diffraction::{Grating, Slits};
 use std::collections::HashMap;
 
+/// The most slits for which `Asymptotic` writes F_N as its cosines (`src/spectrum/small_n.rs`,
+/// `MAX_SLITS`): the small-N tests cover every N up to it.
+const SMALL_N_MAX: u32 = 7;
+
+#[derive(Clone)]
 struct Case {
     d: f64,
     w: f64,
@@ -166,14 +171,14 @@ fn worst_of_colour(cases: &[Case]) -> (f64, String) {
     worst
 }
 
-/// Below 5 slits (the Fejér kernel as its cosines) against the python reference: every row
-/// with N < 5, relative to the colour itself.
+/// Up to `SMALL_N_MAX` slits (the Fejér kernel as its cosines) against the python reference:
+/// every row with N ≤ 7 (N = 1, 2 and 5), relative to the colour itself.
 #[test]
 fn small_n_matches_reference_data() {
     let spectral = [Spectral::new(Illuminant::E), Spectral::new(Illuminant::D65)];
     let mut cases = Vec::new();
     for (d, w, n, u, ill, want) in reference_rows() {
-        if n >= 5 {
+        if n > SMALL_N_MAX {
             continue;
         }
         let s = &spectral[(ill == Illuminant::D65) as usize];
@@ -191,11 +196,11 @@ fn small_n_matches_reference_data() {
     }
     assert!(cases.len() > 500);
     let (worst, case) = worst_of_colour(&cases);
-    println!("reference N < 5: {worst:.2e} of the colour ({case})");
+    println!("reference N <= {SMALL_N_MAX}: {worst:.2e} of the colour ({case})");
     assert!(worst <= tol::ASYMPTOTIC_SMALL_N, "{worst:e} ({case})");
 }
 
-/// Below 5 slits against `Exact`: N = 1-4, d = 400 nm-100 µm (coarse gratings, where the
+/// Up to `SMALL_N_MAX` slits against `Exact`: N = 1-7, d = 400 nm-100 µm (coarse gratings, where the
 /// cosines are far finer than the tables' rows), w = d/2, d/10 and d/100, E, D65 and A, every
 /// direction of the report's grid and 64 more; relative to the colour itself.
 #[test]
@@ -203,7 +208,7 @@ fn small_n_matches_exact() {
     let mut cases = Vec::new();
     for ill in [Illuminant::E, Illuminant::D65, Illuminant::A] {
         let s = Spectral::new(ill);
-        for n in 1..=4u32 {
+        for n in 1..=SMALL_N_MAX {
             for d in [400.0, 1600.0, 10_000.0, 30_000.0, 100_000.0] {
                 for duty in [0.5, 0.1, 0.01, 1.0] {
                     let g = Grating::new(d, d * duty, n).unwrap();
@@ -224,19 +229,26 @@ fn small_n_matches_exact() {
             }
         }
     }
+    for n in 1..=SMALL_N_MAX {
+        let of_n: Vec<Case> = cases.iter().filter(|c| c.n == n).map(Case::clone).collect();
+        println!(
+            "exact N = {n}: {:.2e} of the colour",
+            worst_of_colour(&of_n).0
+        );
+    }
     let (worst, case) = worst_of_colour(&cases);
-    println!("exact N < 5: {worst:.2e} of the colour ({case})");
+    println!("exact N <= {SMALL_N_MAX}: {worst:.2e} of the colour ({case})");
     assert!(worst <= tol::ASYMPTOTIC_SMALL_N, "{worst:e} ({case})");
 }
 
-/// Below 5 slits with a spectral envelope (1/λ, as a radiometric model's) and slits far
+/// Up to `SMALL_N_MAX` slits with a spectral envelope (1/λ, as a radiometric model's) and slits far
 /// narrower than the period: against `Exact`, relative to the colour itself.
 #[test]
 fn small_n_with_an_envelope_matches_exact() {
     let mut cases = Vec::new();
     let s = Spectral::new(Illuminant::D65)
         .with_envelope(diffraction::Envelope::new(1, 0.0).expect("valid envelope"));
-    for n in [1u32, 2, 4] {
+    for n in [1u32, 2, 4, SMALL_N_MAX] {
         for (d, duty) in [(100_000.0, 0.5), (1e6, 1e-9), (30_000.0, 0.37)] {
             let g = Grating::new(d, d * duty, n).unwrap();
             for u in u_grid(false).into_iter().step_by(4) {
@@ -255,7 +267,7 @@ fn small_n_with_an_envelope_matches_exact() {
         }
     }
     let (worst, case) = worst_of_colour(&cases);
-    println!("exact N < 5 with an envelope: {worst:.2e} of the colour ({case})");
+    println!("exact N <= {SMALL_N_MAX} with an envelope: {worst:.2e} of the colour ({case})");
     assert!(worst <= tol::ASYMPTOTIC_SMALL_N, "{worst:e} ({case})");
 }
 
@@ -304,7 +316,7 @@ fn sweep(slits: &[u32], periods: &[f64], duties: &[f64], us: &[f64]) -> Vec<Case
 fn asymptotic_matches_exact() {
     let us: Vec<f64> = u_grid(false).into_iter().step_by(3).collect();
     let cases = sweep(
-        &[5, 21, 300, 1_000_000],
+        &[5, 7, 21, 300, 1_000_000],
         &[740.0, 10_000.0],
         &[0.5, 0.1],
         &us,
@@ -316,7 +328,7 @@ fn asymptotic_matches_exact() {
 #[test]
 #[ignore = "slow sweep (about a minute in release)"]
 fn asymptotic_matches_exact_full_sweep() {
-    let slits = [5, 10, 21, 30, 100, 300, 1000, 3000, 30_000, 1_000_000];
+    let slits = [5, 7, 10, 21, 30, 100, 300, 1000, 3000, 30_000, 1_000_000];
     let periods = [400.0, 740.0, 1600.0, 10_000.0, 100_000.0];
     let cases = sweep(&slits, &periods, &[0.5, 0.1], &u_grid(true));
     check(&cases, "exact");

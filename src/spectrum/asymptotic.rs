@@ -11,7 +11,8 @@
 //! order 0's product rule, `order0`, from the same spectral weight and envelope), so a further
 //! smooth per-wavelength factor multiplies in there. At the extremes of d·|u| (the band inside
 //! order 0's central lobe, or more than `DENSE_ORDERS` orders) it is `Exact`, whose closed forms
-//! bound the work there. Below 5 slits it is `small_n`'s rule (F_N as its N cosines).
+//! bound the work there. Up to `small_n::MAX_SLITS` slits it is `small_n`'s rule (F_N as its N
+//! cosines), whose fixed work is below the walk's there.
 
 use glam::DVec3;
 
@@ -19,6 +20,7 @@ use super::bounds;
 use super::lobes::Lobes;
 use super::order0;
 use super::rules::{gl2, gl3, gl4, gl6};
+use super::small_n;
 use super::smooth_band::Limits;
 use super::{Spectral, BAND};
 use crate::data::cie::Illuminant;
@@ -110,8 +112,9 @@ impl Spectral {
             // (bounded work, see `dense`).
             return self.exact(grating, u);
         }
-        if n < bounds::ASYMPTOTIC_MIN_SLITS as f64 {
-            // A few slits: F_N as its cosines (`small_n`).
+        if n <= small_n::MAX_SLITS as f64 {
+            // A few slits: F_N as its cosines (`small_n`), cheaper than the walk below up to
+            // MAX_SLITS.
             return self
                 .small_n(grating, q)
                 .unwrap_or_else(|| self.exact(grating, u));

@@ -38,17 +38,20 @@ pub const ASYMPTOTIC_ORDERS: f64 = 5e-4;
 /// (worst measured 1.9·10⁻⁵, `tests/asymptotic.rs`).
 pub const ASYMPTOTIC_ORDER0: f64 = 2e-4;
 
-/// From this many slits on `Asymptotic` is the corrected peak search (the expansion needs a
-/// few lobes per period); below, it writes F_N as its N cosines (`src/spectrum/small_n.rs`)
-/// with the bound [`ASYMPTOTIC_SMALL_N`].
+/// From this many slits on `Asymptotic`'s bound is the corrected peak search's
+/// ([`ASYMPTOTIC_ORDERS`], [`ASYMPTOTIC_ORDER0`]: the expansion needs a few lobes per period);
+/// below, it is [`ASYMPTOTIC_SMALL_N`], relative to the colour. Up to 7 slits the strategy
+/// writes F_N as its N cosines (`src/spectrum/small_n.rs`), whose fixed work is below the
+/// peak search's walk there; for 5-7 slits that rule meets both bounds (worst measured
+/// 7.4·10⁻⁸ of the accuracy unit and 9.8·10⁻⁵ of the colour, `tests/asymptotic.rs`).
 pub const ASYMPTOTIC_MIN_SLITS: u32 = 5;
 
 /// `Asymptotic`'s bound below [`ASYMPTOTIC_MIN_SLITS`] slits, relative to the colour itself
 /// (floored at [`DARK_FLOOR`] of the accuracy unit), as for [`EXACT`]: F_N as its cosines, the
 /// terms the product rule resolves integrated against the tables, the others by parts with
 /// the illuminant's node kinks (the observer's 1 nm rows are not summed). Worst measured
-/// 6.7·10⁻⁵ against `Exact` (N = 1-4, d = 400 nm-100 µm, w = d … d/100, E, D65 and A) and
-/// 2.2·10⁻⁶ against the Python oracle (`tests/asymptotic.rs`).
+/// 9.8·10⁻⁵ against `Exact` (N = 1-7, d = 400 nm-100 µm, w = d … d/100, E, D65 and A; 6.7·10⁻⁵
+/// for N ≤ 4) and 1.8·10⁻⁵ against the Python oracle (N = 1, 2 and 5, `tests/asymptotic.rs`).
 pub const ASYMPTOTIC_SMALL_N: f64 = 5e-4;
 
 /// `Exact`'s bound relative to the colour itself (floored at [`DARK_FLOOR`] of the accuracy

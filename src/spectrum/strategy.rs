@@ -96,7 +96,7 @@ pub enum StrategyKind {
 /// | [`gauss_legendre(K)`](Self::gauss_legendre) | 8K evaluations | the same, with higher order between |
 /// | [`PEAK_SEARCH`](Self::PEAK_SEARCH) | O(visible orders) | [`PEAK_SEARCH_PER_SLIT`](super::bounds::PEAK_SEARCH_PER_SLIT)/N, plus [`PEAK_SEARCH_ORDER0`](super::bounds::PEAK_SEARCH_ORDER0) of order 0's own light where its lobe reaches the band |
 /// | [`PEAK_SEARCH_REFINED`](Self::PEAK_SEARCH_REFINED) | plus 8 lobes × 8 points per order | the same |
-/// | [`ASYMPTOTIC`](Self::ASYMPTOTIC) | O(visible orders), a few hundred evaluations | [`ASYMPTOTIC_ORDERS`](super::bounds::ASYMPTOTIC_ORDERS) for N ≥ [`ASYMPTOTIC_MIN_SLITS`](super::bounds::ASYMPTOTIC_MIN_SLITS), plus [`ASYMPTOTIC_ORDER0`](super::bounds::ASYMPTOTIC_ORDER0) of order 0's own light where its half period reaches the band; below that N, F_N as its N cosines: [`ASYMPTOTIC_SMALL_N`](super::bounds::ASYMPTOTIC_SMALL_N) of the colour itself |
+/// | [`ASYMPTOTIC`](Self::ASYMPTOTIC) | O(visible orders), a few hundred evaluations | [`ASYMPTOTIC_ORDERS`](super::bounds::ASYMPTOTIC_ORDERS) for N ≥ [`ASYMPTOTIC_MIN_SLITS`](super::bounds::ASYMPTOTIC_MIN_SLITS), plus [`ASYMPTOTIC_ORDER0`](super::bounds::ASYMPTOTIC_ORDER0) of order 0's own light where its half period reaches the band; below that N, [`ASYMPTOTIC_SMALL_N`](super::bounds::ASYMPTOTIC_SMALL_N) of the colour itself (up to 7 slits F_N is written as its N cosines, a fixed number of evaluations, within both bounds) |
 /// | [`EXACT`](Self::EXACT) | see the module docs | [`EXACT`](super::bounds::EXACT) of the colour itself (of 10⁻³ of the unit for darker colours) |
 /// | [`auto(a)`](Self::auto) | the cheapest of the above whose bound meets `a` | a |
 ///
