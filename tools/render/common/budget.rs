@@ -23,7 +23,7 @@
 //! [`BUDGET_S`] seconds of one core (or `--budget`'s). The estimate is deterministic (the same
 //! run, the same number). The path integrator's counts come from its own paths instead
 //! (`pathtrace/path.rs`'s `pilot`: Russian roulette and the sky end most of them at the first
-//! vertex). Against measured CPU time it is 0.73-2.47 times that of every shipped scene on both
+//! vertex). Against measured CPU time it is 0.64-2.08 times that of every shipped scene on both
 //! renderers and of the two reproducers of `tools/render/tests/data` (docs/work_budget.md, made
 //! by `tools/render/calibrate.sh`; the tests check every row stays within 5×).
 
