@@ -112,6 +112,46 @@ fn assemble(work: &[Work]) -> (Vec<f64>, Vec<[f64; 3]>, Vec<usize>) {
     (xs, fs, starts)
 }
 
+/// The place of `a` ∈ [0, 2] in the blocks: (cell, fraction in it, spacing).
+#[inline(always)]
+fn locate(blocks: &[Block], u_lo: f64, base_key: u64, a: f64) -> (usize, f64, f64) {
+    let k = if a < u_lo {
+        0
+    } else {
+        // a ≥ u_lo, so its key is at least base_key.
+        ((a.to_bits() >> SHIFT) - base_key + 1) as usize
+    };
+    let b = &blocks[k.min(blocks.len() - 1)];
+    let t = (a - b.u0) * b.inv_h;
+    // t ≥ 0 (a ≥ u0); `as` truncates toward 0, which is floor here, and saturates.
+    let j = (t as u32).min(b.n - 1);
+    ((b.first + j) as usize, t - j as f64, b.h)
+}
+
+/// A layout of blocks without node values: locates a point once for every grid on it.
+#[cfg(feature = "relief")]
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(super) struct Locator {
+    u_lo: f64,
+    base_key: u64,
+    blocks: Vec<Block>,
+}
+
+#[cfg(feature = "relief")]
+impl Locator {
+    /// The place of `a` ∈ [0, 2] (as [`Grid::cell_value`] takes it); a locator without blocks
+    /// is never asked.
+    #[inline]
+    pub(super) fn locate(&self, a: f64) -> (usize, f64, f64) {
+        locate(&self.blocks, self.u_lo, self.base_key, a)
+    }
+
+    /// Heap memory, bytes.
+    pub(super) fn heap_bytes(&self) -> usize {
+        self.blocks.capacity() * core::mem::size_of::<Block>()
+    }
+}
+
 impl Grid {
     /// Every block's (u0, h, first node, intervals) and every node's (value, derivative), for
     /// the GPU's upload structs.
@@ -420,9 +460,32 @@ impl Grid {
     /// The interpolated value at `a` ∈ [0, 2], each channel clamped at 0.
     #[inline]
     pub(super) fn value(&self, a: f64) -> Xyz {
-        let (i, s, h) = self.locate(a);
+        self.cell_value(self.locate(a))
+    }
+
+    /// The interpolated value at a place `(cell, fraction, spacing)` of this grid's layout
+    /// (from [`locate`](Self::locate) or the [`Locator`] of a grid with the same layout), each
+    /// channel clamped at 0.
+    #[inline]
+    pub(super) fn cell_value(&self, (i, s, h): (usize, f64, f64)) -> Xyz {
         let f = hermite(&self.nodes[i], &self.nodes[i + 1], h, s);
         Xyz::new(f[0].max(0.0), f[1].max(0.0), f[2].max(0.0))
+    }
+
+    /// Whether `other` has this grid's blocks, so that one [`Locator`] serves both.
+    #[cfg(feature = "relief")]
+    pub(super) fn same_layout(&self, other: &Grid) -> bool {
+        self.u_lo == other.u_lo && self.blocks == other.blocks
+    }
+
+    /// The grid's layout alone, to locate points once for several grids of that layout.
+    #[cfg(feature = "relief")]
+    pub(super) fn locator(&self) -> Locator {
+        Locator {
+            u_lo: self.u_lo,
+            base_key: self.base_key,
+            blocks: self.blocks.clone(),
+        }
     }
 
     /// The mean over [u0, u1] of the even function whose value at a point is `point(u)` and
@@ -485,17 +548,7 @@ impl Grid {
     /// The node index, the fraction in [0, 1] and the spacing of the cell holding `a` ∈ [0, 2].
     #[inline]
     fn locate(&self, a: f64) -> (usize, f64, f64) {
-        let k = if a < self.u_lo {
-            0
-        } else {
-            // a ≥ u_lo, so its key is at least base_key.
-            ((a.to_bits() >> SHIFT) - self.base_key + 1) as usize
-        };
-        let b = &self.blocks[k.min(self.blocks.len() - 1)];
-        let t = (a - b.u0) * b.inv_h;
-        // t ≥ 0 (a ≥ u0); `as` truncates toward 0, which is floor here, and saturates.
-        let j = (t as u32).min(b.n - 1);
-        ((b.first + j) as usize, t - j as f64, b.h)
+        locate(&self.blocks, self.u_lo, self.base_key, a)
     }
 
     /// The number of intervals of every block.

@@ -18,12 +18,14 @@
 //! checked in turn, down to [`depth`] halvings ([`MAX_DEPTH`] at 10⁻³ and coarser, up to
 //! [`FINE_DEPTH`] for finer accuracies). The nodes after the first take the first nodes'
 //! layout over u (per block their most intervals, at most `ColorTable::MAX_NODES` nodes in
-//! all), so that they cost one evaluation a node and no midpoint checks. A lookup locates its
-//! interval in O(1) from the bins of the finest level.
+//! all), so that they cost one evaluation a node and no midpoint checks; the inner first nodes
+//! are then rebuilt on that layout too, so that every node but the two grazing ends is on it.
+//! A lookup locates its interval in O(1) from the bins of the finest level, and between two
+//! nodes on the layout locates |u| once for both grids.
 
 use alloc::vec::Vec;
 
-use super::grid::{tolerance, Grid, Plan};
+use super::grid::{tolerance, Grid, Locator, Plan};
 use super::tabulated_nodes::TabulatedNodes;
 use crate::color::Xyz;
 use crate::num::math::sqrt;
@@ -69,16 +71,17 @@ fn incidence(u: f64, sigma: f64) -> f64 {
 }
 
 /// The node coordinate σ of (u, s) (the inverse of [`incidence`]): σ = √τ/(√τ + √(1 − τ))
-/// with τ = (s − max(−1, u − 1))/(2 − |u|); `None` outside [0, 1] (a direction below the
-/// surface) and where 2 − |u| is not positive.
+/// with τ = p/w, p = s − max(−1, u − 1) and w = 2 − |u|, computed as √p/(√p + √(w − p)) (one
+/// division, after two independent square roots); `None` outside 0 ≤ p ≤ w (a direction below
+/// the surface) and where w is not positive.
 #[inline]
 fn coordinate(u: f64, s: f64) -> Option<f64> {
     let width = 2.0 - u.abs();
-    let tau = (s - u.max(0.0) + 1.0) / width;
-    if !(width > 0.0 && (0.0..=1.0).contains(&tau)) {
+    let p = s - u.max(0.0) + 1.0;
+    if !(width > 0.0 && (0.0..=width).contains(&p)) {
         return None;
     }
-    let (a, b) = (sqrt(tau), sqrt(1.0 - tau));
+    let (a, b) = (sqrt(p), sqrt(width - p));
     Some(a / (a + b))
 }
 
@@ -91,6 +94,8 @@ struct Node {
     inv_next: f64,
     pos: Grid,
     neg: Option<Grid>,
+    /// Both grids are on the table's layouts (`Incidence::locators`).
+    shared: bool,
 }
 
 impl Node {
@@ -110,6 +115,9 @@ impl Node {
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Incidence {
     nodes: Vec<Node>,
+    /// The layouts over u ≥ 0 and u ≤ 0 of the nodes marked `shared`: an interval between
+    /// two such nodes locates |u| once for both.
+    locators: [Locator; 2],
     /// For each bin of the finest level over [−1, 1], the node starting its interval.
     bins: Vec<u32>,
     /// Bins per unit of s.
@@ -160,6 +168,7 @@ impl Build<'_> {
             inv_next: 0.0,
             pos,
             neg,
+            shared: false,
         }
     }
 
@@ -179,6 +188,7 @@ impl Build<'_> {
             inv_next: 0.0,
             pos,
             neg,
+            shared: true,
         }
     }
 
@@ -268,6 +278,17 @@ impl Incidence {
                 }
             }
         }
+        // The inner first nodes again on the layouts (at least their own intervals in every
+        // block the cap left alone), so that every interval away from the grazing ends locates
+        // |u| once for both of its nodes.
+        let first: Vec<Node> = first
+            .into_iter()
+            .enumerate()
+            .map(|(k, n)| match k {
+                0 | BASE_INTERVALS => n,
+                _ => b.node(n.s),
+            })
+            .collect();
         let mut first = first.into_iter();
         let mut out: Vec<(Node, u32)> = Vec::new();
         if let Some(n) = first.next() {
@@ -289,8 +310,18 @@ impl Incidence {
         for i in 1..nodes.len() {
             nodes[i - 1].inv_next = 1.0 / (nodes[i].s - nodes[i - 1].s);
         }
+        let locators = match nodes.iter().find(|n| n.shared) {
+            Some(first) => {
+                debug_assert!(nodes.iter().filter(|n| n.shared).all(|n| {
+                    n.pos.same_layout(&first.pos) && n.neg().same_layout(first.neg())
+                }));
+                [first.pos.locator(), first.neg().locator()]
+            }
+            None => Default::default(),
+        };
         let table = Incidence {
             nodes,
+            locators,
             bins,
             inv_bin,
             scale: b.scale,
@@ -313,10 +344,17 @@ impl Incidence {
         let (a, b) = (&self.nodes[i], &self.nodes[i + 1]);
         let w = ((s - a.s) * a.inv_next).clamp(0.0, 1.0);
         let m = u.abs();
-        let (x, y) = if u >= 0.0 {
-            (a.pos.value(m), b.pos.value(m))
+        let (ga, gb) = if u >= 0.0 {
+            (&a.pos, &b.pos)
         } else {
-            (a.neg().value(m), b.neg().value(m))
+            (a.neg(), b.neg())
+        };
+        let (x, y) = if a.shared && b.shared {
+            // One layout: |u| located once, both cells read side by side.
+            let cell = self.locators[usize::from(u < 0.0)].locate(m);
+            (ga.cell_value(cell), gb.cell_value(cell))
+        } else {
+            (ga.value(m), gb.value(m))
         };
         x.scale(1.0 - w) + y.scale(w)
     }
@@ -338,6 +376,7 @@ impl Incidence {
     /// Heap memory, bytes.
     pub(super) fn heap_bytes(&self) -> usize {
         self.bins.capacity() * core::mem::size_of::<u32>()
+            + self.locators.iter().map(Locator::heap_bytes).sum::<usize>()
             + self.nodes.capacity() * core::mem::size_of::<Node>()
             + self
                 .nodes
@@ -387,6 +426,59 @@ impl super::ColorTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`Incidence::value`] without the shared locators: both grids located on their own.
+    fn value_by_grids(t: &Incidence, u: f64, s: f64) -> Option<Xyz> {
+        let s = coordinate(u, s)?;
+        let bin = ((s * t.inv_bin) as usize).min(t.bins.len() - 1);
+        let i = t.bins[bin] as usize;
+        let (a, b) = (&t.nodes[i], &t.nodes[i + 1]);
+        let w = ((s - a.s) * a.inv_next).clamp(0.0, 1.0);
+        let m = u.abs();
+        let (x, y) = if u >= 0.0 {
+            (a.pos.value(m), b.pos.value(m))
+        } else {
+            (a.neg().value(m), b.neg().value(m))
+        };
+        Some(x.scale(1.0 - w) + y.scale(w))
+    }
+
+    /// Locating |u| once for two nodes on the layouts gives each grid's own reading to the
+    /// bit, over u ≥ 0 and u ≤ 0 of a grating with and without mirror symmetry; and every
+    /// interval away from the two grazing ends takes that path.
+    #[cfg(feature = "presets")]
+    #[test]
+    fn shared_locators_read_as_the_grids() {
+        use crate::relief::Preset;
+        use crate::spectrum::{Illuminant, Spectral};
+        use crate::{ColorTable, GratingBsdf, GrooveSpread};
+        let spectral = Spectral::new(Illuminant::D65);
+        for preset in [Preset::Blazed600, Preset::Cd] {
+            let b = GratingBsdf::preset(preset, 8)
+                .unwrap()
+                .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+            let table = ColorTable::new(&spectral, &b, 1e-1).unwrap();
+            let t = table.tabulated().unwrap();
+            let inner = &t.nodes[1..t.nodes.len() - 1];
+            assert!(inner.iter().all(|n| n.shared), "{preset}");
+            assert!(!t.nodes[0].shared && !t.nodes[t.nodes.len() - 1].shared);
+            let mut state = 0x5eed_u64;
+            let mut next = || {
+                state = state
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (state >> 11) as f64 / (1u64 << 53) as f64
+            };
+            let mut lit = 0;
+            for _ in 0..20_000 {
+                let (u, s) = (4.0 * next() - 2.0, 2.0 * next() - 1.0);
+                let want = value_by_grids(t, u, s).unwrap_or_default();
+                assert_eq!(t.value(u, s), want, "{preset}: u {u}, s {s}");
+                lit += usize::from(want != Xyz::default());
+            }
+            assert!(lit > 10_000, "{preset}: {lit} lit");
+        }
+    }
 
     #[test]
     fn depth_grows_one_halving_per_halved_accuracy() {

@@ -40,7 +40,8 @@ use crate::surface::{nearest_emitter, sample_sphere, Surface};
 /// generic colour (tests/tabulated_color_table.rs).
 const TABLE_ACCURACY: f64 = 1e-3;
 
-/// The cost of a table's `xyz`, ns: measured 86 ns (the CD preset, benches/color_table.rs).
+/// The cost of a table's `xyz`, ns: measured 53-55 ns (the CD preset, benches/color_table.rs;
+/// 86-106 ns before its lookup located the incidence with one division), counted with a margin.
 pub const TABLE_LOOKUP_NS: f64 = 100.0;
 /// The cost of building one table at [`TABLE_ACCURACY`], ns, per preset: the measured builds
 /// (one core of the shared 2-core machine, D65, N = 34, Gaussian σ = 0.02; docs/color_table.md)
