@@ -165,6 +165,10 @@ pub fn shading_source(group: u32, binding: u32) -> String {
     s
 }
 
+/// One grid's nodes, (value, derivative) each, as `ColorTable::gpu_incidence` gives them.
+#[cfg(feature = "relief")]
+type GridNodes = Vec<([f64; 3], [f64; 3])>;
+
 /// Appends the grids of `table`'s incidence nodes to `blocks` and `nodes` (grid g's blocks
 /// from g·(blocks of grid 0) on: node k's over u ≥ 0 is grid 1 + 2k, over u ≤ 0 2 + 2k; every
 /// grid of a table has the same blocks) and returns the incidence words of
@@ -179,15 +183,25 @@ fn append_incidence(
         return Vec::from([0, 0]);
     };
     let block_count = blocks.len();
+    // A grid equal to the one before it (the grid over u ≤ 0 of a mirror-symmetric table,
+    // which is the one over u ≥ 0) repeats only its blocks; they point at the same nodes.
+    let mut last: Option<(GridNodes, u32)> = None;
     for (grid_blocks, grid_nodes) in t.grids {
         debug_assert_eq!(grid_blocks.len(), block_count);
-        let first = nodes.len() as u32;
+        let first = match &last {
+            Some((prev, at)) if *prev == grid_nodes => *at,
+            _ => {
+                let at = nodes.len() as u32;
+                nodes.extend(grid_nodes.iter().copied().map(gpu_node));
+                at
+            }
+        };
         blocks.extend(
             grid_blocks
                 .into_iter()
                 .map(|(u0, h, f, n)| gpu_block((u0, h, first + f, n))),
         );
-        nodes.extend(grid_nodes.into_iter().map(gpu_node));
+        last = Some((grid_nodes, first));
     }
     let mut words = Vec::with_capacity(2 + t.bins.len() + 2 * t.nodes.len());
     words.extend([t.nodes.len() as u32, t.bins.len() as u32]);
@@ -396,7 +410,9 @@ pub struct GpuTableNode {
 ///
 /// A table of tabulated efficiencies (feature `relief`) also holds every incidence node's two
 /// grids after its grid of normal incidence (grid g's blocks from g·`block_count` on: node k's
-/// over u ≥ 0 is grid 1 + 2k, over u ≤ 0 grid 2 + 2k) and the nodes' places in
+/// over u ≥ 0 is grid 1 + 2k, over u ≤ 0 grid 2 + 2k; where the two are the same grid, as in a
+/// mirror-symmetric table, the second repeats the first's blocks and shares its nodes) and the
+/// nodes' places in
 /// [`incidence`](Self::incidence), a third storage buffer ([`incidence_bindings`]) read by
 /// `diffraction_table_colour(u, s)`, the CPU's interpolation in f32 (docs/gpu.md, "Colour
 /// tables of tabulated efficiencies").

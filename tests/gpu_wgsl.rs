@@ -447,6 +447,46 @@ impl Freedom {
     }
 }
 
+/// A `GpuColorTable` of tabulated efficiencies stores each grid's nodes once: where a node's
+/// grid over u ≤ 0 is its grid over u ≥ 0 (a mirror-symmetric preset, the CD) the second
+/// grid's blocks are the first's, node indices included, and the node buffer holds one set a
+/// node; a preset without that symmetry (`blazed600`) keeps two.
+#[cfg(feature = "presets")]
+#[test]
+fn mirror_symmetric_colour_tables_store_their_nodes_once() {
+    use diffraction::gpu::GpuColorTable;
+    use diffraction::relief::Preset;
+    use diffraction::spectrum::{Illuminant, Spectral};
+    use diffraction::{ColorTable, GratingBsdf, GrooveSpread};
+    let spectral = Spectral::new(Illuminant::D65);
+    for (preset, mirrored) in [(Preset::Cd, true), (Preset::Blazed600, false)] {
+        let b = GratingBsdf::preset(preset, 8)
+            .unwrap()
+            .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+        let table = ColorTable::new(&spectral, &b, 1e-1).unwrap();
+        let t = GpuColorTable::new(&table);
+        let count = t.header.block_count as usize;
+        let k = t.incidence[0] as usize;
+        let grid = |g: usize| &t.blocks[g * count..(g + 1) * count];
+        let nodes = |g: usize| {
+            let b = grid(g);
+            (b[count - 1].first + b[count - 1].n + 1 - b[0].first) as usize
+        };
+        assert_eq!(t.blocks.len(), (1 + 2 * k) * count, "{preset}");
+        let mut stored = nodes(0);
+        for node in 0..k {
+            let (pos, neg) = (1 + 2 * node, 2 + 2 * node);
+            assert_eq!(grid(pos) == grid(neg), mirrored, "{preset}, node {node}");
+            stored += nodes(pos) + if mirrored { 0 } else { nodes(neg) };
+        }
+        assert_eq!(t.nodes.len(), stored, "{preset}");
+        // The grid of normal incidence and as many as the CPU's incidence nodes keep (one grid
+        // a node where mirror symmetric).
+        assert_eq!(t.nodes.len(), nodes(0) + table.node_count(), "{preset}");
+        println!("{preset}: {k} incidence nodes, {} GPU nodes", t.nodes.len());
+    }
+}
+
 #[test]
 fn kernels_stay_inside_the_spec_bound_in_the_worst_case() {
     let mut rng = Mix(7);
