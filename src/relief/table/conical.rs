@@ -18,8 +18,8 @@ use super::nodes_q::NOT_PROPAGATING;
 use super::{corner_mean, corner_q, interval, scale, AxisName, EfficiencyTable, OrderCell, Values};
 #[cfg(feature = "alloc")]
 use super::{
-    load::{check_axis, check_period, SUM_TOLERANCE},
-    Lookup, NodeQ, Storage, UnitCells, MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
+    load::{check_axis, check_period, order_count, SUM_TOLERANCE},
+    Lookup, NodeQ, Storage, UnitCells,
 };
 #[cfg(feature = "alloc")]
 use crate::error::{Error, Requirement};
@@ -349,31 +349,9 @@ impl EfficiencyTable {
             .len()
             .saturating_mul(abs_beta.len())
             .saturating_mul(lambda_nm.len());
-        let max_slices = MAX_TABLE_ORDERS.min(MAX_TABLE_VALUES / slice);
-        let orders = te.len() / slice;
-        if te.len() % slice != 0 || orders == 0 || orders > max_slices {
-            let requirement = Requirement::ConicalSlices { slice, max_slices };
-            return Err(Error::invalid("te", te.len() as f64, requirement));
-        }
-        if tm.len() != te.len() {
-            let requirement = Requirement::Count {
-                min: te.len(),
-                max: te.len(),
-            };
-            return Err(Error::invalid("tm", tm.len() as f64, requirement));
-        }
-        let last = i64::from(order_min) + orders as i64 - 1;
-        if last > i64::from(i32::MAX) {
-            let requirement = Requirement::Within {
-                min: f64::from(i32::MIN),
-                max: (i64::from(i32::MAX) - orders as i64 + 1) as f64,
-            };
-            return Err(Error::invalid(
-                "order_min",
-                f64::from(order_min),
-                requirement,
-            ));
-        }
+        let orders = order_count(&te, &tm, slice, order_min, |slice, max_slices| {
+            Requirement::ConicalSlices { slice, max_slices }
+        })?;
         let axes = (
             sin_theta_i.as_slice(),
             abs_beta.as_slice(),

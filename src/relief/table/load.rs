@@ -51,6 +51,49 @@ pub(super) fn check_period(name: &'static str, period_nm: f64) -> Result<(), Err
     Ok(())
 }
 
+/// The number of orders of `te` and `tm` (arrays of `slice` values an order), checked: a
+/// whole number from 1 to the most the value cap admits (`slices(slice, max_slices)` names
+/// the requirement otherwise), `tm` as long as `te`, and the last order
+/// `order_min + orders − 1` within i32.
+pub(super) fn order_count(
+    te: &[f64],
+    tm: &[f64],
+    slice: usize,
+    order_min: i32,
+    slices: impl FnOnce(usize, usize) -> Requirement,
+) -> Result<usize, Error> {
+    let max_slices = MAX_TABLE_ORDERS.min(MAX_TABLE_VALUES / slice);
+    let orders = te.len() / slice;
+    if te.len() % slice != 0 || orders == 0 || orders > max_slices {
+        return Err(Error::invalid(
+            "te",
+            te.len() as f64,
+            slices(slice, max_slices),
+        ));
+    }
+    if tm.len() != te.len() {
+        let requirement = Requirement::Count {
+            min: te.len(),
+            max: te.len(),
+        };
+        return Err(Error::invalid("tm", tm.len() as f64, requirement));
+    }
+    // orders ≤ 4097, so the sum cannot overflow an i64.
+    let last = i64::from(order_min) + orders as i64 - 1;
+    if last > i64::from(i32::MAX) {
+        let requirement = Requirement::Within {
+            min: f64::from(i32::MIN),
+            max: (i64::from(i32::MAX) - orders as i64 + 1) as f64,
+        };
+        return Err(Error::invalid(
+            "order_min",
+            f64::from(order_min),
+            requirement,
+        ));
+    }
+    Ok(orders)
+}
+
 /// Checks one axis: 2 to [`MAX_TABLE_NODES`] finite values, strictly increasing, inside
 /// [lo, hi] (`lo = None`: positive).
 pub(super) fn check_axis(
@@ -172,32 +215,9 @@ impl EfficiencyTable {
         check_axis("sin_theta_i", &sin_theta_i, Some((-1.0, 1.0)))?;
         check_axis("lambda_nm", &lambda_nm, None)?;
         let slice = sin_theta_i.len() * lambda_nm.len();
-        let max_slices = MAX_TABLE_ORDERS.min(MAX_TABLE_VALUES / slice);
-        let orders = te.len() / slice;
-        if te.len() % slice != 0 || orders == 0 || orders > max_slices {
-            let requirement = Requirement::Slices { slice, max_slices };
-            return Err(Error::invalid("te", te.len() as f64, requirement));
-        }
-        if tm.len() != te.len() {
-            let requirement = Requirement::Count {
-                min: te.len(),
-                max: te.len(),
-            };
-            return Err(Error::invalid("tm", tm.len() as f64, requirement));
-        }
-        // orders ≤ 4097, so the sum cannot overflow an i64.
-        let last = i64::from(order_min) + orders as i64 - 1;
-        if last > i64::from(i32::MAX) {
-            let requirement = Requirement::Within {
-                min: f64::from(i32::MIN),
-                max: (i64::from(i32::MAX) - orders as i64 + 1) as f64,
-            };
-            return Err(Error::invalid(
-                "order_min",
-                f64::from(order_min),
-                requirement,
-            ));
-        }
+        let orders = order_count(&te, &tm, slice, order_min, |slice, max_slices| {
+            Requirement::Slices { slice, max_slices }
+        })?;
         check_values("te", period_nm, order_min, &sin_theta_i, &lambda_nm, &te)?;
         check_values("tm", period_nm, order_min, &sin_theta_i, &lambda_nm, &tm)?;
         Ok(EfficiencyTable {

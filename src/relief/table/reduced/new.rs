@@ -4,10 +4,9 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use super::super::load::{check_axis, check_period, SUM_TOLERANCE};
+use super::super::load::{check_axis, check_period, order_count, SUM_TOLERANCE};
 use super::super::{
     EfficiencyTable, Lookup, NodeQ, Storage, UnitCells, MAX_TABLE_ABS_BETA, MAX_TABLE_NODES,
-    MAX_TABLE_ORDERS, MAX_TABLE_VALUES,
 };
 use super::{cb, ReducedGrid};
 use crate::error::{positive, Error, Requirement};
@@ -105,31 +104,9 @@ impl EfficiencyTable {
         // At most 4096 × 4096 rows and 4096 nodes of s′: the product fits a 64-bit usize;
         // saturate elsewhere (the slice check then refuses the table).
         let slice = grid.sin_theta_i.len().saturating_mul(grid.rows());
-        let max_slices = MAX_TABLE_ORDERS.min(MAX_TABLE_VALUES / slice);
-        let orders = te.len() / slice;
-        if te.len() % slice != 0 || orders == 0 || orders > max_slices {
-            let requirement = Requirement::PlaneSlices { slice, max_slices };
-            return Err(Error::invalid("te", te.len() as f64, requirement));
-        }
-        if tm.len() != te.len() {
-            let requirement = Requirement::Count {
-                min: te.len(),
-                max: te.len(),
-            };
-            return Err(Error::invalid("tm", tm.len() as f64, requirement));
-        }
-        let last = i64::from(order_min) + orders as i64 - 1;
-        if last > i64::from(i32::MAX) {
-            let requirement = Requirement::Within {
-                min: f64::from(i32::MIN),
-                max: (i64::from(i32::MAX) - orders as i64 + 1) as f64,
-            };
-            return Err(Error::invalid(
-                "order_min",
-                f64::from(order_min),
-                requirement,
-            ));
-        }
+        let orders = order_count(&te, &tm, slice, order_min, |slice, max_slices| {
+            Requirement::PlaneSlices { slice, max_slices }
+        })?;
         check_values("te", period_nm, order_min, &grid, &te)?;
         check_values("tm", period_nm, order_min, &grid, &tm)?;
         let mut rows = Vec::with_capacity(n_b + 1);
