@@ -25,6 +25,9 @@ macro_rules! with_arrays {
                     (*$sin, *$bet, *$lam, *$te, *$tm);
                 $body
             }
+            // A reduced conical table binds its concatenated wavelength rows: the functions
+            // that interpolate branch to `reduced.rs` before this (its rows are per plane); the
+            // others read values by flat index.
             #[cfg(feature = "alloc")]
             Storage::Owned {
                 sin_theta_i: $sin,
@@ -32,21 +35,8 @@ macro_rules! with_arrays {
                 lambda_nm: $lam,
                 te: $te,
                 tm: $tm,
-            } => {
-                let ($sin, $bet, $lam, $te, $tm): (&[f64], &[f64], &[f64], &[f64], &[f64]) = (
-                    $sin.as_slice(),
-                    $bet.as_slice(),
-                    $lam.as_slice(),
-                    $te.as_slice(),
-                    $tm.as_slice(),
-                );
-                $body
             }
-            // A reduced conical table binds its concatenated wavelength rows: the functions
-            // that interpolate branch to `reduced.rs` before this (its rows are per plane); the
-            // others read values by flat index.
-            #[cfg(feature = "alloc")]
-            Storage::Reduced {
+            | Storage::Reduced {
                 sin_theta_i: $sin,
                 abs_beta: $bet,
                 lambda_nm: $lam,

@@ -48,6 +48,23 @@ pub(super) struct Cell3 {
 }
 
 impl Cell3 {
+    /// The cell `cell` of the clamped query (α, β², λ, cos θi), its corners still to be set.
+    pub(super) fn empty(alpha: f64, beta2: f64, lambda_nm: f64, cos_i: f64, cell: usize) -> Cell3 {
+        Cell3 {
+            alpha,
+            beta2,
+            lambda_nm,
+            cos_i,
+            w: [0.0; 8],
+            a_c: [0.0; 8],
+            b2_c: [0.0; 8],
+            l_c: [0.0; 8],
+            cos_c: [0.0; 8],
+            index: [0; 8],
+            cell,
+        }
+    }
+
     /// The cell of the incidence (α, β) at λ: s′ = α/√(1 − β²), |β| and λ clamped to the grid
     /// (the query is then the clamped point); `None` for a non-finite query, one with
     /// α² + β² ≥ 1 or at grazing incidence on the grid.
@@ -84,19 +101,13 @@ impl Cell3 {
             (b - bet.at(k)) / (bet.at(k + 1) - bet.at(k)),
             (lambda_nm - lam.at(j)) / (lam.at(j + 1) - lam.at(j)),
         ];
-        let mut cell = Cell3 {
-            alpha: sp * cb,
-            beta2: b * b,
+        let mut cell = Cell3::empty(
+            sp * cb,
+            b * b,
             lambda_nm,
             cos_i,
-            w: [0.0; 8],
-            a_c: [0.0; 8],
-            b2_c: [0.0; 8],
-            l_c: [0.0; 8],
-            cos_c: [0.0; 8],
-            index: [0; 8],
-            cell: (k * (n_l - 1) + j) * (n_s - 1) + i,
-        };
+            (k * (n_l - 1) + j) * (n_s - 1) + i,
+        );
         for c in 0..8 {
             let (di, dk, dj) = (c & 1, (c >> 1) & 1, (c >> 2) & 1);
             let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };

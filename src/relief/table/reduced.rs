@@ -181,19 +181,8 @@ impl Reduced<'_> {
             j[d] = interval(nodes, l);
             ty[d] = (l - nodes[j[d]]) / (nodes[j[d] + 1] - nodes[j[d]]);
         }
-        let mut cell = Cell3 {
-            alpha: sp * c,
-            beta2: b * b,
-            lambda_nm,
-            cos_i,
-            w: [0.0; 8],
-            a_c: [0.0; 8],
-            b2_c: [0.0; 8],
-            l_c: [0.0; 8],
-            cos_c: [0.0; 8],
-            index: [0; 8],
-            cell: self.slab_offset(k) + (j[0] + j[1]) * (n_s - 1) + i,
-        };
+        let cell_index = self.slab_offset(k) + (j[0] + j[1]) * (n_s - 1) + i;
+        let mut cell = Cell3::empty(sp * c, b * b, lambda_nm, cos_i, cell_index);
         let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };
         for n in 0..8 {
             let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
