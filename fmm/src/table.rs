@@ -445,6 +445,48 @@ fn splitmix(state: &mut u64) -> f64 {
     (z >> 11) as f64 / (1u64 << 53) as f64
 }
 
+/// A round's held-out errors `errs` at their points `at` (s, |β|, λ) and its other counts, as
+/// the report of the table it built.
+#[allow(clippy::too_many_arguments)]
+fn round_report<S: OrderSolver>(
+    spec: &TableSpec,
+    cache: &Cache<'_, S>,
+    errs: &[f64],
+    at: &[(f64, f64, f64)],
+    random_max: f64,
+    unresolved: usize,
+    round: usize,
+    fixed: bool,
+) -> BuildReport {
+    let worst = (0..errs.len()).fold(0, |w, i| if errs[i] > errs[w] { i } else { w });
+    let worst_at = at
+        .get(worst)
+        .copied()
+        .unwrap_or((f64::NAN, f64::NAN, f64::NAN));
+    let mut sorted = errs.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let marked = cache
+        .marked
+        .values()
+        .fold((0usize, 0.0f64), |(n, w), &c| (n + 1, w.max(c)));
+    BuildReport {
+        tolerance: spec.tolerance,
+        achieved_abs_error: errs.get(worst).copied().unwrap_or(0.0),
+        abs_error_p95: percentile(&sorted, 0.95),
+        abs_error_median: percentile(&sorted, 0.5),
+        held_out_points: errs.len(),
+        random_points_max: random_max,
+        worst_point: (worst_at.0, worst_at.2),
+        worst_beta: worst_at.1,
+        unconverged: marked,
+        unresolved_intervals: unresolved,
+        solves: cache.solves,
+        rounds: round,
+        fixed_grid: fixed,
+        seconds: cache.start.elapsed().as_secs_f64(),
+    }
+}
+
 fn percentile(sorted: &[f64], p: f64) -> f64 {
     if sorted.is_empty() {
         return 0.0;
@@ -639,18 +681,10 @@ pub fn build_table<S: OrderSolver>(
             refinable(&mut split[1], &b, spec.min_beta_step, &mut unresolved);
         }
         refinable(&mut split[2], &l, spec.min_lambda_step_nm, &mut unresolved);
-        let worst = (0..errs.len()).fold(0, |w, i| if errs[i] > errs[w] { i } else { w });
-        error = errs.get(worst).copied().unwrap_or(0.0);
-        let worst_at = at
-            .get(worst)
-            .copied()
-            .unwrap_or((f64::NAN, f64::NAN, f64::NAN));
-        let mut sorted = errs.clone();
-        sorted.sort_by(f64::total_cmp);
-        let marked = cache
-            .marked
-            .values()
-            .fold((0usize, 0.0f64), |(n, w), &c| (n + 1, w.max(c)));
+        let report = round_report(
+            spec, &cache, &errs, &at, random_max, unresolved, round, fixed,
+        );
+        error = report.achieved_abs_error;
         let candidate = BuiltTable {
             sin_theta_i: s.clone(),
             abs_beta: if conical { b.clone() } else { Vec::new() },
@@ -662,22 +696,7 @@ pub fn build_table<S: OrderSolver>(
             te,
             tm,
             table,
-            report: BuildReport {
-                tolerance: spec.tolerance,
-                achieved_abs_error: error,
-                abs_error_p95: percentile(&sorted, 0.95),
-                abs_error_median: percentile(&sorted, 0.5),
-                held_out_points: errs.len(),
-                random_points_max: random_max,
-                worst_point: (worst_at.0, worst_at.2),
-                worst_beta: worst_at.1,
-                unconverged: marked,
-                unresolved_intervals: unresolved,
-                solves: cache.solves,
-                rounds: round,
-                fixed_grid: fixed,
-                seconds: cache.start.elapsed().as_secs_f64(),
-            },
+            report,
         };
         if fixed {
             return Ok(candidate);

@@ -26,8 +26,8 @@ use diffraction::Requirement;
 use super::cache::{plane_error, point_error, Cache, Point};
 use super::spec::invalid;
 use super::{
-    cell, even_steps, initial_grid, merge, percentile, splitmix, BuildReport, BuiltTable,
-    OrderSolver, Progress, TableError, TableSpec,
+    cell, even_steps, initial_grid, merge, round_report, splitmix, BuiltTable, OrderSolver,
+    Progress, TableError, TableSpec,
 };
 
 /// The factor a plane's wavelengths may reach inside the solver's range at least (a band closer
@@ -337,18 +337,10 @@ pub(super) fn build<S: OrderSolver>(
         // Slabs are bisected in c = √(1 − β²), the blend's variable: their width too.
         let w = |k: usize| cb(planes[k].beta) - cb(planes[k + 1].beta);
         refinable(&mut split_b, &w, spec.min_beta_step);
-        let worst = (0..errs.len()).fold(0, |w, i| if errs[i] > errs[w] { i } else { w });
-        error = errs.get(worst).copied().unwrap_or(0.0);
-        let worst_at = at
-            .get(worst)
-            .copied()
-            .unwrap_or((f64::NAN, f64::NAN, f64::NAN));
-        let mut sorted = errs.clone();
-        sorted.sort_by(f64::total_cmp);
-        let marked = cache
-            .marked
-            .values()
-            .fold((0usize, 0.0f64), |(n, w), &c| (n + 1, w.max(c)));
+        let report = round_report(
+            spec, &cache, &errs, &at, random_max, unresolved, round, false,
+        );
+        error = report.achieved_abs_error;
         let candidate = BuiltTable {
             sin_theta_i: s.clone(),
             abs_beta: planes.iter().map(|p| p.beta).collect(),
@@ -360,22 +352,7 @@ pub(super) fn build<S: OrderSolver>(
             te,
             tm,
             table,
-            report: BuildReport {
-                tolerance: spec.tolerance,
-                achieved_abs_error: error,
-                abs_error_p95: percentile(&sorted, 0.95),
-                abs_error_median: percentile(&sorted, 0.5),
-                held_out_points: errs.len(),
-                random_points_max: random_max,
-                worst_point: (worst_at.0, worst_at.2),
-                worst_beta: worst_at.1,
-                unconverged: marked,
-                unresolved_intervals: unresolved,
-                solves: cache.solves,
-                rounds: round,
-                fixed_grid: false,
-                seconds: cache.start.elapsed().as_secs_f64(),
-            },
+            report,
         };
         let any =
             split_s.iter().chain(&split_b).any(|&x| x) || split_l.iter().flatten().any(|&x| x);
