@@ -591,3 +591,120 @@ fn mapping_against_the_conical_solve_per_profile() {
         );
     }
 }
+
+/// The reading a classical table could give off the plane across the grooves: the classical
+/// problem at the reduced coordinates s′ = α/√(1 − β²), λ′ = λ/√(1 − β²) of the same grating
+/// (the metal and the cover at λ′, as a classical table's node there holds them; no ε′), an
+/// exact classical solve, against (a) the conical nannos cases and (b) the CD preset's grating
+/// under its polycarbonate cover (one pass), whose reference is the crate's conical solve at
+/// the same truncation. Beside it, the classical-mount reading (s = α at λ).
+#[test]
+#[ignore = "a few minutes of solves: a measurement, run with --ignored --nocapture"]
+fn reduced_reading_of_a_classical_table() {
+    let solver = Solver::default();
+    let reduced = |g: &Grating, alpha: f64, beta: f64, lambda: f64, nh: usize| {
+        let c = (1.0 - beta * beta).sqrt();
+        solver
+            .solve_at(g, Incidence::classical(alpha / c, lambda / c).unwrap(), nh)
+            .unwrap()
+    };
+    let mut by_phi: std::collections::BTreeMap<i64, [Vec<(f64, f64)>; 2]> = Default::default();
+    for c in cases() {
+        let g = grating(&c, metal(&c.metal));
+        let nh = c.harmonics;
+        let classical = solver
+            .solve_at(&g, Incidence::classical(c.alpha, c.lambda_nm).unwrap(), nh)
+            .unwrap();
+        let red = reduced(&g, c.alpha, c.beta, c.lambda_nm, nh);
+        let e = by_phi.entry(c.phi_deg.round() as i64).or_default();
+        for &(m, want) in &c.orders {
+            e[0].push((want, unpolarised(&classical, m)));
+            e[1].push((want, unpolarised(&red, m)));
+        }
+    }
+    println!("(a) nannos conical cases: phi  orders  classical-reading  reduced-reading");
+    for (phi, e) in &by_phi {
+        println!(
+            "{phi:3}  {:6}  {:6.1}  {:6.1}",
+            score(&e[0]).1,
+            pct(score(&e[0])),
+            pct(score(&e[1]))
+        );
+    }
+    // (b) The CD's and the DVD's preset gratings (python_ref/presets.py, RUST_SOLVED), one pass.
+    let covered = |period_nm: f64, duty: f64, depth_nm: f64| Grating {
+        period_nm,
+        profile: Profile::Lamellar { duty, depth_nm },
+        metal: Metal::AL,
+        cover: Some(diffraction_fmm::Cover {
+            index: diffraction_fmm::CoverIndex::POLYCARBONATE,
+            thickness_nm: 1.2e6,
+        }),
+    };
+    let single = Solver::new(diffraction_fmm::Options {
+        cover_passes: diffraction_fmm::CoverPasses::Single,
+        ..diffraction_fmm::Options::default()
+    })
+    .unwrap();
+    let nh = 81;
+    for (name, cd) in [
+        ("cd", covered(1600.0, 0.3125, 110.0)),
+        ("dvd", covered(740.0, 0.32 / 0.74, 105.0)),
+    ] {
+        let mut by_phi: std::collections::BTreeMap<i64, [Vec<(f64, f64)>; 3]> = Default::default();
+        for theta in [20.0f64, 40.0, 60.0] {
+            for phi in [0.0f64, 30.0, 60.0, 80.0] {
+                for lambda in [450.0, 550.0, 650.0] {
+                    let (t, p) = (theta.to_radians(), phi.to_radians());
+                    let (alpha, beta) = (t.sin() * p.cos(), t.sin() * p.sin());
+                    let conical = single
+                        .solve_at(
+                            &cd,
+                            Incidence::from_cosines(alpha, beta, lambda).unwrap(),
+                            nh,
+                        )
+                        .unwrap();
+                    let classical = single
+                        .solve_at(&cd, Incidence::classical(alpha, lambda).unwrap(), nh)
+                        .unwrap();
+                    let c = (1.0 - beta * beta).sqrt();
+                    let red = single
+                        .solve_at(
+                            &cd,
+                            Incidence::classical(alpha / c, lambda / c).unwrap(),
+                            nh,
+                        )
+                        .unwrap();
+                    // The reduction inside the cover: its direction cosines are α/n and β/n.
+                    let n = diffraction_fmm::CoverIndex::POLYCARBONATE
+                        .at(lambda)
+                        .unwrap();
+                    let cn = (1.0 - beta * beta / (n * n)).sqrt();
+                    let red_n = single
+                        .solve_at(
+                            &cd,
+                            Incidence::classical(alpha / cn, lambda / cn).unwrap(),
+                            nh,
+                        )
+                        .unwrap();
+                    let e = by_phi.entry(phi as i64).or_default();
+                    for o in &conical.orders {
+                        e[0].push((o.unpolarised(), unpolarised(&classical, o.m)));
+                        e[1].push((o.unpolarised(), unpolarised(&red, o.m)));
+                        e[2].push((o.unpolarised(), unpolarised(&red_n, o.m)));
+                    }
+                }
+            }
+        }
+        println!("(b) {name} preset grating, conical solve at {nh} harmonics: phi  orders  classical-reading  reduced-reading  reduced-in-the-cover");
+        for (phi, e) in &by_phi {
+            println!(
+                "{phi:3}  {:6}  {:6.1}  {:6.1}  {:6.1}",
+                score(&e[0]).1,
+                pct(score(&e[0])),
+                pct(score(&e[1])),
+                pct(score(&e[2]))
+            );
+        }
+    }
+}
