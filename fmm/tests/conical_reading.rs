@@ -647,9 +647,19 @@ fn reduced_reading_of_a_classical_table() {
     })
     .unwrap();
     let nh = 81;
+    let bare = |period_nm: f64, profile: Profile| Grating {
+        period_nm,
+        profile,
+        metal: Metal::AL,
+        cover: None,
+    };
+    // The blazed grating's facet angle: sin θ_B = 500 nm/(2d), d = 10⁶/600 nm.
+    let blaze = (500.0f64 / (2.0 * 1e6 / 600.0)).asin();
     for (name, cd) in [
         ("cd", covered(1600.0, 0.3125, 110.0)),
         ("dvd", covered(740.0, 0.32 / 0.74, 105.0)),
+        ("foil", bare(1000.0, Profile::Sinusoid { depth_nm: 100.0 })),
+        ("blazed600", bare(1e6 / 600.0, Profile::Sawtooth { blaze })),
     ] {
         let mut by_phi: std::collections::BTreeMap<i64, [Vec<(f64, f64)>; 3]> = Default::default();
         for theta in [20.0f64, 40.0, 60.0] {
@@ -676,9 +686,7 @@ fn reduced_reading_of_a_classical_table() {
                         )
                         .unwrap();
                     // The reduction inside the cover: its direction cosines are α/n and β/n.
-                    let n = diffraction_fmm::CoverIndex::POLYCARBONATE
-                        .at(lambda)
-                        .unwrap();
+                    let n = cd.cover.map_or(1.0, |c| c.index.at(lambda).unwrap());
                     let cn = (1.0 - beta * beta / (n * n)).sqrt();
                     let red_n = single
                         .solve_at(
