@@ -114,6 +114,9 @@ fn bad_flags_are_named_with_exit_code_2() {
         ),
         (with(&["--period", "1000", "--duty", "1.5"]), "--duty"),
         (with(&["--period", "1000", "--metal"]), "--metal"),
+        // A flag given twice is refused, not read as its last value.
+        (with(&["--period", "1000", "--period", "2000"]), "--period"),
+        (with(&["--period", "1000", "--out", "/tmp/x.json"]), "--out"),
     ];
     for (args, flag) in cases {
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
