@@ -257,7 +257,8 @@ pub enum TableError {
         solves: usize,
         /// The grid reached (s nodes, λ nodes).
         grid: (usize, usize),
-        /// The largest held-out error of the last round.
+        /// The largest held-out error of the last round; NaN when no round finished (the
+        /// budget ran out inside the first), which the message says in words.
         achieved: f64,
         /// The tolerance asked for.
         tolerance: f64,
@@ -286,12 +287,19 @@ impl fmt::Display for TableError {
                 achieved,
                 tolerance,
                 ..
-            } => write!(
-                f,
-                "tolerance {tolerance:e} not reached: {limit} exhausted after {solves} solves \
-                 on a {} x {} grid, held-out error {achieved:.3e}",
-                grid.0, grid.1
-            ),
+            } => {
+                write!(
+                    f,
+                    "tolerance {tolerance:e} not reached: {limit} exhausted after {solves} \
+                     solves on a {} x {} grid, ",
+                    grid.0, grid.1
+                )?;
+                if achieved.is_nan() {
+                    write!(f, "no held-out error measured (no round finished)")
+                } else {
+                    write!(f, "held-out error {achieved:.3e}")
+                }
+            }
         }
     }
 }

@@ -114,6 +114,9 @@ fn bad_flags_are_named_with_exit_code_2() {
         ),
         (with(&["--period", "1000", "--duty", "1.5"]), "--duty"),
         (with(&["--period", "1000", "--metal"]), "--metal"),
+        // A flag given twice is refused, not read as its last value.
+        (with(&["--period", "1000", "--period", "2000"]), "--period"),
+        (with(&["--period", "1000", "--out", "/tmp/x.json"]), "--out"),
     ];
     for (args, flag) in cases {
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -221,6 +224,11 @@ fn a_failed_build_writes_nothing_and_keeps_an_existing_file() {
     let (code, err) = run(&args);
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("max_solves"), "{err}");
+    // No round finished: no error to report, said in words (never "NaN").
+    assert!(
+        err.contains("no held-out error measured (no round finished)") && !err.contains("NaN"),
+        "{err}"
+    );
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "previous");
     let dir = out.parent().unwrap();
     let stem = out.file_name().unwrap().to_str().unwrap().to_string();

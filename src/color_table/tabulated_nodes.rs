@@ -15,7 +15,13 @@
 //!   (the efficiency falls to 0 there as a square root).
 //!
 //! Beyond [`MAX_LOBE_PANELS`] side lobes (N·d·|u|·(1/360 − 1/830) > 4096: N of thousands) the
-//! F_N panels take several side lobes each, so the work stays bounded.
+//! work stays bounded by resolving only each order's peak: its main lobe and [`PEAK_LOBES`]
+//! side lobes a side are one panel each, then panels grow geometrically (doubling in x) to the
+//! order boundaries. A panel wider than one lobe reads the BSDF at x ± 1/(4N) about each node
+//! and takes the mean, sin²(Nπx − π/4) + sin²(Nπx + π/4) = 1: the mean of F_N's oscillation,
+//! exact up to the envelope's curvature over a quarter lobe. (Panels of several side lobes each
+//! sampled the oscillation at 4 points a panel and missed the peaks: at N = 10⁵ the CD's
+//! colour was 0.07-0.51 of its value, at N = 10⁷ below 0.01.)
 
 use alloc::vec::Vec;
 use core::cell::{Cell, RefCell};
@@ -45,8 +51,12 @@ const GL4_WEIGHTS: [f64; 4] = [
 /// 10 nm.
 const MAX_PANEL_NM: f64 = 8.0;
 
-/// The most F_N panels of one node (side lobes, merged beyond this).
+/// The most F_N panels of one node at one panel a side lobe (beyond this only the orders'
+/// peaks are resolved lobe by lobe).
 const MAX_LOBE_PANELS: f64 = 4096.0;
+/// Side lobes a side of each order's main lobe that are one panel each when the lobes are not
+/// all resolved (beyond them F_N's oscillation is averaged).
+const PEAK_LOBES: usize = 16;
 /// The groove spread the nodes are evaluated with: any λ-independent spread gives the same
 /// f/g(v) (the table's groove is Gaussian or ideal, whose f is a delta in v).
 const STAND_IN_SIGMA: f64 = 0.02;
@@ -152,20 +162,6 @@ impl TabulatedNodes {
         let q = self.d * a;
         if q > 0.0 {
             let (x_lo, x_hi) = (q / LAMBDA_MAX_NM, q / LAMBDA_MIN_NM);
-            // F_N's zeros k/N, merged to at most MAX_LOBE_PANELS.
-            let lobes = self.n * (x_hi - x_lo);
-            let stride = if lobes > MAX_LOBE_PANELS {
-                ceil(lobes / MAX_LOBE_PANELS)
-            } else {
-                1.0
-            };
-            let step = stride / self.n;
-            let mut k = ceil(x_lo / step);
-            while k * step < x_hi {
-                cuts.push(q / (k * step));
-                k += 1.0;
-            }
-            // The order boundaries and each owning order's Rayleigh wavelengths.
             let sign = if u < 0.0 { -1.0 } else { 1.0 };
             // Orders the table does not store carry nothing (no cuts): at most its |m|.
             let most = self
@@ -173,6 +169,39 @@ impl TabulatedNodes {
                 .0
                 .unsigned_abs()
                 .max(self.orders.1.unsigned_abs()) as f64;
+            if self.n * (x_hi - x_lo) <= MAX_LOBE_PANELS {
+                // F_N's zeros k/N: every side lobe one panel.
+                let step = 1.0 / self.n;
+                let mut k = ceil(x_lo / step);
+                while k * step < x_hi {
+                    cuts.push(q / (k * step));
+                    k += 1.0;
+                }
+            } else {
+                // Each stored order's peak lobe by lobe, then doubling panels (averaged).
+                let mut m = floor(x_lo + 0.5).max(0.0);
+                while m <= floor(x_hi + 0.5).min(most) {
+                    let signed = (sign * m) as i64;
+                    if signed >= self.orders.0 && signed <= self.orders.1 {
+                        for side in [-1.0, 1.0] {
+                            let mut j = 0.0;
+                            while j < 0.5 * self.n {
+                                let x = m + side * j / self.n;
+                                if x > x_lo && x < x_hi {
+                                    cuts.push(q / x);
+                                }
+                                j = if j < PEAK_LOBES as f64 {
+                                    j + 1.0
+                                } else {
+                                    2.0 * j
+                                };
+                            }
+                        }
+                    }
+                    m += 1.0;
+                }
+            }
+            // The order boundaries and each owning order's Rayleigh wavelengths.
             let (m_lo, m_hi) = (floor(x_lo + 0.5), floor(x_hi + 0.5).min(most + 1.0));
             let mut m = m_lo;
             while m <= m_hi {
@@ -207,7 +236,20 @@ impl TabulatedNodes {
             let Ok(l) = SampledWavelengths::new(lambda, [1.0; 4]) else {
                 continue;
             };
-            let f = self.bsdf.eval4(wo, wi, &l);
+            let mut f = self.bsdf.eval4(wo, wi, &l);
+            // Wider than one lobe (only where the lobes are not all panels): the mean of the
+            // readings a quarter lobe either side of each node.
+            if self.n * (q / a - q / (a + width)) > 1.5 {
+                let shifted = |dx: f64| lambda.map(|l| q / (q / l + dx));
+                let (lo, hi) = (shifted(-0.25 / self.n), shifted(0.25 / self.n));
+                if let (Ok(lo), Ok(hi)) = (
+                    SampledWavelengths::new(lo, [1.0; 4]),
+                    SampledWavelengths::new(hi, [1.0; 4]),
+                ) {
+                    let (p, r) = (self.bsdf.eval4(wo, wi, &lo), self.bsdf.eval4(wo, wi, &hi));
+                    f = core::array::from_fn(|k| 0.5 * (p[k] + r[k]));
+                }
+            }
             for k in 0..4 {
                 acc += self.spectral.weight(lambda[k]) * (f[k] * GL4_WEIGHTS[k] * half);
             }
@@ -303,6 +345,46 @@ mod tests {
                 for (got, want) in c.iter().zip([r.x, r.y, r.z]) {
                     worst = worst.max((got - want).abs() / big);
                 }
+            }
+        }
+        std::println!("worst {worst:.2e}");
+        assert!(worst <= NODE_REL, "{worst:.3e}");
+    }
+
+    /// Beyond `MAX_LOBE_PANELS` side lobes (here N = 10⁵: 1.5·10⁵ lobes over the band) the
+    /// nodes against a midpoint rule in x = d·|u|/λ with 16 points in every lobe of F_N
+    /// (independent of the panels), per channel relative to the largest: measured worst
+    /// 2.7·10⁻⁵ (the first point has order 2's Rayleigh wavelength 46 lobes from its peak).
+    /// Panels of several side lobes each gave 0.07-0.51 of the colour (0.92 off here).
+    #[test]
+    fn nodes_of_many_slits_match_a_rule_in_every_lobe() {
+        let s = Spectral::new(Illuminant::D65);
+        let n = 100_000u32;
+        let b = GratingBsdf::preset(Preset::Cd, n)
+            .unwrap()
+            .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+        let nodes = TabulatedNodes::new(&b, &s);
+        let mut worst = 0.0f64;
+        for (u, si) in [(0.6001, 0.2), (0.255, -0.633), (-1.5, -0.7)] {
+            let c = nodes.eval(u, si);
+            let ox: f64 = u - si;
+            let wi = DVec3::new(si, 0.0, sqrt(1.0 - si * si));
+            let wo = DVec3::new(ox, 0.0, sqrt(1.0 - ox * ox));
+            let q = 1600.0 * f64::abs(u);
+            let (x0, x1) = (q / LAMBDA_MAX_NM, q / LAMBDA_MIN_NM);
+            let steps = (f64::from(n) * (x1 - x0) * 16.0).ceil() as usize;
+            let h = (x1 - x0) / steps as f64;
+            let mut r = DVec3::ZERO;
+            for k in 0..steps {
+                let x = x0 + (k as f64 + 0.5) * h;
+                let l = q / x;
+                // dλ = q/x² dx.
+                r += s.weight(l) * (b.eval(wo, wi, l) * q / (x * x) * h);
+            }
+            let r = r / b.groove().value(0.0, 550.0);
+            let big = r.x.max(r.y).max(r.z);
+            for (got, want) in c.iter().zip([r.x, r.y, r.z]) {
+                worst = worst.max((got - want).abs() / big);
             }
         }
         std::println!("worst {worst:.2e}");

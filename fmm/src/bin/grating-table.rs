@@ -13,7 +13,7 @@
 //! leaves a partial file, nor replaces an existing one; an `--out` that cannot be written (a
 //! directory, a missing or read-only folder) is refused before any solve. Exit codes: 0 written;
 //! 1 the build failed (tolerance not reached within the budget, a solver failure); 2 bad input
-//! (the message names the flag).
+//! (the message names the flag; a flag given twice is bad input too).
 
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -133,6 +133,7 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
     let mut description = None;
     let mut keep_best = false;
     let mut out = None;
+    let mut seen: Vec<&str> = Vec::new();
     let mut i = 0;
     while i < argv.len() {
         let flag = argv[i].as_str();
@@ -144,6 +145,11 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
         if flag == "--help" || flag == "-h" {
             return Err(Bad(String::new()));
         }
+        // A flag given twice is ambiguous (which value was meant?): refused, never the last.
+        if seen.contains(&flag) {
+            return Err(Bad(format!("{flag}: given more than once")));
+        }
+        seen.push(flag);
         let v = argv
             .get(i + 1)
             .ok_or_else(|| Bad(format!("{flag}: missing value")))?
