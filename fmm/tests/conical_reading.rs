@@ -128,6 +128,14 @@ fn score(pairs: &[(f64, f64)]) -> (usize, usize) {
     (hit, n)
 }
 
+/// Prints one row per azimuth: the orders counted and each column's score.
+fn print_rows<const K: usize>(by_phi: &std::collections::BTreeMap<i64, [Vec<(f64, f64)>; K]>) {
+    for (phi, e) in by_phi {
+        let cols: Vec<String> = e.iter().map(|c| format!("{:6.1}", pct(score(c)))).collect();
+        println!("{phi:3}  {:6}  {}", score(&e[0]).1, cols.join("  "));
+    }
+}
+
 fn pct((h, n): (usize, usize)) -> f64 {
     100.0 * h as f64 / n.max(1) as f64
 }
@@ -185,15 +193,7 @@ fn conical_reading_before_and_after() {
     }
     println!("unpolarised |eta(beta) - eta(-beta)| worst {sym_worst:.2e}");
     println!("phi  orders  classical-reading  mapping  conical-solve  (% of orders with eta >= 1 % within 10 %)");
-    for (phi, e) in &by_phi {
-        println!(
-            "{phi:3}  {:6}  {:6.1}  {:6.1}  {:6.1}",
-            score(&e[0]).1,
-            pct(score(&e[0])),
-            pct(score(&e[1])),
-            pct(score(&e[2]))
-        );
-    }
+    print_rows(&by_phi);
     assert!(sym_worst < 1e-6, "{sym_worst}");
 }
 
@@ -623,14 +623,7 @@ fn reduced_reading_of_a_classical_table() {
         }
     }
     println!("(a) nannos conical cases: phi  orders  classical-reading  reduced-reading");
-    for (phi, e) in &by_phi {
-        println!(
-            "{phi:3}  {:6}  {:6.1}  {:6.1}",
-            score(&e[0]).1,
-            pct(score(&e[0])),
-            pct(score(&e[1]))
-        );
-    }
+    print_rows(&by_phi);
     // (b) The CD's and the DVD's preset gratings (python_ref/presets.py, RUST_SOLVED), one pass.
     let covered = |period_nm: f64, duty: f64, depth_nm: f64| Grating {
         period_nm,
@@ -705,14 +698,6 @@ fn reduced_reading_of_a_classical_table() {
             }
         }
         println!("(b) {name} preset grating, conical solve at {nh} harmonics: phi  orders  classical-reading  reduced-reading  reduced-in-the-cover");
-        for (phi, e) in &by_phi {
-            println!(
-                "{phi:3}  {:6}  {:6.1}  {:6.1}  {:6.1}",
-                score(&e[0]).1,
-                pct(score(&e[0])),
-                pct(score(&e[1])),
-                pct(score(&e[2]))
-            );
-        }
+        print_rows(&by_phi);
     }
 }

@@ -220,19 +220,7 @@ impl Reduced<'_> {
         let tx = (sp - sin[i]) / (sin[i + 1] - sin[i]);
         let ty = (l - nodes[j]) / (nodes[j + 1] - nodes[j]);
         let b = self.bet[p];
-        let mut cell = Cell3 {
-            alpha: sp * c,
-            beta2: b * b,
-            lambda_nm: l,
-            cos_i,
-            w: [0.0; 8],
-            a_c: [0.0; 8],
-            b2_c: [0.0; 8],
-            l_c: [0.0; 8],
-            cos_c: [0.0; 8],
-            index: [0; 8],
-            cell: 0,
-        };
+        let mut cell = Cell3::empty(sp * c, b * b, l, cos_i, 0);
         let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };
         for n in 0..8 {
             let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
