@@ -156,8 +156,8 @@ pub enum Requirement {
     /// too, has no stored form. The value is the number of orders the table stores.
     NotTabulated,
     /// A classical table (efficiencies of incidences in the plane of the grating vector, no
-    /// conical slices): a colour table tabulates those. The value is the number of orders the
-    /// table stores.
+    /// conical slices): a colour table tabulates those, and a reduced table is read from one.
+    /// The value is the number of orders the table stores.
     Classical,
 }
 
@@ -311,7 +311,7 @@ impl fmt::Display for Error {
                     }
                     Requirement::Classical => write!(
                         f,
-                        "be a classical table (a conical table has no colour table)"
+                        "be a classical table (one plane across the grooves, no |β| planes)"
                     ),
                 }
             }

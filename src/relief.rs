@@ -42,4 +42,4 @@ pub use table::Preset;
 pub(crate) use table::{CellProposal, FastProposal, Incidences};
 pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};
 #[cfg(feature = "alloc")]
-pub use table::{ReducedGrid, MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};
+pub use table::{ReducedGrid, MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES, REDUCED_PLANES};

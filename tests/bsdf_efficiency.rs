@@ -161,6 +161,14 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
             "reduced conical sinusoid".into(),
             GratingBsdf::new(g).with_efficiency(e).unwrap(),
         ));
+        // The CD preset read in reduced coordinates in its cover (`Preset::reduced_table`).
+        let d = Preset::Cd.period_nm();
+        let cd = Grating::with_slits(d, 0.5 * d, slits).unwrap();
+        let e = OrderEfficiency::from_table(Arc::new(Preset::Cd.reduced_table().unwrap())).unwrap();
+        out.push((
+            "reduced CD".into(),
+            GratingBsdf::new(cd).with_efficiency(e).unwrap(),
+        ));
     }
     out
 }

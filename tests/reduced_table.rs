@@ -423,3 +423,161 @@ fn the_gpu_packs_the_first_plane() {
     assert!(worst <= 2.0 * f32::EPSILON, "{worst}");
     assert!(a[marks..].iter().all(|&w| w == 0.0));
 }
+
+/// `reduced_from_classical` of a bare grating (the foil): its planes map onto the classical
+/// nodes, so wherever λ″ = λ/c stays in the band the table reads the classical table at
+/// (α, λ)/c whatever β, to rounding; beyond the band (the extrapolation) and at any β its sums
+/// stay in [0, 1].
+#[test]
+fn a_bare_table_read_from_its_classical_one_is_the_reduced_reading() {
+    use diffraction::relief::REDUCED_PLANES;
+    let foil = Preset::Foil.table();
+    let t = foil
+        .reduced_from_classical(&REDUCED_PLANES, |_| 1.0)
+        .unwrap();
+    assert!(t.is_reduced());
+    assert_eq!(t.abs_beta().collect::<Vec<_>>(), REDUCED_PLANES.to_vec());
+    let n = foil.order_count();
+    let (mut a, mut r) = (vec![Polarised::default(); n], vec![Polarised::default(); n]);
+    let mut next = rng(31);
+    let (mut worst, mut inside) = (0.0f64, 0);
+    for _ in 0..20_000 {
+        let beta = 0.99999 * next();
+        let c = cb(beta);
+        let sp = -0.999 + 1.998 * next();
+        let lam = 300.0 + 600.0 * next();
+        let total = t.efficiencies_conical(sp * c, beta, lam, &mut r);
+        assert!(total.is_finite() && (0.0..=1.0).contains(&total), "{total}");
+        if (360.0..=830.0).contains(&lam) && lam / c <= 830.0 {
+            inside += 1;
+            foil.efficiencies(sp, lam / c, &mut a);
+            for (x, y) in a.iter().zip(&r) {
+                worst = worst.max((x.te - y.te).abs()).max((x.tm - y.tm).abs());
+            }
+        }
+    }
+    println!("foil read from its classical table: worst {worst:.2e} over {inside} queries");
+    assert!(inside > 5000);
+    assert!(worst < tol::REDUCED_MAPPING, "{worst}");
+}
+
+/// Under a cover the reduction is in the cover's medium, c = √(1 − β²/n²): on the plane
+/// β = 0 the CD's reduced table is its classical table; off it, it reads the direct reduced
+/// reading (the classical table at (α, λ)/c) within the second interpolation's error (the
+/// planes' s′ nodes map onto s″ = s′·√(1 − β²)/c between the classical nodes).
+/// Fresnel's power transmittances (TE, TM) from a medium of index `n` into air, for light
+/// leaving at squared sine `sin2` in air.
+fn transmittance(n: f64, sin2: f64) -> (f64, f64) {
+    let ca = (1.0 - sin2).sqrt();
+    let cn = (1.0 - sin2 / (n * n)).sqrt();
+    let (ts, tp) = (2.0 * n * cn / (n * cn + ca), 2.0 * n * cn / (cn + n * ca));
+    // T = |t|²·(cos θ in air)/(n·cos θ in the medium).
+    (ts * ts * ca / (n * cn), tp * tp * ca / (n * cn))
+}
+
+/// The real path's transmittances over the reduced problem's (index `n2` at λ″, sine `red`).
+fn interfaces(n: f64, n2: f64, real2: f64, red: f64) -> (f64, f64) {
+    let (a, b) = (transmittance(n, real2), transmittance(n2, red * red));
+    (a.0 / b.0, a.1 / b.1)
+}
+
+#[test]
+fn a_covered_table_reads_the_reduction_in_the_cover() {
+    let cd = Preset::Cd.table();
+    let t = Preset::Cd.reduced_table().unwrap();
+    let n = cd.order_count();
+    let (mut a, mut r) = (vec![Polarised::default(); n], vec![Polarised::default(); n]);
+    let mut next = rng(32);
+    let (mut on_plane, mut off_plane, mut count) = (0.0f64, 0.0f64, 0);
+    let (mut sum, mut terms) = (0.0f64, 0usize);
+    for k in 0..20_000 {
+        let beta = if k % 4 == 0 { 0.0 } else { 0.95 * next() };
+        let sp = -0.999 + 1.998 * next();
+        let lam = 360.0 + 470.0 * next();
+        let idx = Preset::Cd.cover_index(lam);
+        let cc = (1.0 - (beta / idx) * (beta / idx)).sqrt();
+        let alpha = sp * cb(beta);
+        if lam / cc > 830.0 {
+            continue;
+        }
+        count += 1;
+        cd.efficiencies(alpha / cc, lam / cc, &mut a);
+        // Trapped in the cover (propagating there, evanescent in air): 0. The others pass
+        // the cover-air interface at their real direction instead of the reduced one.
+        let n2 = Preset::Cd.cover_index(lam / cc);
+        let into = interfaces(idx, n2, alpha * alpha + beta * beta, alpha / cc);
+        for (m, x) in cd.orders().zip(a.iter_mut()) {
+            let am = alpha + f64::from(m) * lam / cd.period_nm();
+            if am * am + beta * beta >= 1.0 {
+                *x = Polarised::default();
+            } else {
+                let out = interfaces(idx, n2, am * am + beta * beta, am / cc);
+                x.te *= into.0 * out.0;
+                x.tm *= into.1 * out.1;
+            }
+        }
+        t.efficiencies_conical(alpha, beta, lam, &mut r);
+        // Orders at least 0.2 in cos θm from their cut-off in air: nearer, the table's rule
+        // (η/cos θm interpolated, then times the query's cos θm) and the direct reading part.
+        let mut worst = 0.0f64;
+        for (m, (x, y)) in cd.orders().zip(a.iter().zip(&r)) {
+            let am = alpha + f64::from(m) * lam / cd.period_nm();
+            if 1.0 - am * am - beta * beta > 0.04 {
+                worst = worst.max((x.te - y.te).abs()).max((x.tm - y.tm).abs());
+                if beta > 0.0 {
+                    sum += (x.te - y.te).abs() + (x.tm - y.tm).abs();
+                    terms += 2;
+                }
+            }
+        }
+        if beta == 0.0 {
+            on_plane = on_plane.max(worst);
+        } else {
+            off_plane = off_plane.max(worst);
+        }
+    }
+    let mean = sum / terms as f64;
+    println!(
+        "CD reduced in its cover: worst on the plane {on_plane:.2e}, off it {off_plane:.2e}, \
+         mean {mean:.2e} ({count} queries)"
+    );
+    assert!(on_plane < tol::REDUCED_MAPPING, "{on_plane}");
+    assert!(off_plane < tol::REDUCED_IN_THE_COVER, "{off_plane}");
+    assert!(mean < tol::REDUCED_IN_THE_COVER_MEAN, "{mean}");
+    // An order that propagates in the cover but not in air is 0: order 1 at β = 0.6,
+    // λ = 600 nm leaves the air's circle at α = 0.8 − 600/1600 = 0.425.
+    let (beta, lam) = (0.6, 600.0);
+    assert_eq!(t.efficiency_conical(1, 0.43, beta, lam).te, 0.0);
+    assert!(t.efficiency_conical(1, 0.40, beta, lam).te > 0.0);
+}
+
+#[test]
+fn reading_a_table_reduced_refuses_bad_input_naming_it() {
+    use diffraction::relief::REDUCED_PLANES;
+    let foil = Preset::Foil.table();
+    let conical = foil
+        .reduced_from_classical(&REDUCED_PLANES, |_| 1.0)
+        .unwrap();
+    let e = conical
+        .reduced_from_classical(&REDUCED_PLANES, |_| 1.0)
+        .unwrap_err();
+    assert_eq!(e.parameter(), "table");
+    for bad in [f64::NAN, 0.5, f64::INFINITY] {
+        let e = foil
+            .reduced_from_classical(&REDUCED_PLANES, |_| bad)
+            .unwrap_err();
+        assert_eq!(e.parameter(), "cover_index", "{bad}");
+    }
+    for planes in [&[0.0][..], &[0.0, 1.0], &[0.5, 0.3], &[0.0, f64::NAN], &[]] {
+        let e = foil.reduced_from_classical(planes, |_| 1.0).unwrap_err();
+        assert_eq!(e.parameter(), "abs_beta", "{planes:?}");
+    }
+    // Two planes are enough; so is one starting above 0 (queries below it read it).
+    assert!(foil
+        .reduced_from_classical(&[0.0, 0.99999], |_| 1.0)
+        .is_ok());
+    assert!(foil.reduced_from_classical(&[0.4, 0.8], |_| 1.0).is_ok());
+    for p in Preset::ALL {
+        assert!(p.reduced_table().is_ok(), "{p}");
+    }
+}

@@ -84,7 +84,7 @@ pub use preset::Preset;
 #[cfg(feature = "alloc")]
 pub use load::{MAX_TABLE_NODES, MAX_TABLE_ORDERS, MAX_TABLE_VALUES};
 #[cfg(feature = "alloc")]
-pub use reduced::ReducedGrid;
+pub use reduced::{ReducedGrid, REDUCED_PLANES};
 
 /// A corner of the interpolation cell closer than this to its order's Rayleigh line
 /// (cos² θm ≤ 10⁻⁶, cos θm ≤ 10⁻³) counts as evanescent: there η and cos θm are both tiny and

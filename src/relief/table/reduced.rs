@@ -576,7 +576,10 @@ impl EfficiencyTable {
     }
 }
 
+mod from_classical;
 mod new;
+
+pub use from_classical::REDUCED_PLANES;
 
 #[cfg(all(test, feature = "std"))]
 mod tests {
