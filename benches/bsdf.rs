@@ -8,7 +8,9 @@
 //! Targets: `sample` + `pdf` within 4× of `eval`; `f4` within 2× of one `f`. Beside them the
 //! CD preset's tabulated efficiencies (`cd_f`, `cd_f4`, `cd_pdf4`, `cd_sample_and_pdf`,
 //! `cd_sample4`, period 1600 nm as well): target within 1.5× of the amplitude model's `f`,
-//! `f4`, `pdf4`, `sample_and_pdf` and `sample4`.
+//! `f4`, `pdf4`, `sample_and_pdf` and `sample4`. And the CD preset read conically
+//! (`cd_reduced_f`, `cd_reduced_sample_and_pdf`: `Preset::reduced_table`, a reduced conical
+//! table read by the general conical path).
 //!
 //! Measured (`cargo bench --all-features --bench bsdf -- --warm-up-time 1 --measurement-time
 //! 3`, four runs under a load of 4, median of the per-run ratios over N = 30, 1000, 10⁶;
@@ -18,6 +20,7 @@
 //! 6.2×). The 1.5× target is missed.
 
 use criterion::{black_box, BenchmarkId, Criterion, Throughput};
+use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::Preset;
 use diffraction::{AguHill, Band, Bsdf, DiffractionBrdf, Grating, GratingBsdf, SampledWavelengths};
 use glam::DVec2;
@@ -41,6 +44,11 @@ fn bench(c: &mut Criterion) {
         let paper = AguHill::new(grating);
         let bsdf = GratingBsdf::new(grating);
         let cd = GratingBsdf::preset(Preset::Cd, n).expect("valid preset");
+        // The same preset read conically (`Preset::reduced_table`: a reduced conical table).
+        let reduced = std::sync::Arc::new(Preset::Cd.reduced_table().expect("valid preset"));
+        let cd_reduced = GratingBsdf::new(grating)
+            .with_efficiency(OrderEfficiency::from_table(reduced).expect("valid table"))
+            .expect("valid efficiency");
         let inputs = rng::near_peak_samples(PERIOD, n, BATCH);
         let mut r = rng::Rng(0x5eed ^ u64::from(n));
         let randoms: Vec<(f64, DVec2)> = (0..BATCH).map(|_| (r.next_f64(), r.u2())).collect();
@@ -73,6 +81,15 @@ fn bench(c: &mut Criterion) {
                 let mut acc = 0.0;
                 for &(wi, wo, l) in s {
                     acc += cd.eval(black_box(wo), black_box(wi), l);
+                }
+                acc
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("cd_reduced_f", n), &inputs, |b, s| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &(wi, wo, l) in s {
+                    acc += cd_reduced.eval(black_box(wo), black_box(wi), l);
                 }
                 acc
             })
@@ -155,6 +172,21 @@ fn bench(c: &mut Criterion) {
                 acc
             })
         });
+        g.bench_with_input(
+            BenchmarkId::new("cd_reduced_sample_and_pdf", n),
+            &inputs,
+            |b, s| {
+                b.iter(|| {
+                    let mut acc = 0.0;
+                    for (&(_, wo, l), &(uc, u2)) in s.iter().zip(&randoms) {
+                        if let Some(x) = cd_reduced.sample(black_box(wo), l, uc, u2) {
+                            acc += cd_reduced.pdf(wo, black_box(x.wi), l);
+                        }
+                    }
+                    acc
+                })
+            },
+        );
         g.bench_with_input(BenchmarkId::new("sample4", n), &inputs, |b, s| {
             b.iter(|| {
                 let mut acc = 0.0;

@@ -245,6 +245,12 @@ pub struct RawGrating {
     /// `limits::MAX_TABLE_BYTES`, a regular file). A preset's or a table's period is then the
     /// default `period_nm`.
     pub efficiency: Option<String>,
+    /// How a preset's table is read off the plane across the grooves: "classical" (default:
+    /// the classical mount, which the Whitted integrator's colour tables hold) or "reduced"
+    /// (`Preset::reduced_table`: in reduced coordinates in the cover's medium, a conical table
+    /// the path tracer reads at the full incident direction; the Whitted integrator then
+    /// colours it by the generic path). Only with a preset `efficiency`.
+    pub reading: Option<String>,
     /// The table `efficiency` names, read by the loader (not a key of the file).
     #[serde(skip)]
     pub table: Option<std::sync::Arc<diffraction::relief::EfficiencyTable>>,
@@ -268,13 +274,14 @@ pub const MODELS: [(&str, &[&str]); 5] = [
             "coherence_nm",
             "groove_sigma",
             "efficiency",
+            "reading",
         ],
     ),
 ];
 
 impl RawGrating {
     /// The model parameters present, by key.
-    pub fn parameters(&self) -> [(&'static str, bool); 9] {
+    pub fn parameters(&self) -> [(&'static str, bool); 10] {
         [
             ("slit_width_nm", self.slit_width_nm.is_some()),
             ("slits", self.slits.is_some()),
@@ -285,6 +292,7 @@ impl RawGrating {
             ("reflectance", self.reflectance.is_some()),
             ("groove_sigma", self.groove_sigma.is_some()),
             ("efficiency", self.efficiency.is_some()),
+            ("reading", self.reading.is_some()),
         ]
     }
 }

@@ -279,6 +279,24 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
         None => GratingBsdf::new(grating),
         Some(spread) => GratingBsdf::new(grating).with_groove(spread),
     };
+    // `reading` reads a preset's table; a file's cover is not read, and the amplitude
+    // reading has no table.
+    let reduced = match (g.reading.as_deref(), g.efficiency.as_deref()) {
+        (None | Some("classical"), _) => false,
+        (Some("reduced"), Some(name)) if name.parse::<Preset>().is_ok() => true,
+        (Some("reduced"), _) => {
+            return Err(FieldError::new(
+                f("reading"),
+                "\"reduced\" reads a preset's table (efficiency = \"cd\", \"dvd\", \"blazed600\"                  or \"foil\"); a table file is read as it is (grating-table builds conical ones)",
+            ))
+        }
+        (Some(other), _) => {
+            return Err(FieldError::new(
+                f("reading"),
+                format!("expected \"classical\" or \"reduced\", got {other:?}"),
+            ))
+        }
+    };
     match g.efficiency.as_deref() {
         None | Some("amplitude") => Ok(bsdf),
         // A table file, read by the loader.
@@ -315,7 +333,16 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
                     ),
                 ));
             }
-            bsdf.with_efficiency(OrderEfficiency::preset(preset))
+            let efficiency = if reduced {
+                let table = preset
+                    .reduced_table()
+                    .map_err(|e| model_error(g, path, e))?;
+                OrderEfficiency::from_table(std::sync::Arc::new(table))
+                    .map_err(|e| model_error(g, path, e))?
+            } else {
+                OrderEfficiency::preset(preset)
+            };
+            bsdf.with_efficiency(efficiency)
                 .map_err(|e| model_error(g, path, e))
         }
     }

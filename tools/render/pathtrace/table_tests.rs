@@ -102,6 +102,60 @@ fn a_reduced_conical_table_file_loads() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `reading = "reduced"` reads a preset conically (`Preset::reduced_table`); anything else
+/// than a preset with it, or another reading, is refused naming `reading`.
+#[test]
+fn a_preset_read_reduced_is_a_conical_table() {
+    let dir = scratch("reading");
+    let mut scene = load(&dir, &scene_src("cd", "reading = \"reduced\"\n")).unwrap();
+    let g = scene.materials[0].grating.as_ref().unwrap();
+    let e = g.model.order_efficiency();
+    assert!(e.table().unwrap().is_reduced());
+    assert_eq!(g.model.grating().period_nm(), 1600.0);
+    // The default, and "classical", read the preset's classical table.
+    for extra in ["", "reading = \"classical\"\n"] {
+        let s = load(&dir, &scene_src("cd", extra)).unwrap();
+        let g = s.materials[0].grating.as_ref().unwrap();
+        assert!(
+            !g.model.order_efficiency().table().unwrap().is_conical(),
+            "{extra:?}"
+        );
+    }
+    std::fs::write(dir.join("tables/t.json"), TABLE).unwrap();
+    let field = "field objects[0].material.reading: ";
+    for (efficiency, extra, why) in [
+        ("tables/t.json", "", "\"reduced\" reads a preset's table"),
+        (
+            "amplitude",
+            "period_nm = 1000.0\n",
+            "\"reduced\" reads a preset's table",
+        ),
+        (
+            "cd",
+            "",
+            "expected \"classical\" or \"reduced\", got \"conical\"",
+        ),
+    ] {
+        let reading = if efficiency == "cd" {
+            "conical"
+        } else {
+            "reduced"
+        };
+        let extra = format!("{extra}reading = \"{reading}\"\n");
+        let e = load(&dir, &scene_src(efficiency, &extra)).unwrap_err();
+        assert!(e.contains(&format!("{field}{why}")), "{e}");
+    }
+    // Both integrators render it, finite (the Whitted one by the generic colour path).
+    scene.settings.width = 8;
+    scene.settings.height = 6;
+    scene.settings.spp = 2;
+    for integrator in [Integrator::Path, Integrator::Whitted] {
+        let img = integrator.render(&scene, &scene.camera, None);
+        assert!(img.pixels.iter().all(|p| p.is_finite()), "{integrator:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn a_hostile_table_file_is_refused_naming_the_field() {
     let dir = scratch("hostile");
