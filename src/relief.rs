@@ -25,6 +25,7 @@
 //! # Ok::<(), diffraction::Error>(())
 //! ```
 
+mod cover;
 mod fresnel;
 mod metal;
 mod scalar;
@@ -32,6 +33,7 @@ mod shape;
 mod table;
 mod validity;
 
+pub use cover::polycarbonate_index;
 pub use metal::{Metal, MAX_INDEX};
 pub use scalar::{
     Polarised, ReliefOrder, ReliefOrders, ScalarRelief, MAX_PERIOD_NM, MAX_RELIEF_ORDER,

@@ -185,12 +185,9 @@ impl Preset {
         self.table().period_nm
     }
 
-    /// The refractive index of the preset's cover at `lambda_nm` (1 for the bare `Blazed600`
-    /// and `Foil`): polycarbonate for `Cd` and `Dvd`, the Sellmeier fit of N. Sultanova,
-    /// S. Kasarova and I. Nikolov, "Dispersion properties of optical polymers", Acta Physica
-    /// Polonica A 116, 585 (2009), n² = 1 + 1.4182/(1 − 0.021304 µm²/λ²), the cover the
-    /// tables were solved with (n = 1.589 at 550 nm). Defined above the pole λ = 146 nm; 1
-    /// elsewhere and for λ not finite.
+    /// The refractive index of the preset's cover at `lambda_nm`: polycarbonate for `Cd` and
+    /// `Dvd` ([`polycarbonate_index`](crate::relief::polycarbonate_index), the cover the tables
+    /// were solved with), 1 for the bare `Blazed600` and `Foil`.
     ///
     /// ```
     /// use diffraction::relief::Preset;
@@ -200,16 +197,7 @@ impl Preset {
     #[must_use]
     pub fn cover_index(self, lambda_nm: f64) -> f64 {
         match self {
-            Preset::Cd | Preset::Dvd => {
-                let l_um = lambda_nm * 1e-3;
-                // c/λ² in two divisions: no overflow of λ² for large λ.
-                let q = 1.0 - 0.021304 / l_um / l_um;
-                if q > 0.0 && q.is_finite() {
-                    crate::num::math::sqrt(1.0 + 1.4182 / q)
-                } else {
-                    1.0
-                }
-            }
+            Preset::Cd | Preset::Dvd => crate::relief::polycarbonate_index(lambda_nm),
             Preset::Blazed600 | Preset::Foil => 1.0,
         }
     }

@@ -117,7 +117,7 @@ pub struct Loader<'a> {
     /// The scene's name, for the inputs' descriptions.
     pub scene: &'a str,
     images: HashMap<PathBuf, Arc<ImageTexture>>,
-    tables: HashMap<PathBuf, Arc<EfficiencyTable>>,
+    tables: HashMap<PathBuf, TableFile>,
     texels: u64,
     gratings: std::collections::HashSet<String>,
     /// The texture and table files read (inputs of the run, never written over).
@@ -256,8 +256,9 @@ impl<'a> Loader<'a> {
     /// `path`: a regular file of at most [`limits::MAX_TABLE_BYTES`] (its type and size checked
     /// before it is opened, so a FIFO or a device is refused without blocking, and read
     /// through a `take`), UTF-8, the JSON of docs/efficiency_tables.md read by the library's
-    /// bounded reader. One file is read once however many materials name it.
-    fn table(&mut self, name: &str, path: &str) -> Check<Arc<EfficiencyTable>> {
+    /// bounded reader, and its `grating.cover`. One file is read once however many materials
+    /// name it.
+    fn table(&mut self, name: &str, path: &str) -> Check<TableFile> {
         use std::io::Read;
         let file = self.base.join(name);
         let key = file.canonicalize().unwrap_or_else(|_| file.clone());
@@ -299,7 +300,16 @@ impl<'a> Loader<'a> {
         })?;
         let table = serde_json::from_str::<EfficiencyTable>(&text)
             .map_err(|e| err(format!("the table {name:?}: {e}")))?;
-        let t = Arc::new(table);
+        // The cover (`grating.cover`, which the library's reader does not keep); the file
+        // parsed as a table above, so this reading of it cannot fail on its syntax.
+        let cover = serde_json::from_str::<Head>(&text)
+            .ok()
+            .and_then(|h| h.grating)
+            .and_then(|g| g.cover);
+        let t = TableFile {
+            table: Arc::new(table),
+            cover,
+        };
         self.tables.insert(key, t.clone());
         self.inputs.push(Input::new(
             format!("an efficiency table of {}", self.scene),
@@ -352,7 +362,7 @@ impl<'a> Loader<'a> {
             (Some(d), None) => check(&f("period_nm"), d, limits::PERIOD_NM)?,
             (None, Some(l)) => 1.0e6 / check(&f("lines_per_mm"), l, limits::LINES_PER_MM)?,
             // A table's period.
-            (None, None) if table.is_some() => table.as_ref().map_or(0.0, |t| t.period_nm()),
+            (None, None) if table.is_some() => table.as_ref().map_or(0.0, |t| t.table.period_nm()),
             (None, None) => match g.efficiency.as_deref().map(str::parse::<Preset>) {
                 // A preset's table fixes the period.
                 Some(Ok(preset)) => preset.period_nm(),
@@ -379,9 +389,9 @@ impl<'a> Loader<'a> {
             limits::COEFFICIENT,
         )?;
         let model = match table {
-            Some(table) => {
+            Some(file) => {
                 let mut with = g.clone();
-                with.table = Some(table);
+                (with.table, with.table_cover) = (Some(file.table), file.cover);
                 P::grating(name, &with, period, path)?
             }
             None => P::grating(name, g, period, path)?,
@@ -429,6 +439,25 @@ impl<'a> Loader<'a> {
         };
         Ok((grating, kdiff))
     }
+}
+
+/// An efficiency table file as read: the table and its `grating.cover` (`"none"`,
+/// `"polycarbonate"`, or absent).
+#[derive(Clone)]
+struct TableFile {
+    table: Arc<EfficiencyTable>,
+    cover: Option<String>,
+}
+
+/// The part of a table file the library's reader skips: `grating.cover`.
+#[derive(serde::Deserialize)]
+struct Head {
+    grating: Option<HeadGrating>,
+}
+
+#[derive(serde::Deserialize)]
+struct HeadGrating {
+    cover: Option<String>,
 }
 
 /// Whether `file` is the shipped can label (`tools/render/assets/label.png`), compared after

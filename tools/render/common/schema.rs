@@ -245,15 +245,20 @@ pub struct RawGrating {
     /// `limits::MAX_TABLE_BYTES`, a regular file). A preset's or a table's period is then the
     /// default `period_nm`.
     pub efficiency: Option<String>,
-    /// How a preset's table is read off the plane across the grooves: "classical" (default:
-    /// the classical mount, which the Whitted integrator's colour tables hold) or "reduced"
-    /// (`Preset::reduced_table`: in reduced coordinates in the cover's medium, a conical table
-    /// the path tracer reads at the full incident direction; the Whitted integrator then
-    /// colours it by the generic path). Only with a preset `efficiency`.
+    /// How a classical table (a preset, or a version-1 table file) is read off the plane across
+    /// the grooves: "classical" (default: the classical mount, which the Whitted integrator's
+    /// colour tables hold) or "reduced" (`EfficiencyTable::reduced_from_classical`: in reduced
+    /// coordinates in the cover's medium, the file's `grating.cover`, "none" or
+    /// "polycarbonate"; a conical table the path tracer reads at the full incident direction,
+    /// and the Whitted integrator colours by the generic path).
     pub reading: Option<String>,
     /// The table `efficiency` names, read by the loader (not a key of the file).
     #[serde(skip)]
     pub table: Option<std::sync::Arc<diffraction::relief::EfficiencyTable>>,
+    /// The `grating.cover` of that table's file (`"none"`, `"polycarbonate"`), read by the
+    /// loader (not a key of the file).
+    #[serde(skip)]
+    pub table_cover: Option<String>,
 }
 
 /// The grating models a scene names (`model`) and the parameters each takes; which of them a

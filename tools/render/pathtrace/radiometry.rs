@@ -279,15 +279,16 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
         None => GratingBsdf::new(grating),
         Some(spread) => GratingBsdf::new(grating).with_groove(spread),
     };
-    // `reading` reads a preset's table; a file's cover is not read, and the amplitude
-    // reading has no table.
+    // `reading` reads a classical table: a preset's or a file's (the amplitude reading has no
+    // table).
     let reduced = match (g.reading.as_deref(), g.efficiency.as_deref()) {
         (None | Some("classical"), _) => false,
-        (Some("reduced"), Some(name)) if name.parse::<Preset>().is_ok() => true,
+        (Some("reduced"), Some(name)) if name != "amplitude" => true,
         (Some("reduced"), _) => {
             return Err(FieldError::new(
                 f("reading"),
-                "\"reduced\" reads a preset's table (efficiency = \"cd\", \"dvd\", \"blazed600\"                  or \"foil\"); a table file is read as it is (grating-table builds conical ones)",
+                "\"reduced\" reads a table: a preset's (efficiency = \"cd\", \"dvd\", \
+                 \"blazed600\" or \"foil\") or a file's, not the amplitude reading",
             ))
         }
         (Some(other), _) => {
@@ -314,6 +315,30 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
                     ),
                 ));
             }
+            let table = if reduced {
+                // The cover the file names; a conical file is refused by the library (`table`).
+                let index: fn(f64) -> f64 = match g.table_cover.as_deref() {
+                    None | Some("none") => |_| 1.0,
+                    Some("polycarbonate") => diffraction::relief::polycarbonate_index,
+                    Some(other) => {
+                        return Err(FieldError::new(
+                            f("reading"),
+                            format!(
+                                "the table {name:?} names the cover {other:?}: \"reduced\" knows \
+                                 \"none\" and \"polycarbonate\""
+                            ),
+                        ))
+                    }
+                };
+                let reduced = table
+                    .reduced_from_classical(&diffraction::relief::REDUCED_PLANES, index)
+                    .map_err(|e| {
+                        FieldError::new(f("reading"), format!("the table {name:?}: {e}"))
+                    })?;
+                std::sync::Arc::new(reduced)
+            } else {
+                table
+            };
             let efficiency =
                 OrderEfficiency::from_table(table).map_err(|e| model_error(g, path, e))?;
             bsdf.with_efficiency(efficiency)

@@ -102,10 +102,11 @@ fn a_reduced_conical_table_file_loads() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `reading = "reduced"` reads a preset conically (`Preset::reduced_table`); anything else
-/// than a preset with it, or another reading, is refused naming `reading`.
+/// `reading = "reduced"` reads a preset or a classical table file conically
+/// (`reduced_from_classical`); the amplitude reading, a conical file, a cover it does not know
+/// or another reading is refused naming `reading`.
 #[test]
-fn a_preset_read_reduced_is_a_conical_table() {
+fn a_classical_table_read_reduced_is_a_conical_table() {
     let dir = scratch("reading");
     let mut scene = load(&dir, &scene_src("cd", "reading = \"reduced\"\n")).unwrap();
     let g = scene.materials[0].grating.as_ref().unwrap();
@@ -116,24 +117,44 @@ fn a_preset_read_reduced_is_a_conical_table() {
     for extra in ["", "reading = \"classical\"\n"] {
         let s = load(&dir, &scene_src("cd", extra)).unwrap();
         let g = s.materials[0].grating.as_ref().unwrap();
-        assert!(
-            !g.model.order_efficiency().table().unwrap().is_conical(),
-            "{extra:?}"
-        );
+        let e = g.model.order_efficiency();
+        assert!(!e.table().unwrap().is_conical(), "{extra:?}");
     }
+    // A classical file is read reduced with its cover (none here).
     std::fs::write(dir.join("tables/t.json"), TABLE).unwrap();
+    let s = load(&dir, &scene_src("tables/t.json", "reading = \"reduced\"\n")).unwrap();
+    let e = s.materials[0]
+        .grating
+        .as_ref()
+        .unwrap()
+        .model
+        .order_efficiency();
+    assert!(e.table().unwrap().is_reduced());
+    std::fs::write(dir.join("tables/v3.json"), TABLE_V3).unwrap();
+    let glass = TABLE.replace("\"cover\": \"none\"", "\"cover\": \"glass\"");
+    assert!(glass.contains("glass"));
+    std::fs::write(dir.join("tables/glass.json"), glass).unwrap();
     let field = "field objects[0].material.reading: ";
     for (efficiency, extra, why) in [
-        ("tables/t.json", "", "\"reduced\" reads a preset's table"),
         (
             "amplitude",
             "period_nm = 1000.0\n",
-            "\"reduced\" reads a preset's table",
+            "\"reduced\" reads a table",
         ),
         (
             "cd",
             "",
             "expected \"classical\" or \"reduced\", got \"conical\"",
+        ),
+        (
+            "tables/v3.json",
+            "",
+            "the table \"tables/v3.json\": invalid table = 1: must be a classical table",
+        ),
+        (
+            "tables/glass.json",
+            "",
+            "the table \"tables/glass.json\" names the cover \"glass\"",
         ),
     ] {
         let reading = if efficiency == "cd" {
@@ -142,7 +163,9 @@ fn a_preset_read_reduced_is_a_conical_table() {
             "reduced"
         };
         let extra = format!("{extra}reading = \"{reading}\"\n");
-        let e = load(&dir, &scene_src(efficiency, &extra)).unwrap_err();
+        let Err(e) = load(&dir, &scene_src(efficiency, &extra)) else {
+            panic!("{efficiency} with {extra:?} loaded");
+        };
         assert!(e.contains(&format!("{field}{why}")), "{e}");
     }
     // Both integrators render it, finite (the Whitted one by the generic colour path).
