@@ -140,6 +140,21 @@ fn pct((h, n): (usize, usize)) -> f64 {
     100.0 * h as f64 / n.max(1) as f64
 }
 
+/// The presets' measurement incidences: θ = 20, 40, 60°, φ = 0, 30, 60, 80°, λ = 450, 550,
+/// 650 nm, as (φ, α, β, λ) with α = sin θ·cos φ across and β = sin θ·sin φ along the grooves.
+fn incidences() -> Vec<(f64, f64, f64, f64)> {
+    let mut out = Vec::new();
+    for theta in [20.0f64, 40.0, 60.0] {
+        for phi in [0.0f64, 30.0, 60.0, 80.0] {
+            for lambda in [450.0, 550.0, 650.0] {
+                let (t, p) = (theta.to_radians(), phi.to_radians());
+                out.push((phi, t.sin() * p.cos(), t.sin() * p.sin(), lambda));
+            }
+        }
+    }
+    out
+}
+
 #[test]
 #[ignore = "about 10 minutes of solves: a measurement, run with --ignored --nocapture"]
 fn conical_reading_before_and_after() {
@@ -655,46 +670,40 @@ fn reduced_reading_of_a_classical_table() {
         ("blazed600", bare(1e6 / 600.0, Profile::Sawtooth { blaze })),
     ] {
         let mut by_phi: std::collections::BTreeMap<i64, [Vec<(f64, f64)>; 3]> = Default::default();
-        for theta in [20.0f64, 40.0, 60.0] {
-            for phi in [0.0f64, 30.0, 60.0, 80.0] {
-                for lambda in [450.0, 550.0, 650.0] {
-                    let (t, p) = (theta.to_radians(), phi.to_radians());
-                    let (alpha, beta) = (t.sin() * p.cos(), t.sin() * p.sin());
-                    let conical = single
-                        .solve_at(
-                            &cd,
-                            Incidence::from_cosines(alpha, beta, lambda).unwrap(),
-                            nh,
-                        )
-                        .unwrap();
-                    let classical = single
-                        .solve_at(&cd, Incidence::classical(alpha, lambda).unwrap(), nh)
-                        .unwrap();
-                    let c = (1.0 - beta * beta).sqrt();
-                    let red = single
-                        .solve_at(
-                            &cd,
-                            Incidence::classical(alpha / c, lambda / c).unwrap(),
-                            nh,
-                        )
-                        .unwrap();
-                    // The reduction inside the cover: its direction cosines are α/n and β/n.
-                    let n = cd.cover.map_or(1.0, |c| c.index.at(lambda).unwrap());
-                    let cn = (1.0 - beta * beta / (n * n)).sqrt();
-                    let red_n = single
-                        .solve_at(
-                            &cd,
-                            Incidence::classical(alpha / cn, lambda / cn).unwrap(),
-                            nh,
-                        )
-                        .unwrap();
-                    let e = by_phi.entry(phi as i64).or_default();
-                    for o in &conical.orders {
-                        e[0].push((o.unpolarised(), unpolarised(&classical, o.m)));
-                        e[1].push((o.unpolarised(), unpolarised(&red, o.m)));
-                        e[2].push((o.unpolarised(), unpolarised(&red_n, o.m)));
-                    }
-                }
+        for (phi, alpha, beta, lambda) in incidences() {
+            let conical = single
+                .solve_at(
+                    &cd,
+                    Incidence::from_cosines(alpha, beta, lambda).unwrap(),
+                    nh,
+                )
+                .unwrap();
+            let classical = single
+                .solve_at(&cd, Incidence::classical(alpha, lambda).unwrap(), nh)
+                .unwrap();
+            let c = (1.0 - beta * beta).sqrt();
+            let red = single
+                .solve_at(
+                    &cd,
+                    Incidence::classical(alpha / c, lambda / c).unwrap(),
+                    nh,
+                )
+                .unwrap();
+            // The reduction inside the cover: its direction cosines are α/n and β/n.
+            let n = cd.cover.map_or(1.0, |c| c.index.at(lambda).unwrap());
+            let cn = (1.0 - beta * beta / (n * n)).sqrt();
+            let red_n = single
+                .solve_at(
+                    &cd,
+                    Incidence::classical(alpha / cn, lambda / cn).unwrap(),
+                    nh,
+                )
+                .unwrap();
+            let e = by_phi.entry(phi as i64).or_default();
+            for o in &conical.orders {
+                e[0].push((o.unpolarised(), unpolarised(&classical, o.m)));
+                e[1].push((o.unpolarised(), unpolarised(&red, o.m)));
+                e[2].push((o.unpolarised(), unpolarised(&red_n, o.m)));
             }
         }
         println!("(b) {name} preset grating, conical solve at {nh} harmonics: phi  orders  classical-reading  reduced-reading  reduced-in-the-cover");
@@ -754,38 +763,32 @@ fn reduced_tables_of_the_presets() {
             cover,
         };
         let mut by_phi: std::collections::BTreeMap<i64, [Vec<(f64, f64)>; 3]> = Default::default();
-        for theta in [20.0f64, 40.0, 60.0] {
-            for phi in [0.0f64, 30.0, 60.0, 80.0] {
-                for lambda in [450.0, 550.0, 650.0] {
-                    let (t, p) = (theta.to_radians(), phi.to_radians());
-                    let (alpha, beta) = (t.sin() * p.cos(), t.sin() * p.sin());
-                    let conical = single
-                        .solve_at(
-                            &g,
-                            Incidence::from_cosines(alpha, beta, lambda).unwrap(),
-                            nh,
-                        )
-                        .unwrap();
-                    let e = by_phi.entry(phi as i64).or_default();
-                    for o in &conical.orders {
-                        let want = o.unpolarised();
-                        let read = |t: &EfficiencyTable| {
-                            t.efficiency_conical(o.m, alpha, beta, lambda).unpolarised()
-                        };
-                        // The direct reading: the classical table at (α, λ)/c in the cover.
-                        let n = index(lambda);
-                        let cn = (1.0 - beta * beta / (n * n)).sqrt();
-                        let direct = table.efficiency(o.m, alpha / cn, lambda / cn).unpolarised();
-                        let got = [read(&table), read(&reduced), direct];
-                        if phi > 0.0 {
-                            band[usize::from(lambda / cn > 830.0)].push((want, got[1]));
-                        }
-                        for (k, &g) in got.iter().enumerate() {
-                            e[k].push((want, g));
-                            if phi > 0.0 {
-                                all[k].push((want, g));
-                            }
-                        }
+        for (phi, alpha, beta, lambda) in incidences() {
+            let conical = single
+                .solve_at(
+                    &g,
+                    Incidence::from_cosines(alpha, beta, lambda).unwrap(),
+                    nh,
+                )
+                .unwrap();
+            let e = by_phi.entry(phi as i64).or_default();
+            for o in &conical.orders {
+                let want = o.unpolarised();
+                let read = |t: &EfficiencyTable| {
+                    t.efficiency_conical(o.m, alpha, beta, lambda).unpolarised()
+                };
+                // The direct reading: the classical table at (α, λ)/c in the cover.
+                let n = index(lambda);
+                let cn = (1.0 - beta * beta / (n * n)).sqrt();
+                let direct = table.efficiency(o.m, alpha / cn, lambda / cn).unpolarised();
+                let got = [read(&table), read(&reduced), direct];
+                if phi > 0.0 {
+                    band[usize::from(lambda / cn > 830.0)].push((want, got[1]));
+                }
+                for (k, &g) in got.iter().enumerate() {
+                    e[k].push((want, g));
+                    if phi > 0.0 {
+                        all[k].push((want, g));
                     }
                 }
             }

@@ -43,6 +43,18 @@ fn load(dir: &Path, src: &str) -> Result<scene::Scene<Radiometric>, String> {
     scene::load::<Radiometric>(&file).map_err(|e| e.to_string())
 }
 
+/// Renders `scene` at 8 × 6 pixels and 2 samples a pixel with both integrators: every pixel
+/// finite.
+fn renders_finite(scene: &mut scene::Scene<Radiometric>) {
+    scene.settings.width = 8;
+    scene.settings.height = 6;
+    scene.settings.spp = 2;
+    for integrator in [Integrator::Path, Integrator::Whitted] {
+        let img = integrator.render(scene, &scene.camera, None);
+        assert!(img.pixels.iter().all(|p| p.is_finite()), "{integrator:?}");
+    }
+}
+
 #[test]
 fn a_table_file_is_the_gratings_efficiencies_and_period() {
     let dir = scratch("ok");
@@ -71,13 +83,7 @@ fn a_table_file_is_the_gratings_efficiencies_and_period() {
         )
     );
     // Both integrators render it, finite.
-    scene.settings.width = 8;
-    scene.settings.height = 6;
-    scene.settings.spp = 2;
-    for integrator in [Integrator::Path, Integrator::Whitted] {
-        let img = integrator.render(&scene, &scene.camera, None);
-        assert!(img.pixels.iter().all(|p| p.is_finite()), "{integrator:?}");
-    }
+    renders_finite(&mut scene);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -169,13 +175,7 @@ fn a_classical_table_read_reduced_is_a_conical_table() {
         assert!(e.contains(&format!("{field}{why}")), "{e}");
     }
     // Both integrators render it, finite (the Whitted one by the generic colour path).
-    scene.settings.width = 8;
-    scene.settings.height = 6;
-    scene.settings.spp = 2;
-    for integrator in [Integrator::Path, Integrator::Whitted] {
-        let img = integrator.render(&scene, &scene.camera, None);
-        assert!(img.pixels.iter().all(|p| p.is_finite()), "{integrator:?}");
-    }
+    renders_finite(&mut scene);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
