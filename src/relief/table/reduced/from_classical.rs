@@ -35,8 +35,8 @@ impl EfficiencyTable {
     /// (α_m, β) (so η → 0 at an order's cut-off in air; a node whose sum this lifts above 1 is
     /// scaled back to 1). Orders that propagate in the cover but not in air are 0 (one pass:
     /// they are trapped). For a perfect conductor in air the reading is exact; for the four
-    /// presets' tables it puts 79.0 % of the conical orders with η ≥ 1 % within 10 % of a
-    /// conical solve at azimuths 30-80°, where their classical reading puts 41.0 %
+    /// presets' tables it puts 78.8 % of the conical orders with η ≥ 1 % within 10 % of a
+    /// conical solve at azimuths 30-80°, where their classical reading puts 41.2 %
     /// (`docs/validity.md`, "Conical incidence").
     ///
     /// The table has one plane per `abs_beta` ([`REDUCED_PLANES`] is a good choice), the
