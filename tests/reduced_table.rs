@@ -572,6 +572,15 @@ fn reading_a_table_reduced_refuses_bad_input_naming_it() {
         let e = foil.reduced_from_classical(planes, |_| 1.0).unwrap_err();
         assert_eq!(e.parameter(), "abs_beta", "{planes:?}");
     }
+    // Too many planes for MAX_TABLE_VALUES: refused before any work (4000 planes of the CD,
+    // 17 orders × 25 s′ × about 27 rows each).
+    let many: Vec<f64> = (0..4000).map(|i| 0.9 * f64::from(i) / 4000.0).collect();
+    let e = Preset::Cd
+        .table()
+        .reduced_from_classical(&many, |_| 1.0)
+        .unwrap_err();
+    assert_eq!(e.parameter(), "abs_beta");
+    assert!(e.to_string().contains("MAX_TABLE_VALUES"), "{e}");
     // Two planes are enough; so is one starting above 0 (queries below it read it).
     assert!(foil
         .reduced_from_classical(&[0.0, 0.99999], |_| 1.0)

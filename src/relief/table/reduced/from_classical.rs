@@ -6,7 +6,7 @@
 use alloc::vec::Vec;
 
 use super::super::load::check_axis;
-use super::super::{EfficiencyTable, MAX_TABLE_ABS_BETA, MAX_TABLE_NODES};
+use super::super::{EfficiencyTable, MAX_TABLE_ABS_BETA, MAX_TABLE_NODES, MAX_TABLE_VALUES};
 use super::{cb, ReducedGrid};
 use crate::error::{Error, Requirement};
 use crate::num::math;
@@ -54,7 +54,9 @@ impl EfficiencyTable {
     /// - `cover_index` ([`Requirement::AtLeast`] 1): an index below 1 or not finite at a
     ///   wavelength of the band.
     /// - `abs_beta`: as [`new_reduced`](Self::new_reduced) (at least 2 planes, strictly
-    ///   increasing in [0, 0.99999]); `lambda_nm` when a plane would need more than
+    ///   increasing in [0, 0.99999]); and ([`Requirement::AtMost`], the value the count) when
+    ///   the table would hold more than [`MAX_TABLE_VALUES`] values per polarisation, checked
+    ///   before anything is read. `lambda_nm` when a plane would need more than
     ///   [`MAX_TABLE_NODES`] wavelengths.
     ///
     /// ```
@@ -154,7 +156,16 @@ impl EfficiencyTable {
             classical_rows.push(nodes);
         }
         let (n_s, rows, orders) = (sin.len(), grid.rows(), self.order_count());
+        // Bounded before anything is allocated or read (n_s, rows ≤ 4096·4097: no overflow).
         let slice = n_s * rows;
+        if slice.saturating_mul(orders) > MAX_TABLE_VALUES {
+            let requirement = Requirement::AtMost {
+                bound_name: "MAX_TABLE_VALUES",
+                bound: MAX_TABLE_VALUES as f64,
+            };
+            let values = slice as f64 * orders as f64;
+            return Err(Error::invalid("abs_beta", values, requirement));
+        }
         let mut te = alloc::vec![0.0; orders * slice];
         let mut tm = alloc::vec![0.0; orders * slice];
         let mut out = alloc::vec![Polarised::default(); orders];
