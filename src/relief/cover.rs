@@ -7,16 +7,20 @@ use crate::num::math;
 /// Polonica A 116, 585 (2009), n² = 1 + 1.4182/(1 − 0.021304 µm²/λ²), fitted over
 /// 437-1052 nm (n = 1.642 at 360 nm, 1.589 at 550 nm, 1.570 at 830 nm): the cover of the `cd`
 /// and `dvd` presets and of `grating-table --cover polycarbonate`. Defined above its pole
-/// λ = 146 nm; 1 at or below it and for λ not finite.
+/// λ = 146 nm; 1 at or below it (negative λ included) and for λ not finite.
 ///
 /// ```
 /// use diffraction::relief::polycarbonate_index;
 /// assert!((polycarbonate_index(550.0) - 1.589).abs() < 1e-3);
 /// assert_eq!(polycarbonate_index(100.0), 1.0);
 /// assert_eq!(polycarbonate_index(f64::NAN), 1.0);
+/// assert_eq!(polycarbonate_index(-550.0), 1.0);
 /// ```
 #[must_use]
 pub fn polycarbonate_index(lambda_nm: f64) -> f64 {
+    if !(lambda_nm.is_finite() && lambda_nm > 0.0) {
+        return 1.0;
+    }
     let l_um = lambda_nm * 1e-3;
     // c/λ² in two divisions: no overflow of λ² for large λ.
     let q = 1.0 - 0.021304 / l_um / l_um;
