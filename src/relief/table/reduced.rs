@@ -144,6 +144,7 @@ impl Reduced<'_> {
     /// grazing incidence on the grid): s′, |β| and λ clamped to the axes and the band (the
     /// query is then the clamped point), λ′ = λ/c; plane p read at λ·c_p/c (clamped to its
     /// nodes, which only rounding can leave), the planes blended linearly in c.
+    #[inline]
     pub(super) fn find(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Option<Cell3> {
         if !(alpha.is_finite() && beta.is_finite() && lambda_nm.is_finite()) {
             return None;
@@ -184,6 +185,11 @@ impl Reduced<'_> {
         let cell_index = self.slab_offset(k) + (j[0] + j[1]) * (n_s - 1) + i;
         let mut cell = Cell3::empty(sp * c, b * b, lambda_nm, cos_i, cell_index);
         let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };
+        // The two s′ nodes' √(1 − s′²), shared by the planes' corners.
+        let root = [
+            math::sqrt(1.0 - sin[i] * sin[i]),
+            math::sqrt(1.0 - sin[i + 1] * sin[i + 1]),
+        ];
         for n in 0..8 {
             let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
             cell.w[n] = wt(di, tx) * wt(dk, tb) * wt(dj, ty[dk]);
@@ -191,7 +197,7 @@ impl Reduced<'_> {
             cell.a_c[n] = s_n * cp[dk];
             cell.b2_c[n] = b_n * b_n;
             cell.l_c[n] = self.plane(k + dk)[j[dk] + dj];
-            cell.cos_c[n] = cp[dk] * math::sqrt(1.0 - s_n * s_n);
+            cell.cos_c[n] = cp[dk] * root[di];
             cell.index[n] = (self.rows[k + dk] + j[dk] + dj) * n_s + i + di;
         }
         Some(cell)
