@@ -4,7 +4,9 @@
 //! extreme direction (grazing, |β| → 1, exactly on nodes, α² + β² ≥ 1, subnormals), the
 //! tabulated `GratingBsdf` built on them (`eval`, `eval4`, `pdf`, `pdf4`, `sample`, `sample4`,
 //! `albedo`), and the classical table's fast reading through the same BSDF at its own extremes
-//! (exactly on cell boundaries, on Rayleigh lines, at and past the table's edges).
+//! (exactly on cell boundaries, on Rayleigh lines, at and past the table's edges), and that
+//! table read reduced (`reduced_from_classical`, random planes and covers) through the same
+//! queries and BSDF.
 //!
 //! Every accepted input must give finite, non-negative outputs with Σ η ≤ 1, sample weights
 //! within `sample_weight_bound`, f reciprocal and `eval4`/`pdf4` equal to `eval`/`pdf` at each
@@ -80,6 +82,8 @@ struct Tally {
     bsdf_calls: u64,
     bsdf_refused: u64,
     classical_bsdf_calls: u64,
+    from_classical_built: u64,
+    from_classical_refused: u64,
 }
 
 /// A number from [`EXTREMES`], or random in a range, or a random bit pattern's float.
@@ -743,6 +747,16 @@ fn sweep_with(cases: usize, seed: u64) {
             _ => presets[case % presets.len()].clone(),
         };
         sweep_classical(&classical, &mut r, &mut tally);
+        // The same table read reduced, with random planes and a random cover.
+        if let Some(t) = from_classical(&classical, &mut r, &mut tally) {
+            let t = Arc::new(t);
+            for lambda in wavelengths(&mut r, &t) {
+                for (a, b) in directions(&mut r, &t) {
+                    check_query(&t, a, b, lambda, &mut tally);
+                }
+            }
+            sweep_bsdf(&t, &mut r, case, &mut tally);
+        }
     }
     println!("{cases} cases (seed {seed:#x}): {tally:?}");
     assert!(
@@ -761,6 +775,44 @@ fn sweep_with(cases: usize, seed: u64) {
         tally.bsdf_calls > 0 && tally.classical_bsdf_calls > 0,
         "{tally:?}"
     );
+    assert!(
+        tally.from_classical_built > 0 && tally.from_classical_refused > 0,
+        "{tally:?}"
+    );
+}
+
+/// `reduced_from_classical` of `t` at random planes (the default ones, a random axis, or one
+/// with extreme values) and a random cover index (1, polycarbonate, a constant up to 4, or a
+/// bad one: NaN, below 1, infinite): a table, or a refusal naming its field.
+fn from_classical(t: &EfficiencyTable, r: &mut Rng, tally: &mut Tally) -> Option<EfficiencyTable> {
+    let planes = match r.next_u64() % 3 {
+        0 => diffraction::relief::REDUCED_PLANES.to_vec(),
+        1 => axis(r, 0.0, MAX_TABLE_ABS_BETA, false),
+        _ => vec![0.0, value(r, 0.0, 1.0)],
+    };
+    let constant = 1.0 + 3.0 * r.next_f64();
+    let bad = [f64::NAN, 0.5, f64::INFINITY][(r.next_u64() % 3) as usize];
+    let kind = r.next_u64() % 8;
+    let index = move |l: f64| match kind {
+        0..=2 => 1.0,
+        3..=4 => diffraction::relief::polycarbonate_index(l),
+        5..=6 => constant,
+        _ => bad,
+    };
+    match t.reduced_from_classical(&planes, index) {
+        Ok(reduced) => {
+            assert!(reduced.is_reduced());
+            tally.from_classical_built += 1;
+            Some(reduced)
+        }
+        Err(e) => {
+            check_refusal(&e);
+            let named = ["abs_beta", "cover_index", "lambda_nm", "te", "tm", "table"];
+            assert!(named.contains(&e.parameter()), "{e}");
+            tally.from_classical_refused += 1;
+            None
+        }
+    }
 }
 
 #[test]
