@@ -475,10 +475,12 @@ fn transmittance(n: f64, sin2: f64) -> (f64, f64) {
     (ts * ts * ca / (n * cn), tp * tp * ca / (n * cn))
 }
 
-/// The real path's transmittances over the reduced problem's (index `n2` at λ″, sine `red`).
+/// The real path's unpolarised transmittance over the reduced problem's (index `n2` at λ″,
+/// sine `red`), for TE and TM alike.
 fn interfaces(n: f64, n2: f64, real2: f64, red: f64) -> (f64, f64) {
     let (a, b) = (transmittance(n, real2), transmittance(n2, red * red));
-    (a.0 / b.0, a.1 / b.1)
+    let ratio = (a.0 + a.1) / (b.0 + b.1);
+    (ratio, ratio)
 }
 
 #[test]
