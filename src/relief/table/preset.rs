@@ -206,7 +206,7 @@ impl Preset {
     /// cover's medium ([`EfficiencyTable::reduced_from_classical`] at the planes
     /// [`REDUCED_PLANES`](super::REDUCED_PLANES) with [`cover_index`](Self::cover_index);
     /// feature `alloc`): a conical table the BSDF reads at the full incident direction. For
-    /// the four presets it puts 80.3 % of the orders with η ≥ 1 % within 10 % of a conical
+    /// the four presets it puts 80.8 % of the orders with η ≥ 1 % within 10 % of a conical
     /// solve at azimuths 30-80°, where the classical reading of [`table`](Self::table) puts
     /// 41.2 % (`docs/validity.md`, "Conical incidence"). The colour tables (and so the
     /// Whitted integrator's colours) take classical tables only, and the GPU packs a conical
