@@ -223,23 +223,30 @@ impl EfficiencyTable {
 /// Past the classical band the table's edge was read at λ1, where more orders propagate than
 /// at λ″: the power of the orders that do not propagate at (s″, λ″) goes to those that do, in
 /// proportion (the scalar model's rule for evanescent power), per polarisation, so each sum
-/// stays the edge's. `lambda_over_d` = λ″/d.
+/// stays the edge's; the others are set to 0. `lambda_over_d` = λ″/d. Each kept value is
+/// scaled as (η/Σ kept)·Σ all, both factors at most 1: finite whatever the sums' size.
 fn redistribute(out: &mut [Polarised], sp: f64, lambda_over_d: f64, order_min: i32) {
+    let kept_at = |k: usize| {
+        let x = sp + (f64::from(order_min) + k as f64) * lambda_over_d;
+        x * x < 1.0
+    };
     let (mut all, mut kept) = ([0.0f64; 2], [0.0f64; 2]);
     for (k, e) in out.iter().enumerate() {
         all[0] += e.te;
         all[1] += e.tm;
-        let x = sp + (f64::from(order_min) + k as f64) * lambda_over_d;
-        if x * x < 1.0 {
+        if kept_at(k) {
             kept[0] += e.te;
             kept[1] += e.tm;
         }
     }
-    let f = |a: f64, k: f64| if k > 0.0 { a / k } else { 1.0 };
-    let (f_te, f_tm) = (f(all[0], kept[0]), f(all[1], kept[1]));
-    for e in out.iter_mut() {
-        e.te *= f_te;
-        e.tm *= f_tm;
+    let scale = |x: f64, kept: f64, all: f64| if kept > 0.0 { x / kept * all } else { x };
+    for (k, e) in out.iter_mut().enumerate() {
+        if kept_at(k) {
+            e.te = scale(e.te, kept[0], all[0]);
+            e.tm = scale(e.tm, kept[1], all[1]);
+        } else {
+            *e = Polarised::default();
+        }
     }
 }
 
