@@ -427,7 +427,7 @@ fn the_gpu_packs_the_first_plane() {
 /// `reduced_from_classical` of a bare grating (the foil): its planes map onto the classical
 /// nodes, so wherever λ″ = λ/c stays in the band the table reads the classical table at
 /// (α, λ)/c whatever β, to rounding; beyond the band (the extrapolation) and at any β its sums
-/// stay in [0, 1].
+/// stay in [0, 1], and at its nodes past the band they are the band edge's.
 #[test]
 fn a_bare_table_read_from_its_classical_one_is_the_reduced_reading() {
     use diffraction::relief::REDUCED_PLANES;
