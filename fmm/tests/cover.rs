@@ -95,3 +95,22 @@ fn trapped_light_returns_in_the_multiple_pass_sum() {
     assert!(b.0 > a.0 && b.1 > a.1);
     assert!(b.0 <= 1.0 && b.1 <= 1.0);
 }
+
+/// The library's `polycarbonate_index` (what `Preset::reduced_table` reduces the CD and DVD
+/// with) and this crate's `CoverIndex::POLYCARBONATE` (what their tables were solved with) are
+/// the same fit written twice: equal to the bit across and beyond the band.
+#[test]
+fn the_librarys_polycarbonate_is_the_solvers() {
+    use diffraction::relief::polycarbonate_index;
+    for k in 0..=400 {
+        let l = 150.0 + 10.0 * f64::from(k);
+        assert_eq!(
+            polycarbonate_index(l),
+            CoverIndex::POLYCARBONATE.at(l).unwrap(),
+            "{l}"
+        );
+    }
+    // Below the pole the solver refuses the index; the library reads it as 1.
+    assert!(CoverIndex::POLYCARBONATE.at(100.0).is_none());
+    assert_eq!(polycarbonate_index(100.0), 1.0);
+}
