@@ -6,11 +6,12 @@
 //! Each iteration runs a fixed batch of 1024 inputs (half of them within a few lobes of a peak,
 //! from the benches' shared generator), so criterion's per-element figure is ns per call.
 //! Targets: `sample` + `pdf` within 4× of `eval`; `f4` within 2× of one `f`. Beside them the
-//! CD preset's tabulated efficiencies (`cd_f`, `cd_f4`, `cd_pdf4`, `cd_sample_and_pdf`,
-//! `cd_sample4`, period 1600 nm as well): target within 1.5× of the amplitude model's `f`,
-//! `f4`, `pdf4`, `sample_and_pdf` and `sample4`. And the CD preset read conically
-//! (`cd_reduced_f`, `cd_reduced_sample_and_pdf`: `Preset::reduced_table`, a reduced conical
-//! table read by the general conical path).
+//! CD preset's classical table (`cd_f`, `cd_f4`, `cd_pdf4`, `cd_sample_and_pdf`, `cd_sample4`,
+//! period 1600 nm as well; `OrderEfficiency::from_static(Preset::Cd.table())`): target within
+//! 1.5× of the amplitude model's `f`, `f4`, `pdf4`, `sample_and_pdf` and `sample4`. And the CD
+//! preset as `GratingBsdf::preset` reads it, conically (`cd_reduced_f`,
+//! `cd_reduced_sample_and_pdf`: `Preset::conical_table`, a reduced conical table read by the
+//! general conical path).
 //!
 //! Measured (`cargo bench --all-features --bench bsdf -- --warm-up-time 1 --measurement-time
 //! 3`, four runs under a load of 4, median of the per-run ratios over N = 30, 1000, 10⁶;
@@ -43,12 +44,14 @@ fn bench(c: &mut Criterion) {
         let grating = Grating::new(PERIOD, PERIOD / 2.0, n).expect("valid grating");
         let paper = AguHill::new(grating);
         let bsdf = GratingBsdf::new(grating);
-        let cd = GratingBsdf::preset(Preset::Cd, n).expect("valid preset");
-        // The same preset read conically (`Preset::reduced_table`: a reduced conical table).
-        let reduced = std::sync::Arc::new(Preset::Cd.reduced_table().expect("valid preset"));
-        let cd_reduced = GratingBsdf::new(grating)
-            .with_efficiency(OrderEfficiency::from_table(reduced).expect("valid table"))
+        // The CD preset's classical table (`Preset::table`, the classical mount).
+        let classical = OrderEfficiency::from_static(Preset::Cd.table()).expect("valid table");
+        let cd = GratingBsdf::new(grating)
+            .with_efficiency(classical)
             .expect("valid efficiency");
+        // The same preset as `GratingBsdf::preset` reads it: conically
+        // (`Preset::conical_table`, a reduced conical table).
+        let cd_reduced = GratingBsdf::preset(Preset::Cd, n).expect("valid preset");
         let inputs = rng::near_peak_samples(PERIOD, n, BATCH);
         let mut r = rng::Rng(0x5eed ^ u64::from(n));
         let randoms: Vec<(f64, DVec2)> = (0..BATCH).map(|_| (r.next_f64(), r.u2())).collect();

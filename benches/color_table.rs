@@ -221,12 +221,17 @@ fn bench_radiometric(c: &mut Criterion) {
 
 #[cfg(feature = "presets")]
 fn bench_tabulated(c: &mut Criterion) {
+    use diffraction::grating_bsdf::OrderEfficiency;
     use diffraction::relief::Preset;
     use diffraction::spectrum::GenericStrategy;
     use diffraction::{GratingBsdf, GrooveSpread};
     use glam::DVec3;
     let s = Spectral::new(Illuminant::D65);
+    // The preset's classical table: the colour the table holds (`GratingBsdf::preset`'s
+    // conical reading makes the same table).
+    let classical = OrderEfficiency::from_static(Preset::Cd.table()).unwrap();
     let b = GratingBsdf::preset(Preset::Cd, 34)
+        .and_then(|b| b.with_efficiency(classical))
         .unwrap()
         .with_groove(GrooveSpread::gaussian(0.02).unwrap());
     let table = ColorTable::new(&s, &b, 1e-3).unwrap();

@@ -130,8 +130,11 @@ pub type RadiometricTable = ColorTable;
 /// [`node_count`](Self::node_count), [`size_bytes`](Self::size_bytes), [`scale`](Self::scale)
 /// and [`error_estimate`](Self::error_estimate) cover them all. No stored form (serialising is
 /// an error); a `GpuColorTable` of it holds every node's grids (`diffraction_table_colour`).
-/// Refused: a conical table (`efficiency`, [`Requirement::Classical`]), N = ∞ (`slits`), a
-/// coherence-length groove (`groove`).
+/// Refused: N = ∞ (`slits`), a coherence-length groove (`groove`). A conical table (the
+/// presets' default reading, `OrderEfficiency::preset`) is taken on the plane across the
+/// grooves: C(u, s) is its colour at wi.y = wo.y = 0, and off that plane `xyz(wo, wi)` is the
+/// classical-mount reading of it (the table has no axis along the grooves; docs/color_table.md,
+/// "Conical tables", has what that costs).
 ///
 /// Measured (docs/color_table.md, "Tabulated efficiencies"): the CD preset (N = 34, Gaussian
 /// σ = 0.02, D65) at 10⁻³ builds in 4-5 s (129 incidence nodes, 59,037 nodes, 4.8 MB) and

@@ -156,7 +156,7 @@ pub enum Requirement {
     /// too, has no stored form. The value is the number of orders the table stores.
     NotTabulated,
     /// A classical table (efficiencies of incidences in the plane of the grating vector, no
-    /// conical slices): a colour table tabulates those, and a reduced table is read from one.
+    /// conical slices): a reduced table is read from one.
     /// The value is the number of orders the table stores.
     Classical,
 }

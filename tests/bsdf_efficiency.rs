@@ -138,9 +138,16 @@ fn reduced_table() -> Arc<EfficiencyTable> {
 
 /// Every tabulated model of the tests at N, with its name.
 fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBsdf)> {
+    // The presets' classical tables (`Preset::table`), read in the classical mount.
     let mut out: Vec<(String, GratingBsdf)> = PRESETS
         .iter()
-        .map(|&p| (format!("{p:?}"), GratingBsdf::preset(p, slits).unwrap()))
+        .map(|&p| {
+            let d = p.period_nm();
+            let g = Grating::with_slits(d, 0.5 * d, slits).unwrap();
+            let e = OrderEfficiency::from_static(p.table()).unwrap();
+            let b = GratingBsdf::new(g).with_efficiency(e).unwrap();
+            (format!("{p:?} classical"), b)
+        })
         .collect();
     let g = Grating::with_slits(1600.0, 800.0, slits).unwrap();
     let e = OrderEfficiency::from_table(scalar.clone()).unwrap();
@@ -161,14 +168,13 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
             "reduced conical sinusoid".into(),
             GratingBsdf::new(g).with_efficiency(e).unwrap(),
         ));
-        // The CD preset read in reduced coordinates in its cover (`Preset::reduced_table`).
-        let d = Preset::Cd.period_nm();
-        let cd = Grating::with_slits(d, 0.5 * d, slits).unwrap();
-        let e = OrderEfficiency::from_table(Arc::new(Preset::Cd.reduced_table().unwrap())).unwrap();
-        out.push((
-            "reduced CD".into(),
-            GratingBsdf::new(cd).with_efficiency(e).unwrap(),
-        ));
+        // The presets as `GratingBsdf::preset` reads them: in reduced coordinates in their
+        // covers (`Preset::conical_table`).
+        for p in PRESETS {
+            let b = GratingBsdf::preset(p, slits).unwrap();
+            assert!(b.order_efficiency().table().unwrap().is_conical(), "{p:?}");
+            out.push((format!("{p:?}"), b));
+        }
     }
     out
 }

@@ -17,6 +17,7 @@ use diffraction::gpu::{
     bsdf_bindings, efficiency_table_bindings, GpuBsdf, GpuEfficiencyTables, BSDF_WGSL, KERNEL_WGSL,
     TABULATED_WGSL, TYPES_WGSL,
 };
+use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::{EfficiencyTable, Preset};
 use diffraction::{Bsdf, DiffractionBrdf, GratingBsdf, GrooveSpread};
 
@@ -370,21 +371,25 @@ fn weights(t: &EfficiencyTable, wo: DVec3, l: f64) -> Option<Vec<(i64, f64, f64)
     )
 }
 
+/// The preset with `n` grooves on its classical table (`Preset::table`), the reading the
+/// WGSL implements (`GratingBsdf::preset` reads it conically).
+fn classical(p: Preset, n: u32) -> GratingBsdf {
+    GratingBsdf::preset(p, n)
+        .unwrap()
+        .with_efficiency(OrderEfficiency::from_static(p.table()).unwrap())
+        .unwrap()
+}
+
 fn preset_models() -> Vec<(Preset, GratingBsdf)> {
     vec![
-        (Preset::Cd, GratingBsdf::preset(Preset::Cd, 34).unwrap()),
+        (Preset::Cd, classical(Preset::Cd, 34)),
         (
             Preset::Cd,
-            GratingBsdf::preset(Preset::Cd, 34)
-                .unwrap()
-                .with_groove(GrooveSpread::gaussian(0.02).unwrap()),
+            classical(Preset::Cd, 34).with_groove(GrooveSpread::gaussian(0.02).unwrap()),
         ),
-        (Preset::Dvd, GratingBsdf::preset(Preset::Dvd, 300).unwrap()),
-        (
-            Preset::Blazed600,
-            GratingBsdf::preset(Preset::Blazed600, 100).unwrap(),
-        ),
-        (Preset::Foil, GratingBsdf::preset(Preset::Foil, 10).unwrap()),
+        (Preset::Dvd, classical(Preset::Dvd, 300)),
+        (Preset::Blazed600, classical(Preset::Blazed600, 100)),
+        (Preset::Foil, classical(Preset::Foil, 10)),
     ]
 }
 
@@ -562,7 +567,7 @@ fn tabulated_sample_weights_average_to_the_albedo() {
     let (tables, at) = tables();
     let count = 1usize << 18;
     let mut rng = Mix(43);
-    let b = GratingBsdf::preset(Preset::Cd, 34).unwrap();
+    let b = classical(Preset::Cd, 34);
     let offset = at[0].1;
     for (wo, l) in [
         ([0.0f32, 0.0], 550.0f32),

@@ -59,8 +59,9 @@ impl GratingBsdf {
     /// (a conical table read at the groove lobe's centre wi.y = −wo.y: its variation across the
     /// groove's width in v is not integrated, which is exact for narrow lobes and not for wide
     /// ones: for N = 1, whose lobe is about λ/d wide in v, a conical test table's albedo was
-    /// 0.890 against a furnace of 0.846 ± 0.002), every period lobe by lobe (η̃ has the table's
-    /// kinks); at most Σ_m η_m(−wo.x, −wo.y, λ) ≤ 1. For N = ∞:
+    /// 0.890 against a furnace of 0.846 ± 0.002, and the CD as `GratingBsdf::preset` reads it
+    /// 0.751 against 0.742 ± 0.002 at normal incidence and 450 nm), every period lobe by lobe
+    /// (η̃ has the table's kinks); at most Σ_m η_m(−wo.x, −wo.y, λ) ≤ 1. For N = ∞:
     /// Σ_m η̃_m·∫ g over the chord. Measured against the Monte-Carlo furnace within 1.6
     /// standard errors (`tests/bsdf_efficiency.rs`).
     ///

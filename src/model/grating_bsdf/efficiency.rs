@@ -21,11 +21,13 @@
 //! the min keeps f exactly reciprocal and below the sampler's weight η_m(−wo.x, −wo.y, λ)
 //! (bounded weights, albedo ≤ Σ_m η_m(−wo.x, −wo.y, λ) ≤ 1).
 //!
-//! A **conical table** (`EfficiencyTable::is_conical`, JSON version 2) holds η_m(α, |β|, λ)
-//! and is read at the full incident direction. A **classical table** (version 1, and the
-//! shipped presets) holds the plane of incidence across the grooves only and ignores β: off that
-//! plane it is the classical-mount approximation (measured: 22-59 % of orders with η ≥ 1 %
-//! within 10 % at azimuths 30-80°; `docs/efficiency_tables.md`, "Conical tables").
+//! A **conical table** (`EfficiencyTable::is_conical`, JSON versions 2 and 3) holds
+//! η_m(α, |β|, λ) and is read at the full incident direction; the shipped presets are read so
+//! by default (`OrderEfficiency::preset`: their classical tables in reduced coordinates). A
+//! **classical table** (version 1, and `Preset::table`) holds the plane of incidence across
+//! the grooves only and ignores β: off that plane it is the classical-mount approximation
+//! (measured: 22-59 % of orders with η ≥ 1 % within 10 % at azimuths 30-80°;
+//! `docs/efficiency_tables.md`, "Conical tables").
 //!
 //! **The reading.** A classical table whose fast reading exists (feature `std`, at most 2¹⁷
 //! values: the presets and the usual user tables; `relief/table/lookup.rs`) gives η̃ from it:
@@ -187,18 +189,46 @@ fn checked(t: &EfficiencyTable) -> Result<(), Error> {
 }
 
 impl OrderEfficiency {
-    /// A shipped preset's rigorous efficiencies (no allocation).
+    /// A shipped preset's rigorous efficiencies, read conically: at the full incident
+    /// direction, across and along the grooves.
+    ///
+    /// - With feature `std` (the default): [`Preset::conical_table`], the preset's classical
+    ///   table in reduced coordinates ([`Preset::reduced_table`]), built once and shared. For
+    ///   the four presets it puts 80.8 % of the orders with η ≥ 1 % within 10 % of a conical
+    ///   solve at azimuths 30-80° from the grating vector, where the classical reading puts
+    ///   41.2 % (`docs/validity.md`, "Conical incidence"). It costs about 3.5× the classical
+    ///   reading's `eval` (`benches/bsdf.rs`).
+    /// - With `alloc` but not `std`: the same table, built on each call (1-5 ms) and shared
+    ///   by the BSDFs cloned from it.
+    /// - Without `alloc`: the classical table ([`Preset::table`]; no allocation).
+    ///
+    /// The classical reading (sin θi = −wi.x, the plane across the grooves, whatever wi.y) is
+    /// `OrderEfficiency::from_static(preset.table())`.
     ///
     /// ```
     /// use diffraction::grating_bsdf::OrderEfficiency;
     /// use diffraction::relief::Preset;
     /// let e = OrderEfficiency::preset(Preset::Foil);
-    /// assert_eq!(e.table().unwrap().period_nm(), Preset::Foil.period_nm());
+    /// let table = e.table().unwrap();
+    /// assert_eq!(table.period_nm(), Preset::Foil.period_nm());
+    /// assert!(table.is_conical());
+    /// let classical = OrderEfficiency::from_static(Preset::Foil.table())?;
+    /// assert!(!classical.table().unwrap().is_conical());
+    /// # Ok::<(), diffraction::Error>(())
     /// ```
     #[cfg(feature = "presets")]
     #[must_use]
     pub fn preset(preset: Preset) -> OrderEfficiency {
-        OrderEfficiency::Tabulated(Tabulated(Held::Static(preset.table())))
+        #[cfg(feature = "std")]
+        let held = Held::Static(preset.conical_table());
+        #[cfg(all(feature = "alloc", not(feature = "std")))]
+        let held = match preset.reduced_table() {
+            Ok(t) => Held::Shared(Arc::new(t)),
+            Err(_) => Held::Static(preset.table()),
+        };
+        #[cfg(not(feature = "alloc"))]
+        let held = Held::Static(preset.table());
+        OrderEfficiency::Tabulated(Tabulated(held))
     }
 
     /// The efficiencies of a `&'static` table; an error naming `table` when it stores more than
@@ -299,7 +329,8 @@ impl GratingBsdf {
         Ok(GratingBsdf::build(grating, self.groove, efficiency))
     }
 
-    /// A shipped preset's grating (its rigorous order efficiencies, [`Preset::table`]) with
+    /// A shipped preset's grating (its rigorous order efficiencies read conically,
+    /// [`OrderEfficiency::preset`]) with
     /// `slits` coherently lit grooves and the natural groove spread of [`GratingBsdf::new`]
     /// (a coherence length N·d; ideal for N = ∞). The period is the table's; the open
     /// fraction is irrelevant for a tabulated model (set to ½). An error naming `slits` for

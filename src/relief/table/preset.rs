@@ -208,9 +208,10 @@ impl Preset {
     /// feature `alloc`): a conical table the BSDF reads at the full incident direction. For
     /// the four presets it puts 80.8 % of the orders with η ≥ 1 % within 10 % of a conical
     /// solve at azimuths 30-80°, where the classical reading of [`table`](Self::table) puts
-    /// 41.2 % (`docs/validity.md`, "Conical incidence"). The colour tables (and so the
-    /// Whitted integrator's colours) take classical tables only, and the GPU packs a conical
-    /// table's first plane: those paths still read the classical mount.
+    /// 41.2 % (`docs/validity.md`, "Conical incidence"). [`conical_table`](Self::conical_table)
+    /// is this table built once, what `GratingBsdf::preset` reads. The colour tables tabulate
+    /// a conical table on the plane across the grooves, and the GPU packs its first plane:
+    /// those paths read the classical mount off that plane.
     ///
     /// # Errors
     ///
@@ -233,6 +234,55 @@ impl Preset {
     pub fn reduced_table(self) -> Result<EfficiencyTable, crate::Error> {
         self.table()
             .reduced_from_classical(&super::REDUCED_PLANES, |l| self.cover_index(l))
+    }
+}
+
+impl Preset {
+    /// The table [`OrderEfficiency::preset`](crate::grating_bsdf::OrderEfficiency::preset)
+    /// reads (feature `std`): [`reduced_table`](Self::reduced_table), built once on first use
+    /// (1-5 ms) and kept for the life of the program, so that every BSDF of the preset shares
+    /// it. The BSDF reads it at the full incident direction, across and along the grooves.
+    ///
+    /// ```
+    /// use diffraction::relief::Preset;
+    /// let cd = Preset::Cd.conical_table();
+    /// assert!(cd.is_conical());
+    /// assert!(core::ptr::eq(cd, Preset::Cd.conical_table()));
+    /// ```
+    #[cfg(feature = "std")]
+    #[must_use]
+    pub fn conical_table(self) -> &'static EfficiencyTable {
+        // `reduced_table` succeeds for the four presets (tests/reduced_table.rs); the
+        // classical table stands in were it ever to fail.
+        self.conical_slot()
+            .get_or_init(|| self.reduced_table().ok())
+            .as_ref()
+            .unwrap_or(self.table())
+    }
+
+    /// The preset whose [`conical_table`](Self::conical_table) `table` is (by address), if it
+    /// was built.
+    #[cfg(feature = "std")]
+    pub(crate) fn of_conical_table(table: &EfficiencyTable) -> Option<Preset> {
+        Preset::ALL.into_iter().find(|p| {
+            p.conical_slot()
+                .get()
+                .and_then(Option::as_ref)
+                .is_some_and(|t| core::ptr::eq(t, table))
+        })
+    }
+
+    /// Where [`conical_table`](Self::conical_table) keeps the preset's table.
+    #[cfg(feature = "std")]
+    fn conical_slot(self) -> &'static std::sync::OnceLock<Option<EfficiencyTable>> {
+        use std::sync::OnceLock;
+        static HELD: [OnceLock<Option<EfficiencyTable>>; 4] = [const { OnceLock::new() }; 4];
+        match self {
+            Preset::Cd => &HELD[0],
+            Preset::Dvd => &HELD[1],
+            Preset::Blazed600 => &HELD[2],
+            Preset::Foil => &HELD[3],
+        }
     }
 }
 

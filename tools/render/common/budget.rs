@@ -61,6 +61,10 @@ pub const BSDF_NS: f64 = 600.0;
 /// the path tracer at a vertex (`cd_preset`: about 1 µs at four wavelengths, from
 /// `benches/bsdf.rs`'s 129 ns an `f` and 272 ns a `sample` + `pdf`; twice that), ns.
 pub const BSDF_TABLE_NS: f64 = 2e3;
+/// The same for a conical table (the presets' default reading, `Preset::conical_table`, or a
+/// conical table file), ns: `benches/bsdf.rs` puts its `f` at 3.4-3.7× and its `sample` +
+/// `pdf` at 4.7-5.0× the classical table's, so 2.5× the classical figure.
+pub const BSDF_CONICAL_NS: f64 = 5e3;
 /// One colour table build at accuracy 10⁻³, ns (measured 4-8 ms a table in scenes of 16 and
 /// 256 gratings over d = 400 nm-99 µm and N = 10-10⁹; twice that for a margin).
 pub const TABLE_NS: f64 = 1.5e7;

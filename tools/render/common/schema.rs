@@ -246,11 +246,12 @@ pub struct RawGrating {
     /// default `period_nm`.
     pub efficiency: Option<String>,
     /// How a classical table (a preset, or a version-1 table file) is read off the plane across
-    /// the grooves: "classical" (default: the classical mount, which the Whitted integrator's
-    /// colour tables hold) or "reduced" (`EfficiencyTable::reduced_from_classical`: in reduced
-    /// coordinates in the cover's medium, the file's `grating.cover`, "none" or
-    /// "polycarbonate"; a conical table the path tracer reads at the full incident direction,
-    /// and the Whitted integrator colours by the generic path).
+    /// the grooves: "reduced" (the default for a preset, as the library's
+    /// `OrderEfficiency::preset`; `EfficiencyTable::reduced_from_classical` for a file: in
+    /// reduced coordinates in the cover's medium, the file's `grating.cover`, "none" or
+    /// "polycarbonate"; a conical table the path tracer reads at the full incident direction)
+    /// or "classical" (the default for a file: the classical mount). The Whitted integrator's
+    /// colour tables hold the plane across the grooves either way.
     pub reading: Option<String>,
     /// The table `efficiency` names, read by the loader (not a key of the file).
     #[serde(skip)]

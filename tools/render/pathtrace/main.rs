@@ -338,12 +338,12 @@ fn dearest_bsdf(scene: &Scene<Radiometric>) -> (f64, String) {
         .enumerate()
         .filter_map(|(i, m)| m.grating.as_ref().map(|g| (i, g)))
         .map(|(i, g)| {
-            let tabulated = g.model.order_efficiency().is_tabulated();
-            let ns = match tabulated {
-                true => budget::BSDF_TABLE_NS,
-                false => budget::BSDF_NS,
+            let efficiency = g.model.order_efficiency();
+            let (ns, kind) = match efficiency.table() {
+                Some(t) if t.is_conical() => (budget::BSDF_CONICAL_NS, "conical tabulated"),
+                Some(_) => (budget::BSDF_TABLE_NS, "tabulated"),
+                None => (budget::BSDF_NS, "amplitude"),
             };
-            let kind = if tabulated { "tabulated" } else { "amplitude" };
             (ns, format!("{kind} efficiencies of objects[{i}].material"))
         })
         .fold((0.0, String::new()), |a, b| if b.0 > a.0 { b } else { a })

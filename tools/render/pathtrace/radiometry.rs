@@ -280,9 +280,12 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
         Some(spread) => GratingBsdf::new(grating).with_groove(spread),
     };
     // `reading` reads a classical table: a preset's or a file's (the amplitude reading has no
-    // table).
+    // table). A preset is read reduced unless the material says "classical" (the library's
+    // default, `OrderEfficiency::preset`); a file classically unless it says "reduced".
     let reduced = match (g.reading.as_deref(), g.efficiency.as_deref()) {
-        (None | Some("classical"), _) => false,
+        (Some("classical"), _) => false,
+        (None, Some(name)) => name != "amplitude" && !name.ends_with(".json"),
+        (None, None) => false,
         (Some("reduced"), Some(name)) if name != "amplitude" => true,
         (Some("reduced"), _) => {
             return Err(FieldError::new(
@@ -359,13 +362,9 @@ pub fn grating_model(g: &RawGrating, period: f64, path: &str) -> Check<GratingBs
                 ));
             }
             let efficiency = if reduced {
-                let table = preset
-                    .reduced_table()
-                    .map_err(|e| model_error(g, path, e))?;
-                OrderEfficiency::from_table(std::sync::Arc::new(table))
-                    .map_err(|e| model_error(g, path, e))?
-            } else {
                 OrderEfficiency::preset(preset)
+            } else {
+                OrderEfficiency::from_static(preset.table()).map_err(|e| model_error(g, path, e))?
             };
             bsdf.with_efficiency(efficiency)
                 .map_err(|e| model_error(g, path, e))

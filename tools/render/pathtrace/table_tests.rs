@@ -2,6 +2,7 @@
 //! to the scene file: read with bounded work and memory, its period the default, and every
 //! refusal naming the scene file, the line, the field and the cause.
 
+use diffraction::relief::Preset;
 use std::path::{Path, PathBuf};
 
 use crate::radiometry::Radiometric;
@@ -109,8 +110,9 @@ fn a_reduced_conical_table_file_loads() {
 }
 
 /// `reading = "reduced"` reads a preset or a classical table file conically
-/// (`reduced_from_classical`); the amplitude reading, a conical file, a cover it does not know
-/// or another reading is refused naming `reading`.
+/// (`reduced_from_classical`; the default for a preset, `Preset::conical_table`), and
+/// "classical" in the classical mount (the default for a file); the amplitude reading, a
+/// conical file, a cover it does not know or another reading is refused naming `reading`.
 #[test]
 fn a_classical_table_read_reduced_is_a_conical_table() {
     let dir = scratch("reading");
@@ -119,15 +121,35 @@ fn a_classical_table_read_reduced_is_a_conical_table() {
     let e = g.model.order_efficiency();
     assert!(e.table().unwrap().is_reduced());
     assert_eq!(g.model.grating().period_nm(), 1600.0);
-    // The default, and "classical", read the preset's classical table.
-    for extra in ["", "reading = \"classical\"\n"] {
-        let s = load(&dir, &scene_src("cd", extra)).unwrap();
-        let g = s.materials[0].grating.as_ref().unwrap();
-        let e = g.model.order_efficiency();
-        assert!(!e.table().unwrap().is_conical(), "{extra:?}");
-    }
-    // A classical file is read reduced with its cover (none here).
+    // The default is the library's, the preset's conical table; "classical" reads the
+    // preset's classical table.
+    let s = load(&dir, &scene_src("cd", "")).unwrap();
+    let e = s.materials[0]
+        .grating
+        .as_ref()
+        .unwrap()
+        .model
+        .order_efficiency();
+    assert!(std::ptr::eq(e.table().unwrap(), Preset::Cd.conical_table()));
+    let s = load(&dir, &scene_src("cd", "reading = \"classical\"\n")).unwrap();
+    let e = s.materials[0]
+        .grating
+        .as_ref()
+        .unwrap()
+        .model
+        .order_efficiency();
+    assert!(std::ptr::eq(e.table().unwrap(), Preset::Cd.table()));
+    // A classical file is read classically by default, and reduced with its cover (none
+    // here) when asked.
     std::fs::write(dir.join("tables/t.json"), TABLE).unwrap();
+    let s = load(&dir, &scene_src("tables/t.json", "")).unwrap();
+    let e = s.materials[0]
+        .grating
+        .as_ref()
+        .unwrap()
+        .model
+        .order_efficiency();
+    assert!(!e.table().unwrap().is_conical());
     let s = load(&dir, &scene_src("tables/t.json", "reading = \"reduced\"\n")).unwrap();
     let e = s.materials[0]
         .grating
@@ -174,7 +196,8 @@ fn a_classical_table_read_reduced_is_a_conical_table() {
         };
         assert!(e.contains(&format!("{field}{why}")), "{e}");
     }
-    // Both integrators render it, finite (the Whitted one by the generic colour path).
+    // Both integrators render it, finite (the Whitted one from its colour table, on the plane
+    // across the grooves).
     renders_finite(&mut scene);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -59,17 +59,15 @@ pub fn table_build_ns(g: &GratingMaterial<GratingBsdf>) -> f64 {
 }
 
 /// Whether the Whitted renderer colours grating material `g` from a colour table: tabulated
-/// efficiencies (classical table, finite N), a groove spread that does not depend on λ, and a
-/// colour that is an integral (`Colour::Integral`).
+/// efficiencies (a conical table's on the plane across the grooves, as `ColorTable` takes
+/// it), finite N, a groove spread that does not depend on λ, and a colour that is an integral
+/// (`Colour::Integral`).
 pub fn tabled(g: &GratingMaterial<GratingBsdf>) -> bool {
     let b = &g.model;
-    let classical = b
-        .order_efficiency()
-        .table()
-        .is_some_and(|t| !t.is_conical());
+    let tabulated = b.order_efficiency().is_tabulated();
     let groove = !matches!(b.groove().kind(), GrooveKind::CoherenceLength { .. });
     let finite = b.grating().slits().as_f64().is_finite();
-    classical && groove && finite && matches!(g.strategy, Colour::Integral(_))
+    tabulated && groove && finite && matches!(g.strategy, Colour::Integral(_))
 }
 
 /// The colour tables of the scene's tabulated gratings, one per material (`None` where the
