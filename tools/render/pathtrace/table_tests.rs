@@ -2,6 +2,7 @@
 //! to the scene file: read with bounded work and memory, its period the default, and every
 //! refusal naming the scene file, the line, the field and the cause.
 
+use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::Preset;
 use std::path::{Path, PathBuf};
 
@@ -109,6 +110,16 @@ fn a_reduced_conical_table_file_loads() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// The order efficiencies of the first material's grating of `scene`.
+fn efficiency(scene: &scene::Scene<Radiometric>) -> OrderEfficiency {
+    scene.materials[0]
+        .grating
+        .as_ref()
+        .unwrap()
+        .model
+        .order_efficiency()
+}
+
 /// `reading = "reduced"` reads a preset or a classical table file conically
 /// (`reduced_from_classical`; the default for a preset, `Preset::conical_table`), and
 /// "classical" in the classical mount (the default for a file); the amplitude reading, a
@@ -124,39 +135,19 @@ fn a_classical_table_read_reduced_is_a_conical_table() {
     // The default is the library's, the preset's conical table; "classical" reads the
     // preset's classical table.
     let s = load(&dir, &scene_src("cd", "")).unwrap();
-    let e = s.materials[0]
-        .grating
-        .as_ref()
-        .unwrap()
-        .model
-        .order_efficiency();
+    let e = efficiency(&s);
     assert!(std::ptr::eq(e.table().unwrap(), Preset::Cd.conical_table()));
     let s = load(&dir, &scene_src("cd", "reading = \"classical\"\n")).unwrap();
-    let e = s.materials[0]
-        .grating
-        .as_ref()
-        .unwrap()
-        .model
-        .order_efficiency();
+    let e = efficiency(&s);
     assert!(std::ptr::eq(e.table().unwrap(), Preset::Cd.table()));
     // A classical file is read classically by default, and reduced with its cover (none
     // here) when asked.
     std::fs::write(dir.join("tables/t.json"), TABLE).unwrap();
     let s = load(&dir, &scene_src("tables/t.json", "")).unwrap();
-    let e = s.materials[0]
-        .grating
-        .as_ref()
-        .unwrap()
-        .model
-        .order_efficiency();
+    let e = efficiency(&s);
     assert!(!e.table().unwrap().is_conical());
     let s = load(&dir, &scene_src("tables/t.json", "reading = \"reduced\"\n")).unwrap();
-    let e = s.materials[0]
-        .grating
-        .as_ref()
-        .unwrap()
-        .model
-        .order_efficiency();
+    let e = efficiency(&s);
     assert!(e.table().unwrap().is_reduced());
     std::fs::write(dir.join("tables/v3.json"), TABLE_V3).unwrap();
     let glass = TABLE.replace("\"cover\": \"none\"", "\"cover\": \"glass\"");
