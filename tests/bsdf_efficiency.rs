@@ -155,9 +155,10 @@ fn models(slits: Slits, scalar: &Arc<EfficiencyTable>) -> Vec<(String, GratingBs
         "scalar sinusoid".into(),
         GratingBsdf::new(g).with_efficiency(e).unwrap(),
     ));
-    // Not for N = 1: its groove lobe is about λ/d wide in v, across which the albedo (read at
-    // the lobe's centre wi.y = −wo.y) does not follow the conical table's β dependence.
-    if slits != Slits::Finite(1) {
+    // Conical tables: for N = 1 the groove lobe is about λ/d wide in v, across which the
+    // albedo integrates the table's β dependence (read at the lobe's centre alone it was 0.890
+    // against a furnace of 0.846 ± 0.002 for the conical sinusoid).
+    {
         let e = OrderEfficiency::from_table(conical_table()).unwrap();
         out.push((
             "conical sinusoid".into(),
@@ -333,8 +334,14 @@ fn finite_and_non_negative_on_a_grazing_sweep() {
                         let p = b.pdf(wo, wi, lambda);
                         assert!(f.is_finite() && f >= 0.0, "{name}: f = {f}");
                         assert!(p.is_finite() && p >= 0.0, "{name}: pdf = {p}");
-                        let a = b.albedo(wo, lambda).unwrap();
-                        assert!((0.0..=1.0).contains(&a), "{name}: albedo {a}");
+                        // A conical table's albedo at N = 1 integrates across the groove
+                        // lobe (0.1-0.3 s a call): every fourth angle there.
+                        let wide = slits == Slits::Finite(1)
+                            && b.order_efficiency().table().is_some_and(|t| t.is_conical());
+                        if !wide || k % 4 == 0 {
+                            let a = b.albedo(wo, lambda).unwrap();
+                            assert!((0.0..=1.0).contains(&a), "{name}: albedo {a}");
+                        }
                         let w = b.sample_weight_bound(wo, lambda);
                         assert!(w.is_finite() && w >= 0.0);
                         if let Some(smp) = b.sample(wo, lambda, 0.37, DVec2::new(0.61, 0.29)) {

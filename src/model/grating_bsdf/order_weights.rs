@@ -358,16 +358,21 @@ impl<'a> TabulatedEtas<'a> {
         }
     }
 
-    /// η̃_m at u for light leaving toward `wo` (wi.x = u − wo.x, and wi.y = −wo.y: the
-    /// groove lobe's centre v = 0): the albedo's integrand, read as `eval` reads it.
+    /// η̃_m at (u, v) for light leaving toward `wo` (wi.x = u − wo.x, wi.y = v − wo.y; v = 0
+    /// is the groove lobe's centre): the albedo's integrand, read as `eval` reads it.
     #[inline]
-    pub(super) fn eta_at_u(&self, m: i64, u: f64, wo: DVec3, lambda_nm: f64) -> f64 {
+    pub(super) fn eta_at(&self, m: i64, u: f64, v: f64, wo: DVec3, lambda_nm: f64) -> f64 {
         if self.eta_wo(m) == 0.0 {
             return 0.0;
         }
         self.table
-            .incidences((-wo.x, -wo.y), (-(u - wo.x), wo.y))
+            .incidences((-wo.x, -wo.y), (-(u - wo.x), wo.y - v))
             .min(m, lambda_nm)
+    }
+
+    /// Whether the efficiencies depend on the incidence along the grooves (a conical table).
+    pub(super) fn conical(&self) -> bool {
+        self.table.is_conical()
     }
 }
 
@@ -409,7 +414,11 @@ impl<'a> TabulatedEtas<'a> {
         match *table {}
     }
 
-    pub(super) fn eta_at_u(&self, _m: i64, _u: f64, _wo: DVec3, _lambda_nm: f64) -> f64 {
+    pub(super) fn eta_at(&self, _m: i64, _u: f64, _v: f64, _wo: DVec3, _lambda_nm: f64) -> f64 {
+        match self.never {}
+    }
+
+    pub(super) fn conical(&self) -> bool {
         match self.never {}
     }
 
