@@ -168,6 +168,8 @@ enum Storage {
         band: (f64, f64),
         te: Vec<f64>,
         tm: Vec<f64>,
+        /// The cell's location in O(1) (`reduced/locate.rs`), derived from the grid.
+        locator: reduced::Locator,
     },
 }
 

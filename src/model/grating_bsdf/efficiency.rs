@@ -196,7 +196,7 @@ impl OrderEfficiency {
     ///   table in reduced coordinates ([`Preset::reduced_table`]), built once and shared. For
     ///   the four presets it puts 80.8 % of the orders with η ≥ 1 % within 10 % of a conical
     ///   solve at azimuths 30-80° from the grating vector, where the classical reading puts
-    ///   41.2 % (`docs/validity.md`, "Conical incidence"). It costs about 3.5× the classical
+    ///   41.2 % (`docs/validity.md`, "Conical incidence"). It costs about 4× the classical
     ///   reading's `eval` (`benches/bsdf.rs`).
     /// - With `alloc` but not `std`: the same table, built on each call (1-5 ms) and shared
     ///   by the BSDFs cloned from it.

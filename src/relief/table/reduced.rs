@@ -110,6 +110,7 @@ pub(super) struct Reduced<'a> {
     band: (f64, f64),
     pub(super) te: &'a [f64],
     pub(super) tm: &'a [f64],
+    loc: &'a Locator,
 }
 
 impl Reduced<'_> {
@@ -153,7 +154,7 @@ impl Reduced<'_> {
         if alpha * alpha + b * b >= 1.0 {
             return None;
         }
-        let (sin, bet) = (self.sin, self.bet);
+        let (sin, bet, loc) = (self.sin, self.bet, self.loc);
         let (n_s, n_b) = (sin.len(), bet.len());
         let sp = (alpha / cb(b)).max(sin[0]).min(sin[n_s - 1]);
         let b = b.max(bet[0]).min(bet[n_b - 1]);
@@ -163,9 +164,9 @@ impl Reduced<'_> {
         if cos_i.is_nan() || cos_i <= 0.0 {
             return None;
         }
-        let i = interval(sin, sp);
-        let k = interval(bet, b);
-        let cp = [cb(bet[k]), cb(bet[k + 1])];
+        let i = loc.sin.interval(sin, sp);
+        let k = loc.bet.interval(bet, b);
+        let cp = [loc.c[k], loc.c[k + 1]];
         let span = cp[0] - cp[1];
         let tb = if span > 0.0 {
             ((cp[0] - c) / span).clamp(0.0, 1.0)
@@ -179,17 +180,14 @@ impl Reduced<'_> {
             let l = (lambda_nm * (cp[d] / c))
                 .max(nodes[0])
                 .min(nodes[nodes.len() - 1]);
-            j[d] = interval(nodes, l);
+            j[d] = loc.planes[k + d].interval(nodes, l);
             ty[d] = (l - nodes[j[d]]) / (nodes[j[d] + 1] - nodes[j[d]]);
         }
         let cell_index = self.slab_offset(k) + (j[0] + j[1]) * (n_s - 1) + i;
         let mut cell = Cell3::empty(sp * c, b * b, lambda_nm, cos_i, cell_index);
         let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };
         // The two s′ nodes' √(1 − s′²), shared by the planes' corners.
-        let root = [
-            math::sqrt(1.0 - sin[i] * sin[i]),
-            math::sqrt(1.0 - sin[i + 1] * sin[i + 1]),
-        ];
+        let root = [loc.root[i], loc.root[i + 1]];
         for n in 0..8 {
             let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
             cell.w[n] = wt(di, tx) * wt(dk, tb) * wt(dj, ty[dk]);
@@ -317,6 +315,7 @@ impl EfficiencyTable {
                 band,
                 te,
                 tm,
+                locator,
             } => Some(Reduced {
                 sin: sin_theta_i,
                 bet: abs_beta,
@@ -325,6 +324,7 @@ impl EfficiencyTable {
                 band: *band,
                 te,
                 tm,
+                loc: locator,
             }),
             _ => None,
         }
@@ -583,7 +583,10 @@ impl EfficiencyTable {
 }
 
 mod from_classical;
+mod locate;
 mod new;
+
+pub(super) use locate::Locator;
 
 pub use from_classical::REDUCED_PLANES;
 

@@ -8,7 +8,7 @@ use super::super::load::{check_axis, check_period, order_count, SUM_TOLERANCE};
 use super::super::{
     EfficiencyTable, Lookup, NodeQ, Storage, UnitCells, MAX_TABLE_ABS_BETA, MAX_TABLE_NODES,
 };
-use super::{cb, ReducedGrid};
+use super::{cb, Locator, ReducedGrid};
 use crate::error::{positive, Error, Requirement};
 
 impl EfficiencyTable {
@@ -116,6 +116,7 @@ impl EfficiencyTable {
             lambda_nm.extend_from_slice(nodes);
         }
         rows.push(lambda_nm.len());
+        let locator = Locator::new(&grid.sin_theta_i, &grid.abs_beta, &lambda_nm, &rows);
         Ok(EfficiencyTable {
             period_nm,
             order_min,
@@ -128,6 +129,7 @@ impl EfficiencyTable {
                 band: grid.lambda_range_nm,
                 te,
                 tm,
+                locator,
             },
             unit: UnitCells::new(),
             q: NodeQ::new(),
