@@ -455,16 +455,24 @@ impl Freedom {
 #[test]
 fn mirror_symmetric_colour_tables_store_their_nodes_once() {
     use diffraction::gpu::GpuColorTable;
+    use diffraction::grating_bsdf::OrderEfficiency;
     use diffraction::relief::Preset;
     use diffraction::spectrum::{Illuminant, Spectral};
     use diffraction::{ColorTable, GratingBsdf, GrooveSpread};
     let spectral = Spectral::new(Illuminant::D65);
     for (preset, mirrored) in [(Preset::Cd, true), (Preset::Blazed600, false)] {
-        let b = GratingBsdf::preset(preset, 8)
+        // The classical reading (a conical table's GPU table is its plane β = 0: the same).
+        let conical = GratingBsdf::preset(preset, 8)
             .unwrap()
             .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+        let b = conical
+            .with_efficiency(OrderEfficiency::from_static(preset.table()).unwrap())
+            .unwrap();
         let table = ColorTable::new(&spectral, &b, 1e-1).unwrap();
         let t = GpuColorTable::new(&table);
+        let from_conical = ColorTable::new(&spectral, &conical, 1e-1).unwrap();
+        assert!(from_conical.node_count() > table.node_count(), "{preset}");
+        assert_eq!(GpuColorTable::new(&from_conical), t, "{preset}");
         let count = t.header.block_count as usize;
         let k = t.incidence[0] as usize;
         let grid = |g: usize| &t.blocks[g * count..(g + 1) * count];

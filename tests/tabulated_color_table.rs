@@ -236,11 +236,13 @@ fn bad_sources_are_refused() {
     assert_eq!(e.parameter(), "groove");
 }
 
-/// A conical table is read on the plane across the grooves: a table of two |β| planes that
-/// both hold the values of a classical table gives that table's colours, to rounding (its
-/// reading weighs the two planes: measured 8.7·10⁻¹⁶ relative; bound 10⁻¹⁴).
+/// A conical table is tabulated on planes of |wi.y| (`COLOUR_PLANES`): on the plane across
+/// the grooves (wi.y = wo.y = 0) a table of two |β| planes that both hold the values of a
+/// classical table gives that table's colours, to rounding (its reading weighs the two
+/// planes: measured 8.7·10⁻¹⁶ relative; bound 10⁻¹⁴), and off it the table holds planes of
+/// its own.
 #[test]
-fn conical_tables_are_read_on_the_plane() {
+fn conical_tables_are_tabulated_per_plane() {
     use diffraction::grating_bsdf::OrderEfficiency;
     use diffraction::relief::EfficiencyTable;
     use diffraction::Grating;
@@ -282,10 +284,16 @@ fn conical_tables_are_read_on_the_plane() {
     let s = Spectral::new(Illuminant::E);
     let tc = ColorTable::new(&s, &bsdf(c), 1e-2).unwrap();
     let tk = ColorTable::new(&s, &bsdf(k), 1e-2).unwrap();
-    assert_eq!(tk.node_count(), tc.node_count());
+    assert!(
+        tk.node_count() > 2 * tc.node_count(),
+        "{} {}",
+        tk.node_count(),
+        tc.node_count()
+    );
     let mut worst = 0.0f64;
     for (wo, wi) in pairs(500, 3) {
-        let (a, b) = (tk.xyz(wo, wi), tc.xyz(wo, wi));
+        let flat = |w: DVec3| DVec3::new(w.x, 0.0, (1.0 - w.x * w.x).sqrt());
+        let (a, b) = (tk.xyz(flat(wo), flat(wi)), tc.xyz(flat(wo), flat(wi)));
         let scale = b.x.max(b.y).max(b.z);
         for (p, q) in [(a.x, b.x), (a.y, b.y), (a.z, b.z)] {
             worst = worst.max((p - q).abs() / scale.max(1e-300));
@@ -295,68 +303,115 @@ fn conical_tables_are_read_on_the_plane() {
     assert!(worst <= 1e-14, "{worst:e}");
 }
 
-/// A preset as `GratingBsdf::preset` reads it (conically) makes the table of its classical
-/// reading, to the bit (the conical table equals the classical one on the plane across the
-/// grooves). Off that plane the table is the classical mount's colour: measured here against
-/// the generic colour of the conical BSDF at pairs reaching |wi.y| = 0.6
-/// (`tolerance::CONICAL_DE2000` has the figures).
-#[test]
-fn a_conical_preset_is_coloured_on_the_plane() {
-    let s = Spectral::new(Illuminant::D65);
-    let (conical, flat) = (preset(Preset::Cd, 8), classical(Preset::Cd, 8));
-    let tk = ColorTable::new(&s, &conical, 1e-2).unwrap();
-    let tc = ColorTable::new(&s, &flat, 1e-2).unwrap();
-    assert_eq!(tk.node_count(), tc.node_count());
-    for (wo, wi) in pairs(2000, 5) {
-        assert_eq!(tk.xyz(wo, wi), tc.xyz(wo, wi), "{wo} {wi}");
-    }
-    // Against the conical BSDF's own colour: on the plane (|wi.y| ≤ 0.2, the accuracy tests'
-    // pairs) and farther off it.
+/// The ΔE2000 of `table.xyz` against the generic colour of `b` at `count` pairs with |wi.y|
+/// uniform in [0, `max_beta`] (|v| ≤ 0.02, wi.x and wo.x uniform in (−0.98, 0.98)), in the
+/// bands |wi.y| ≤ 0.05, 0.05-0.3, 0.3-0.6, 0.6-0.9: per band (pairs, mean, worst).
+fn errors_off_the_plane(
+    s: &Spectral,
+    b: &GratingBsdf,
+    table: &ColorTable,
+    count: usize,
+    max_beta: f64,
+) -> [(usize, f64, f64); 4] {
     let white = WhitePoint::new(s.white()).unwrap();
     let rule = reference();
     let mut rng = Rng::new(0xc0a1);
-    let mut worst = [0.0f64; 3];
-    let mut counts = [0usize; 3];
-    let mut sums = [0.0f64; 3];
-    let bands = [0.05, 0.3, 0.6];
-    while counts[2] < 300 {
+    let bands = [0.05, 0.3, 0.6, 0.9];
+    let mut out = [(0usize, 0.0f64, 0.0f64); 4];
+    let mut taken = 0;
+    while taken < count {
         let ix = 1.96 * rng.next_f64() - 0.98;
         let ox = 1.96 * rng.next_f64() - 0.98;
-        let iy = 1.2 * rng.next_f64() - 0.6;
+        let iy = max_beta * (2.0 * rng.next_f64() - 1.0);
         let oy = -iy + 0.04 * rng.next_f64() - 0.02;
         let (iz, oz) = (1.0 - ix * ix - iy * iy, 1.0 - ox * ox - oy * oy);
         if iz <= 1e-4 || oz <= 1e-4 {
             continue;
         }
         let (wo, wi) = (DVec3::new(ox, oy, oz.sqrt()), DVec3::new(ix, iy, iz.sqrt()));
-        let band = bands.iter().position(|b| iy.abs() <= *b).unwrap();
-        let want = s.xyz_brdf(&conical, wo, wi, rule);
-        let got = tk.xyz(wo, wi);
-        let weight = wi.z * conical.groove().value(wi.y + wo.y, 550.0);
-        let k = 1.0 / (weight * tk.scale()).max(want.y);
+        let want = s.xyz_brdf(b, wo, wi, rule);
+        let got = table.xyz(wo, wi);
+        let weight = wi.z * b.groove().value(wi.y + wo.y, 550.0);
+        let k = 1.0 / (weight * table.scale()).max(want.y);
         if !k.is_finite() {
             continue;
         }
+        taken += 1;
         let e = got
             .scale(k)
             .to_lab(white)
             .delta_e2000(want.scale(k).to_lab(white));
-        worst[band] = worst[band].max(e);
-        sums[band] += e;
-        counts[band] += 1;
+        let band = bands.iter().position(|b| iy.abs() <= *b).unwrap_or(3);
+        let o = &mut out[band];
+        o.0 += 1;
+        o.1 += e;
+        o.2 = o.2.max(e);
     }
-    for (j, b) in bands.iter().enumerate() {
-        let from = if j == 0 { 0.0 } else { bands[j - 1] };
-        println!(
-            "conical CD (N = 8, D65, 1e-2) against its table, {from} ≤ |wi.y| ≤ {b}: {} pairs, \
-             mean ΔE2000 {:.3}, worst {:.3}",
-            counts[j],
-            sums[j] / counts[j].max(1) as f64,
-            worst[j]
-        );
+    for o in &mut out {
+        o.1 /= o.0.max(1) as f64;
     }
-    assert!(worst[0] <= tolerance::CONICAL_NEAR_DE2000, "{worst:?}");
-    assert!(worst[2] <= tolerance::CONICAL_DE2000, "{worst:?}");
+    out
+}
+
+/// A preset as `GratingBsdf::preset` reads it (conically): on the plane across the grooves
+/// its table is the classical reading's, to the bit (the conical table equals the classical
+/// one there); off it the table's planes of |wi.y| follow the conical BSDF's own generic
+/// colour (`tolerance::CONICAL_*` has the figures, against the classical mount's before).
+#[test]
+fn a_conical_preset_is_coloured_per_plane() {
+    let s = Spectral::new(Illuminant::D65);
+    let (conical, flat) = (preset(Preset::Cd, 8), classical(Preset::Cd, 8));
+    let t0 = Instant::now();
+    let tk = ColorTable::new(&s, &conical, 1e-2).unwrap();
+    let build = t0.elapsed().as_secs_f64();
+    let tc = ColorTable::new(&s, &flat, 1e-2).unwrap();
+    println!(
+        "conical CD (N = 8, D65, 1e-2): build {build:.2} s, {} incidence nodes, {} nodes, \
+         {:.1} MB (classical: {} incidence nodes)",
+        tk.incidence_count().unwrap(),
+        tk.node_count(),
+        tk.size_bytes() as f64 / 1e6,
+        tc.incidence_count().unwrap(),
+    );
+    for (wo, wi) in pairs(2000, 5) {
+        let flat = |w: DVec3| DVec3::new(w.x, 0.0, (1.0 - w.x * w.x).sqrt());
+        let (wo, wi) = (flat(wo), flat(wi));
+        assert_eq!(tk.xyz(wo, wi), tc.xyz(wo, wi), "{wo} {wi}");
+    }
+    let bands = errors_off_the_plane(&s, &conical, &tk, 650, 0.6);
+    let names = ["≤ 0.05", "0.05-0.3", "0.3-0.6", "0.6-0.9"];
+    for (name, (n, mean, worst)) in names.iter().zip(bands) {
+        println!("  |wi.y| {name}: {n} pairs, mean ΔE2000 {mean:.3}, worst {worst:.3}");
+    }
+    let worst = bands.iter().fold(0.0f64, |w, b| w.max(b.2));
+    let mean = bands.iter().fold(0.0f64, |w, b| w.max(b.1));
+    assert!(bands[0].2 <= tolerance::CONICAL_NEAR_DE2000, "{bands:?}");
+    assert!(worst <= tolerance::CONICAL_DE2000, "{bands:?}");
+    assert!(mean <= tolerance::CONICAL_MEAN_DE2000, "{bands:?}");
+}
+
+/// The CD read conically at the Whitted renderer's accuracy, 10⁻³, with 34 grooves, against
+/// its generic colour at 2000 pairs with |wi.y| up to 0.9 (docs/color_table.md, "Conical
+/// tables").
+#[test]
+#[ignore = "the conical CD at 1e-3: about a minute in release"]
+fn conical_cd_at_the_renderers_accuracy() {
+    let s = Spectral::new(Illuminant::D65);
+    let b = preset(Preset::Cd, 34);
+    let t0 = Instant::now();
+    let t = ColorTable::new(&s, &b, 1e-3).unwrap();
+    println!(
+        "conical CD (N = 34, D65, 1e-3): build {:.1} s, {} incidence nodes, {} nodes, {:.1} MB",
+        t0.elapsed().as_secs_f64(),
+        t.incidence_count().unwrap(),
+        t.node_count(),
+        t.size_bytes() as f64 / 1e6
+    );
+    let bands = errors_off_the_plane(&s, &b, &t, 2000, 0.9);
+    let names = ["≤ 0.05", "0.05-0.3", "0.3-0.6", "0.6-0.9"];
+    for (name, (n, mean, worst)) in names.iter().zip(bands) {
+        println!("  |wi.y| {name}: {n} pairs, mean ΔE2000 {mean:.3}, worst {worst:.3}");
+    }
 }
 
 #[cfg(feature = "serde")]
@@ -426,4 +481,23 @@ fn many_slits_keep_each_orders_colour() {
     println!("N = 1e5: build {build:.2} s, worst {worst:.2e} ({lit} pairs lit)");
     assert!(lit >= 2, "{lit}");
     assert!(worst <= tolerance::MANY_SLITS_REL, "{worst:.3e}");
+}
+
+/// The build of each preset's table read conically at the Whitted renderer's accuracy (10⁻³,
+/// N = 34, D65, Gaussian σ = 0.02): what tools/render's work budget counts.
+#[test]
+#[ignore = "the four presets' conical tables at 1e-3: minutes in release"]
+fn conical_presets_build_times() {
+    let s = Spectral::new(Illuminant::D65);
+    for p in Preset::ALL {
+        let t0 = Instant::now();
+        let t = ColorTable::new(&s, &preset(p, 34), 1e-3).unwrap();
+        println!(
+            "{p}: build {:.1} s, {} incidence nodes, {} nodes, {:.1} MB",
+            t0.elapsed().as_secs_f64(),
+            t.incidence_count().unwrap(),
+            t.node_count(),
+            t.size_bytes() as f64 / 1e6
+        );
+    }
 }

@@ -22,6 +22,11 @@
 //! are then rebuilt on that layout too, so that every node but the two grazing ends is on it.
 //! A lookup locates its interval in O(1) from the bins of the finest level, and between two
 //! nodes on the layout locates |u| once for both grids.
+//!
+//! A conical table's colour has one such table per plane |wi.y| = β (`source::COLOUR_PLANES`),
+//! whose incidences run between the grazing directions |wi.x|, |wo.x| < r = √(1 − β²): the
+//! place σ of (u, s) there is the place of (u/r, s/r) on the plane β = 0 (`r` is 1 there, and
+//! every formula then the plane's own).
 
 use alloc::vec::Vec;
 
@@ -75,7 +80,7 @@ fn incidence(u: f64, sigma: f64) -> f64 {
 /// division, after two independent square roots); `None` outside 0 ≤ p ≤ w (a direction below
 /// the surface) and where w is not positive.
 #[inline]
-fn coordinate(u: f64, s: f64) -> Option<f64> {
+pub(super) fn coordinate(u: f64, s: f64) -> Option<f64> {
     let width = 2.0 - u.abs();
     let p = s - u.max(0.0) + 1.0;
     if !(width > 0.0 && (0.0..=width).contains(&p)) {
@@ -122,6 +127,10 @@ pub(super) struct Incidence {
     bins: Vec<u32>,
     /// Bins per unit of s.
     inv_bin: f64,
+    /// The plane's r = √(1 − β²) (1 on the plane across the grooves): its incidences run
+    /// between the grazing directions of |wi.x|, |wo.x| < r, at r times the places of the
+    /// plane β = 0 (`incidence(u/r, σ)·r`).
+    r: f64,
     /// The error scale (the largest Y of a diffracted colour) and the worst error found.
     pub scale: f64,
     pub error: f64,
@@ -142,6 +151,8 @@ struct Build<'a> {
     max_depth: u32,
     /// Whether the grids over u ≤ 0 are those over u ≥ 0 ([`mirror_symmetric`]).
     mirrored: bool,
+    /// The plane's r (`TabulatedNodes::r`).
+    r: f64,
 }
 
 impl Build<'_> {
@@ -150,14 +161,19 @@ impl Build<'_> {
         let n = self.nodes;
         // Each grid has its own budget.
         let start = n.work_done.get();
-        let pos = Grid::build(&self.plan, &|a, _| n.eval(a, incidence(a, s)), &|| {
-            n.work_done.get() - start
-        });
+        let r = self.r;
+        let pos = Grid::build(
+            &self.plan,
+            &|a, _| n.eval(a, r * incidence(a / r, s)),
+            &|| n.work_done.get() - start,
+        );
         let neg = (!self.mirrored).then(|| {
             let start = n.work_done.get();
-            Grid::build(&self.plan, &|a, _| n.eval(-a, incidence(-a, s)), &|| {
-                n.work_done.get() - start
-            })
+            Grid::build(
+                &self.plan,
+                &|a, _| n.eval(-a, r * incidence(-a / r, s)),
+                &|| n.work_done.get() - start,
+            )
         });
         for g in core::iter::once(&pos).chain(neg.as_ref()) {
             self.scale = self.scale.max(g.scale);
@@ -174,13 +190,13 @@ impl Build<'_> {
 
     /// The grids at σ on the layouts.
     fn node(&mut self, s: f64) -> Node {
-        let (n, u_lo) = (self.nodes, self.plan.u_lo);
+        let (n, u_lo, r) = (self.nodes, self.plan.u_lo, self.r);
         let pos = Grid::on_layout(u_lo, &self.layouts[0], self.scale, &|a| {
-            n.eval(a, incidence(a, s))
+            n.eval(a, r * incidence(a / r, s))
         });
         let neg = (!self.mirrored).then(|| {
             Grid::on_layout(u_lo, &self.layouts[1], self.scale, &|a| {
-                n.eval(-a, incidence(-a, s))
+                n.eval(-a, r * incidence(-a / r, s))
             })
         });
         Node {
@@ -241,6 +257,7 @@ impl Incidence {
         mut plan: Plan,
         accuracy: f64,
     ) -> (Incidence, Grid) {
+        let r = nodes.r();
         let normal = Grid::build(&plan, &|u, _| nodes.eval(u, 0.0), &|| nodes.work_done.get());
         plan.floor = plan.floor.max(normal.scale);
         let mut b = Build {
@@ -252,6 +269,7 @@ impl Incidence {
             accuracy,
             max_depth: depth(accuracy),
             mirrored: nodes.mirror_symmetric(accuracy / MIRROR_SHARE),
+            r,
         };
         let base = |k: usize| k as f64 / BASE_INTERVALS as f64;
         let first: Vec<Node> = (0..=BASE_INTERVALS).map(|k| b.refined(base(k))).collect();
@@ -324,6 +342,7 @@ impl Incidence {
             locators,
             bins,
             inv_bin,
+            r,
             scale: b.scale,
             error: b.error,
         };
@@ -334,9 +353,15 @@ impl Incidence {
     /// `u` in [−2, 2] and `s` in [−1, 1] (the caller's ranges).
     #[inline]
     pub(super) fn value(&self, u: f64, s: f64) -> Xyz {
-        let Some(s) = coordinate(u, s) else {
-            return Xyz::default();
-        };
+        match coordinate(u / self.r, s / self.r) {
+            Some(sigma) => self.value_at(u, sigma),
+            None => Xyz::default(),
+        }
+    }
+
+    /// C at u and the node coordinate σ in [0, 1] (`coordinate`, of a plane of the caller's r).
+    #[inline]
+    pub(super) fn value_at(&self, u: f64, s: f64) -> Xyz {
         let t = s * self.inv_bin;
         // t ≥ 0; `as` truncates toward 0 and saturates.
         let bin = (t as usize).min(self.bins.len() - 1);

@@ -75,6 +75,10 @@ pub(super) struct TabulatedNodes {
     lambda_nodes: Vec<f64>,
     /// The table's stored orders.
     orders: (i64, i64),
+    /// The plane: |wi.y| = `beta` (wo.y = −β, the groove lobe's centre) and r = √(1 − β²),
+    /// the largest |wi.x| and |wo.x| above the surface there.
+    beta: f64,
+    r: f64,
     /// The breakpoints' buffer.
     cuts: RefCell<Vec<f64>>,
     pub evaluations: Cell<usize>,
@@ -85,7 +89,7 @@ impl TabulatedNodes {
     /// Whether the colour over u ≤ 0 is the colour over u ≥ 0 at the same node coordinate σ,
     /// to within `tolerance` of the efficiencies: the table's incidences and orders symmetric
     /// about 0, and η_m(s, λ) = η_−m(−s, λ) within `tolerance` at every node, both
-    /// polarisations (a symmetric groove profile). Then mirroring x → −x maps (u, s) to
+    /// polarisations (a symmetric groove profile; on the plane's |β|, at α = s·r). Then mirroring x → −x maps (u, s) to
     /// (−u, −s) and reciprocity (wi ↔ wo) maps (−u, −s) to (−u, s − u), the point of the grid
     /// over u ≤ 0 at the same σ (the groove spreads the table takes are even in v, and the
     /// tabulated lobe is even in x).
@@ -104,7 +108,10 @@ impl TabulatedNodes {
         let symmetric = table.lambda_nm().all(|l| {
             s.iter().all(|&x| {
                 orders.clone().all(|m| {
-                    let (p, q) = (table.efficiency(m, x, l), table.efficiency(-m, -x, l));
+                    // On the plane: incidences α = s·r at |β| = β (a classical table ignores β).
+                    let (a, b) = (x * self.r, self.beta);
+                    let p = table.efficiency_conical(m, a, b, l);
+                    let q = table.efficiency_conical(-m, -a, b, l);
                     (p.te - q.te).abs() <= tolerance && (p.tm - q.tm).abs() <= tolerance
                 })
             })
@@ -112,9 +119,15 @@ impl TabulatedNodes {
         symmetric
     }
 
-    /// The nodes of `bsdf` (tabulated, classical, finite N: the caller checks) under the plain
-    /// illuminant of `spectral`.
+    /// The nodes of `bsdf` (tabulated, finite N: the caller checks) under the plain
+    /// illuminant of `spectral`, on the plane across the grooves.
     pub(super) fn new(bsdf: &GratingBsdf, spectral: &Spectral) -> TabulatedNodes {
+        TabulatedNodes::on_plane(bsdf, spectral, 0.0)
+    }
+
+    /// The same at |wi.y| = `beta` (in [0, 1)), wo.y = −β: the plane a conical table's
+    /// colour is tabulated on.
+    pub(super) fn on_plane(bsdf: &GratingBsdf, spectral: &Spectral, beta: f64) -> TabulatedNodes {
         // σ = 0.02 is valid.
         let stand_in = GrooveSpread::gaussian(STAND_IN_SIGMA).unwrap_or(bsdf.groove());
         let lobe = bsdf.with_groove(stand_in);
@@ -137,22 +150,30 @@ impl TabulatedNodes {
             n: g.slits().as_f64(),
             lambda_nodes,
             orders,
+            beta,
+            r: sqrt(1.0 - beta * beta),
             cuts: RefCell::new(Vec::new()),
             evaluations: Cell::new(0),
             work_done: Cell::new(0),
         }
     }
 
-    /// C(u, s): ∫ E·(f/g)·cmf dλ/∫E·ȳ at wi = (s, 0), wo = (u − s, 0); black where either
+    /// The plane's r = √(1 − β²): |wi.x| and |wo.x| stay below it.
+    pub(super) fn r(&self) -> f64 {
+        self.r
+    }
+
+    /// C(u, s): ∫ E·(f/g)·cmf dλ/∫E·ȳ at wi = (s, β), wo = (u − s, −β); black where either
     /// direction is not above the surface.
     pub(super) fn eval(&self, u: f64, s: f64) -> [f64; 3] {
         self.evaluations.set(self.evaluations.get() + 1);
         let ox = u - s;
-        if !(s.abs() < 1.0 && ox.abs() < 1.0) {
+        if !(s.abs() < self.r && ox.abs() < self.r) {
             return [0.0; 3];
         }
-        let wi = DVec3::new(s, 0.0, sqrt(1.0 - s * s));
-        let wo = DVec3::new(ox, 0.0, sqrt(1.0 - ox * ox));
+        let b = self.beta;
+        let wi = DVec3::new(s, b, sqrt(1.0 - s * s - b * b));
+        let wo = DVec3::new(ox, -b, sqrt(1.0 - ox * ox - b * b));
         let mut cuts = self.cuts.borrow_mut();
         cuts.clear();
         cuts.push(LAMBDA_MIN_NM);

@@ -251,7 +251,7 @@ pub struct RawGrating {
     /// reduced coordinates in the cover's medium, the file's `grating.cover`, "none" or
     /// "polycarbonate"; a conical table the path tracer reads at the full incident direction)
     /// or "classical" (the default for a file: the classical mount). The Whitted integrator's
-    /// colour tables hold the plane across the grooves either way.
+    /// colour tables follow the reading (a conical one on planes of |wi.y|).
     pub reading: Option<String>,
     /// The table `efficiency` names, read by the loader (not a key of the file).
     #[serde(skip)]

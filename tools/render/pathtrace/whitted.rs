@@ -36,8 +36,9 @@ use crate::scene::Scene;
 use crate::surface::{nearest_emitter, sample_sphere, Surface};
 
 /// The accuracy of the colour tables of tabulated gratings: 10⁻³, whose table of the CD
-/// preset (N = 34, σ = 0.02, D65) builds in about 5 s and stays within 0.071 ΔE2000 of the
-/// generic colour (tests/tabulated_color_table.rs).
+/// preset (N = 34, σ = 0.02, D65) read classically builds in about 5 s and stays within 0.071
+/// ΔE2000 of the generic colour, read conically in about 20 s within a mean of 0.07-0.15 for
+/// |wi.y| up to 0.6 (tests/tabulated_color_table.rs).
 const TABLE_ACCURACY: f64 = 1e-3;
 
 /// The cost of a table's `xyz`, ns: measured 53-55 ns (the CD preset, benches/color_table.rs;
@@ -45,22 +46,34 @@ const TABLE_ACCURACY: f64 = 1e-3;
 pub const TABLE_LOOKUP_NS: f64 = 100.0;
 /// The cost of building one table at [`TABLE_ACCURACY`], ns, per preset: the measured builds
 /// (one core of the shared 2-core machine, D65, N = 34, Gaussian σ = 0.02; docs/color_table.md)
-/// with a margin. The CD 4.3 s, the foil 4.2 s, the DVD 35 s (the mirror-symmetric presets
-/// build one grid per incidence node), `blazed600` 60-66 s; with 8 grooves the CD 1.7 s, the
-/// foil 3.1 s and the DVD 26 s, so the N = 34 figures stand for any N. A table file's cost is
-/// not known before its table is built: it counts as the dearest preset's.
+/// with a margin. Read classically: the CD 4.3 s, the foil 4.2 s, the DVD 35 s (the
+/// mirror-symmetric presets build one grid per incidence node), `blazed600` 60-66 s; with 8
+/// grooves the CD 1.7 s, the foil 3.1 s and the DVD 26 s, so the N = 34 figures stand for any
+/// N. Read conically (the presets' default: 9 planes of |wi.y|; `conical_presets_build_times`
+/// in tests/tabulated_color_table.rs, beside another build): the CD 20 s, the foil 32 s, the
+/// DVD 44 s, `blazed600` 211 s. A table file's cost is not known before its table is built:
+/// it counts as the dearest preset's.
 pub fn table_build_ns(g: &GratingMaterial<GratingBsdf>) -> f64 {
-    match g.preset {
-        Some(Preset::Cd | Preset::Foil) => 8e9,
-        Some(Preset::Dvd) => 6e10,
+    let conical = g
+        .model
+        .order_efficiency()
+        .table()
+        .is_some_and(|t| t.is_conical());
+    match (g.preset, conical) {
+        (Some(Preset::Cd), true) => 4e10,
+        (Some(Preset::Foil), true) => 6e10,
+        (Some(Preset::Dvd), true) => 9e10,
+        (_, true) => 4e11,
+        (Some(Preset::Cd | Preset::Foil), false) => 8e9,
+        (Some(Preset::Dvd), false) => 6e10,
         // `blazed600`, a table file (and any preset added later).
-        _ => 7.5e10,
+        (_, false) => 7.5e10,
     }
 }
 
 /// Whether the Whitted renderer colours grating material `g` from a colour table: tabulated
-/// efficiencies (a conical table's on the plane across the grooves, as `ColorTable` takes
-/// it), finite N, a groove spread that does not depend on λ, and a colour that is an integral
+/// efficiencies (a conical table's on its planes of |wi.y|, as `ColorTable` takes it), finite
+/// N, a groove spread that does not depend on λ, and a colour that is an integral
 /// (`Colour::Integral`).
 pub fn tabled(g: &GratingMaterial<GratingBsdf>) -> bool {
     let b = &g.model;
