@@ -65,6 +65,34 @@ fn pairs(count: usize, seed: u64) -> Vec<(DVec3, DVec3)> {
     out
 }
 
+/// The error of `table.xyz(wo, wi)` against the generic colour of `b`, relative to the
+/// exposure max(cos θi·g(v)·Y_b, Y): (the largest channel's, ΔE2000 at that exposure); `None`
+/// where the exposure is 0.
+fn error_at(
+    s: &Spectral,
+    white: WhitePoint,
+    b: &GratingBsdf,
+    table: &ColorTable,
+    (wo, wi): (DVec3, DVec3),
+) -> Option<(f64, f64)> {
+    let want = s.xyz_brdf(b, wo, wi, reference());
+    let got = table.xyz(wo, wi);
+    let weight = wi.z * b.groove().value(wi.y + wo.y, 550.0);
+    let k = 1.0 / (weight * table.scale()).max(want.y);
+    if !k.is_finite() {
+        return None;
+    }
+    let r = [got.x - want.x, got.y - want.y, got.z - want.z]
+        .iter()
+        .fold(0.0f64, |m, d| m.max(d.abs()))
+        * k;
+    let e = got
+        .scale(k)
+        .to_lab(white)
+        .delta_e2000(want.scale(k).to_lab(white));
+    Some((r, e))
+}
+
 /// The worst (relative, ΔE2000) of `table.xyz` against the reference at `count` pairs, and
 /// the pair (wo, wi) of the worst ΔE2000.
 fn errors(
@@ -75,24 +103,11 @@ fn errors(
     seed: u64,
 ) -> (f64, f64, (DVec3, DVec3)) {
     let white = WhitePoint::new(s.white()).unwrap();
-    let rule = reference();
     let (mut rel, mut de, mut at) = (0.0f64, 0.0f64, (DVec3::Z, DVec3::Z));
     for (wo, wi) in pairs(count, seed) {
-        let want = s.xyz_brdf(b, wo, wi, rule);
-        let got = table.xyz(wo, wi);
-        let weight = wi.z * b.groove().value(wi.y + wo.y, 550.0);
-        let k = 1.0 / (weight * table.scale()).max(want.y);
-        if !k.is_finite() {
+        let Some((r, e)) = error_at(s, white, b, table, (wo, wi)) else {
             continue;
-        }
-        let r = [got.x - want.x, got.y - want.y, got.z - want.z]
-            .iter()
-            .fold(0.0f64, |m, d| m.max(d.abs()))
-            * k;
-        let e = got
-            .scale(k)
-            .to_lab(white)
-            .delta_e2000(want.scale(k).to_lab(white));
+        };
         rel = rel.max(r);
         if e > de {
             (de, at) = (e, (wo, wi));
@@ -314,7 +329,6 @@ fn errors_off_the_plane(
     max_beta: f64,
 ) -> [(usize, f64, f64); 4] {
     let white = WhitePoint::new(s.white()).unwrap();
-    let rule = reference();
     let mut rng = Rng::new(0xc0a1);
     let bands = [0.05, 0.3, 0.6, 0.9];
     let mut out = [(0usize, 0.0f64, 0.0f64); 4];
@@ -329,18 +343,10 @@ fn errors_off_the_plane(
             continue;
         }
         let (wo, wi) = (DVec3::new(ox, oy, oz.sqrt()), DVec3::new(ix, iy, iz.sqrt()));
-        let want = s.xyz_brdf(b, wo, wi, rule);
-        let got = table.xyz(wo, wi);
-        let weight = wi.z * b.groove().value(wi.y + wo.y, 550.0);
-        let k = 1.0 / (weight * table.scale()).max(want.y);
-        if !k.is_finite() {
+        let Some((_, e)) = error_at(s, white, b, table, (wo, wi)) else {
             continue;
-        }
+        };
         taken += 1;
-        let e = got
-            .scale(k)
-            .to_lab(white)
-            .delta_e2000(want.scale(k).to_lab(white));
         let band = bands.iter().position(|b| iy.abs() <= *b).unwrap_or(3);
         let o = &mut out[band];
         o.0 += 1;
