@@ -35,6 +35,7 @@ mod layout;
 mod source;
 #[cfg(feature = "serde")]
 mod stored;
+mod tabulated_access;
 #[cfg(feature = "relief")]
 mod tabulated_nodes;
 use grid::Grid;
@@ -777,56 +778,6 @@ impl ColorTable {
             return Some(t.incidence_count() + planes);
         }
         None
-    }
-
-    /// The incidence nodes of a tabulated source.
-    #[cfg(feature = "relief")]
-    #[inline]
-    fn tabulated(&self) -> Option<&incidence::Incidence> {
-        match &self.source {
-            Source::Tabulated { incidence, .. } => incidence.as_deref(),
-            _ => None,
-        }
-    }
-
-    /// The incidence nodes of a conical table's planes off the plane across the grooves.
-    #[cfg(feature = "relief")]
-    fn off_plane(&self) -> impl Iterator<Item = &incidence::Incidence> {
-        let planes = match &self.source {
-            Source::Tabulated { planes, .. } => &planes[..],
-            _ => &[],
-        };
-        planes.iter().map(|(_, _, t)| t)
-    }
-
-    /// Without the feature `relief` there are no tabulated sources.
-    #[cfg(not(feature = "relief"))]
-    #[inline(always)]
-    fn tabulated(&self) -> Option<&NoIncidence> {
-        None
-    }
-
-    /// Without the feature `relief` there are no planes.
-    #[cfg(not(feature = "relief"))]
-    fn off_plane(&self) -> core::iter::Empty<&NoIncidence> {
-        core::iter::empty()
-    }
-}
-
-/// Stands for the incidence nodes without the feature `relief` (never built).
-#[cfg(not(feature = "relief"))]
-struct NoIncidence {
-    scale: f64,
-    error: f64,
-}
-
-#[cfg(not(feature = "relief"))]
-impl NoIncidence {
-    fn node_count(&self) -> usize {
-        0
-    }
-    fn heap_bytes(&self) -> usize {
-        0
     }
 }
 
