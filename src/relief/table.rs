@@ -168,8 +168,9 @@ enum Storage {
         band: (f64, f64),
         te: Vec<f64>,
         tm: Vec<f64>,
-        /// The cell's location in O(1) (`reduced/locate.rs`), derived from the grid.
-        locator: reduced::Locator,
+        /// The cell's location in O(1) (`reduced/locate.rs`), derived from the grid (boxed:
+        /// the variants stay of similar size).
+        locator: alloc::boxed::Box<reduced::Locator>,
     },
 }
 

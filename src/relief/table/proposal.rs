@@ -73,7 +73,8 @@ impl EfficiencyTable {
         let (lo, hi) = (lo as i32, hi as i32);
         #[cfg(feature = "alloc")]
         if let Some(r) = self.reduced() {
-            let cell = r.find(alpha, beta, lambda_nm)?;
+            // The proposal reads the stored values at the corners' weights alone.
+            let cell = r.find(alpha, beta, lambda_nm, false)?;
             return self.propose(&cell, (lo, hi), r.slice(), r.te, r.tm);
         }
         with_arrays!(self, |sin, bet, lam, te, tm| {

@@ -144,59 +144,79 @@ impl Reduced<'_> {
     /// The cell of the incidence (α, β) at λ (`None` for a non-finite query, α² + β² ≥ 1, or
     /// grazing incidence on the grid): s′, |β| and λ clamped to the axes and the band (the
     /// query is then the clamped point), λ′ = λ/c; plane p read at λ·c_p/c (clamped to its
-    /// nodes, which only rounding can leave), the planes blended linearly in c.
-    #[inline]
-    pub(super) fn find(&self, alpha: f64, beta: f64, lambda_nm: f64) -> Option<Cell3> {
+    /// nodes, which only rounding can leave), the planes blended linearly in c. The corners'
+    /// α, β², λ and cos θi are set only with `geometry` (the reads without the nodes' q's need
+    /// them; the others leave them 0).
+    #[inline(always)]
+    pub(super) fn find(
+        &self,
+        alpha: f64,
+        beta: f64,
+        lambda_nm: f64,
+        geometry: bool,
+    ) -> Option<Cell3> {
         if !(alpha.is_finite() && beta.is_finite() && lambda_nm.is_finite()) {
             return None;
         }
-        let b = beta.abs();
-        if alpha * alpha + b * b >= 1.0 {
+        let b0 = beta.abs();
+        if alpha * alpha + b0 * b0 >= 1.0 {
             return None;
         }
         let (sin, bet, loc) = (self.sin, self.bet, self.loc);
         let (n_s, n_b) = (sin.len(), bet.len());
-        let sp = (alpha / cb(b)).max(sin[0]).min(sin[n_s - 1]);
-        let b = b.max(bet[0]).min(bet[n_b - 1]);
+        let s0 = alpha / cb(b0);
+        let sp = s0.max(sin[0]).min(sin[n_s - 1]);
+        let b = b0.max(bet[0]).min(bet[n_b - 1]);
         let lambda_nm = lambda_nm.max(self.band.0).min(self.band.1);
         let c = cb(b);
-        let cos_i = c * math::sqrt(1.0 - sp * sp);
+        // cos θi = c·√(1 − s′²); where nothing was clamped that is √(1 − β² − α²), which does
+        // not wait for the division (the chain a query's reads start from).
+        let cos_i = if sp == s0 && b == b0 {
+            math::sqrt((1.0 - b * b) - alpha * alpha)
+        } else {
+            c * math::sqrt(1.0 - sp * sp)
+        };
         if cos_i.is_nan() || cos_i <= 0.0 {
             return None;
         }
         let i = loc.sin.interval(sin, sp);
         let k = loc.bet.interval(bet, b);
         let cp = [loc.c[k], loc.c[k + 1]];
-        let span = cp[0] - cp[1];
-        let tb = if span > 0.0 {
-            ((cp[0] - c) / span).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let tx = (sp - sin[i]) / (sin[i + 1] - sin[i]);
-        let (mut j, mut ty) = ([0usize; 2], [0.0f64; 2]);
+        let tb = ((cp[0] - c) * loc.inv_dc[k]).clamp(0.0, 1.0);
+        // Products by the reciprocal widths can pass 1 by an ulp at a cell's far node.
+        let tx = ((sp - sin[i]) * loc.inv_ds[i]).min(1.0);
+        let (mut row, mut ty) = ([0usize; 2], [0.0f64; 2]);
         for d in 0..2 {
-            let nodes = self.plane(k + d);
+            let first = self.rows[k + d];
+            let nodes = &self.lam[first..self.rows[k + d + 1]];
             let l = (lambda_nm * (cp[d] / c))
                 .max(nodes[0])
                 .min(nodes[nodes.len() - 1]);
-            j[d] = loc.planes[k + d].interval(nodes, l);
-            ty[d] = (l - nodes[j[d]]) / (nodes[j[d] + 1] - nodes[j[d]]);
+            let j = loc.planes[k + d].interval(nodes, l);
+            row[d] = first + j;
+            ty[d] = ((l - nodes[j]) * loc.inv_dl[first + j]).min(1.0);
         }
-        let cell_index = self.slab_offset(k) + (j[0] + j[1]) * (n_s - 1) + i;
+        // j_k + j_{k+1}, the pair's number in its slab.
+        let pair = row[0] + row[1] - self.rows[k] - self.rows[k + 1];
+        let cell_index = self.slab_offset(k) + pair * (n_s - 1) + i;
         let mut cell = Cell3::empty(sp * c, b * b, lambda_nm, cos_i, cell_index);
         let wt = |d: usize, t: f64| if d == 1 { t } else { 1.0 - t };
-        // The two s′ nodes' √(1 − s′²), shared by the planes' corners.
-        let root = [loc.root[i], loc.root[i + 1]];
         for n in 0..8 {
             let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
             cell.w[n] = wt(di, tx) * wt(dk, tb) * wt(dj, ty[dk]);
-            let (s_n, b_n) = (sin[i + di], bet[k + dk]);
-            cell.a_c[n] = s_n * cp[dk];
-            cell.b2_c[n] = b_n * b_n;
-            cell.l_c[n] = self.plane(k + dk)[j[dk] + dj];
-            cell.cos_c[n] = cp[dk] * root[di];
-            cell.index[n] = (self.rows[k + dk] + j[dk] + dj) * n_s + i + di;
+            cell.index[n] = (row[dk] + dj) * n_s + i + di;
+        }
+        if geometry {
+            // The two s′ nodes' √(1 − s′²), shared by the planes' corners.
+            let root = [loc.root[i], loc.root[i + 1]];
+            for n in 0..8 {
+                let (di, dk, dj) = (n & 1, (n >> 1) & 1, (n >> 2) & 1);
+                let b_n = bet[k + dk];
+                cell.a_c[n] = sin[i + di] * cp[dk];
+                cell.b2_c[n] = b_n * b_n;
+                cell.l_c[n] = self.lam[row[dk] + dj];
+                cell.cos_c[n] = cp[dk] * root[di];
+            }
         }
         Some(cell)
     }
@@ -392,7 +412,7 @@ impl EfficiencyTable {
         f: impl FnMut(i32, Polarised),
     ) -> (f64, f64) {
         let q = self.q.get(|| self.reduced_q(r));
-        match r.find(alpha, beta, lambda_nm) {
+        match r.find(alpha, beta, lambda_nm, q.is_none()) {
             Some(cell) => self.sum_cell(&cell, r.slice(), (r.te, r.tm), q, f),
             None => (0.0, 0.0),
         }
@@ -406,7 +426,7 @@ impl EfficiencyTable {
         (alpha, beta, lambda_nm): (f64, f64, f64),
     ) -> Polarised {
         let q = self.q.get(|| self.reduced_q(r));
-        match r.find(alpha, beta, lambda_nm) {
+        match r.find(alpha, beta, lambda_nm, q.is_none()) {
             Some(cell) => {
                 let marks = || self.reduced_marks(r);
                 self.one_cell(&cell, order, r.slice(), (r.te, r.tm), q, marks)
@@ -707,7 +727,7 @@ mod tests {
                 let lam = l0 - wide + (l1 - l0 + 2.0 * wide) * next();
                 let beta = 0.99 * next();
                 let alpha = (1.0 - beta * beta).sqrt() * (-1.0 + 2.0 * next());
-                let Some(cell) = r.find(alpha, beta, lam) else {
+                let Some(cell) = r.find(alpha, beta, lam, false) else {
                     continue;
                 };
                 let (st, sm) = t.each_reduced(&r, (alpha, beta, lam), |_, _| {});

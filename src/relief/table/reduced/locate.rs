@@ -1,9 +1,11 @@
 //! A reduced table's cell location in O(1) (`Reduced::find`): uniform bins on each axis (the
 //! s′ nodes, the planes' |β| and every plane's wavelengths) that name the interval of their
-//! start, and what the corners need of the nodes alone (each plane's c = √(1 − β²) and each s′
-//! node's √(1 − s′²)), derived once when the table is made. A query takes its bin's interval
-//! and steps to its own, so the interval is the binary search's (`interval`) for every query,
-//! and the values are the formulas' own bits.
+//! start, and what the corners need of the nodes alone (each plane's c = √(1 − β²), each s′
+//! node's √(1 − s′²) and the reciprocal widths of the intervals), derived once when the table
+//! is made. A query takes its bin's interval and steps to its own, so the interval is the
+//! binary search's (`interval`) for every query, and c and the roots are the formulas' own
+//! bits; the weights are products by the reciprocal widths (as the classical table's fast
+//! reading takes them), within an ulp or two of the quotients.
 
 use alloc::vec::Vec;
 
@@ -75,6 +77,12 @@ pub(in crate::relief::table) struct Locator {
     pub(in crate::relief::table) c: Vec<f64>,
     /// Each s′ node's √(1 − s′²).
     pub(in crate::relief::table) root: Vec<f64>,
+    /// 1/(s′_{i+1} − s′_i) of each s′ interval.
+    pub(in crate::relief::table) inv_ds: Vec<f64>,
+    /// 1/(c_k − c_{k+1}) of each pair of neighbouring planes (0 where they coincide in c).
+    pub(in crate::relief::table) inv_dc: Vec<f64>,
+    /// 1/(λ_{j+1} − λ_j) of each plane's wavelength intervals, at the row of λ_j.
+    pub(in crate::relief::table) inv_dl: Vec<f64>,
 }
 
 impl Locator {
@@ -86,6 +94,8 @@ impl Locator {
         lam: &[f64],
         rows: &[usize],
     ) -> Locator {
+        let inv = |w: &[f64]| 1.0 / (w[1] - w[0]);
+        let c: Vec<f64> = bet.iter().map(|&b| cb(b)).collect();
         Locator {
             sin: Bins::new(sin),
             bet: Bins::new(bet),
@@ -93,8 +103,24 @@ impl Locator {
                 .windows(2)
                 .map(|r| Bins::new(&lam[r[0]..r[1]]))
                 .collect(),
-            c: bet.iter().map(|&b| cb(b)).collect(),
             root: sin.iter().map(|&s| math::sqrt(1.0 - s * s)).collect(),
+            inv_ds: sin.windows(2).map(inv).collect(),
+            inv_dc: c
+                .windows(2)
+                .map(|w| {
+                    if w[0] > w[1] {
+                        1.0 / (w[0] - w[1])
+                    } else {
+                        0.0
+                    }
+                })
+                .collect(),
+            // A plane's last row starts no interval: 0 there.
+            inv_dl: rows
+                .windows(2)
+                .flat_map(|r| lam[r[0]..r[1]].windows(2).map(inv).chain([0.0]))
+                .collect(),
+            c,
         }
     }
 }

@@ -116,7 +116,12 @@ impl EfficiencyTable {
             lambda_nm.extend_from_slice(nodes);
         }
         rows.push(lambda_nm.len());
-        let locator = Locator::new(&grid.sin_theta_i, &grid.abs_beta, &lambda_nm, &rows);
+        let locator = Box::new(Locator::new(
+            &grid.sin_theta_i,
+            &grid.abs_beta,
+            &lambda_nm,
+            &rows,
+        ));
         Ok(EfficiencyTable {
             period_nm,
             order_min,
