@@ -618,3 +618,55 @@ fn reading_a_table_reduced_refuses_bad_input_naming_it() {
         assert!(p.reduced_table().is_ok(), "{p}");
     }
 }
+
+/// A reduced table whose node spacings are subnormal (as tests/conical_surfaces_sweep.rs
+/// checks for classical tables): an inner s′ interval of 10⁻³¹⁰, whose reciprocal width (the
+/// locator's) overflows, and two planes 10⁻³¹⁰ apart in |β| (coincident in c). At s′ = 0
+/// exactly the rule reads node 1's value (one order, no normalisation, order 0 at normal
+/// incidence), not the next node's; every read is finite.
+#[test]
+fn reduced_tables_with_subnormal_spacings_are_read_by_the_rule() {
+    let sin = vec![-0.5, 0.0, 1e-310, 0.5];
+    let row = [0.5, 0.2, 0.6, 0.5];
+    let grid = |abs_beta: Vec<f64>| ReducedGrid {
+        sin_theta_i: sin.clone(),
+        lambda_nm: vec![vec![400.0, 700.0]; abs_beta.len()],
+        abs_beta,
+        lambda_range_nm: (400.0, 700.0),
+    };
+    for planes in [vec![0.0, 1e-310], vec![0.0, 1e-310, 0.3]] {
+        // With a third plane at |β| = 0.3 (flat 0.5), the second must reach 700 nm/c there
+        // and the third down to 400 nm·c.
+        let mut g = grid(planes.clone());
+        if planes.len() == 3 {
+            let c = (1.0f64 - 0.09).sqrt();
+            g.lambda_nm[1] = vec![400.0, 700.0 / c];
+            g.lambda_nm[2] = vec![400.0 * c, 700.0];
+        }
+        let mut te = Vec::new();
+        for p in 0..planes.len() {
+            for _ in 0..2 {
+                if p < 2 {
+                    te.extend(row);
+                } else {
+                    te.extend([0.5; 4]);
+                }
+            }
+        }
+        let t = EfficiencyTable::new_reduced(1000.0, 0, g, te.clone(), te).unwrap();
+        for beta in [0.0, 1e-311, 1e-310, 0.1] {
+            let e = t.efficiency_conical(0, 0.0, beta, 550.0).unpolarised();
+            assert!(e.is_finite() && e > 0.0, "{planes:?} {beta}: {e}");
+            if beta <= 1e-310 {
+                assert!(
+                    (e - 0.2).abs() < tol::INTERPOLATION,
+                    "{planes:?} {beta}: {e}"
+                );
+            }
+        }
+        for alpha in [1e-311, 5e-311, 1e-310, 2e-310, -1e-311] {
+            let e = t.efficiency_conical(0, alpha, 0.0, 550.0).unpolarised();
+            assert!((0.2..=0.6).contains(&e), "{planes:?} {alpha}: {e}");
+        }
+    }
+}

@@ -86,6 +86,21 @@ fn cb(b: f64) -> f64 {
     math::sqrt(1.0 - b * b)
 }
 
+/// (x − a)/(b − a) in [0, 1] for x between the nodes a and b, as a product by the interval's
+/// stored reciprocal width `inv` (within an ulp of the quotient; it can pass 1 by an ulp at
+/// the far node, hence the clamp), the quotient itself where that reciprocal overflowed (a
+/// subnormal width, where the product would read a query on a node as the next node). A
+/// width of 0 (planes coincident in c) has `inv` 0: the first node.
+#[inline(always)]
+fn fraction(x: f64, a: f64, b: f64, inv: f64) -> f64 {
+    let t = if inv.is_finite() {
+        (x - a) * inv
+    } else {
+        (x - a) / (b - a)
+    };
+    t.clamp(0.0, 1.0)
+}
+
 /// The wavelengths plane `p` of the planes `bet` must reach for the band `band`.
 fn reach(bet: &[f64], band: (f64, f64), p: usize) -> Option<(f64, f64)> {
     let c = cb(*bet.get(p)?);
@@ -182,9 +197,8 @@ impl Reduced<'_> {
         let i = loc.sin.interval(sin, sp);
         let k = loc.bet.interval(bet, b);
         let cp = [loc.c[k], loc.c[k + 1]];
-        let tb = ((cp[0] - c) * loc.inv_dc[k]).clamp(0.0, 1.0);
-        // Products by the reciprocal widths can pass 1 by an ulp at a cell's far node.
-        let tx = ((sp - sin[i]) * loc.inv_ds[i]).min(1.0);
+        let tb = fraction(c, cp[0], cp[1], loc.inv_dc[k]);
+        let tx = fraction(sp, sin[i], sin[i + 1], loc.inv_ds[i]);
         let (mut row, mut ty) = ([0usize; 2], [0.0f64; 2]);
         for d in 0..2 {
             let first = self.rows[k + d];
@@ -194,7 +208,7 @@ impl Reduced<'_> {
                 .min(nodes[nodes.len() - 1]);
             let j = loc.planes[k + d].interval(nodes, l);
             row[d] = first + j;
-            ty[d] = ((l - nodes[j]) * loc.inv_dl[first + j]).min(1.0);
+            ty[d] = fraction(l, nodes[j], nodes[j + 1], loc.inv_dl[first + j]);
         }
         // j_k + j_{k+1}, the pair's number in its slab.
         let pair = row[0] + row[1] - self.rows[k] - self.rows[k + 1];

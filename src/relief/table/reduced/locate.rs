@@ -79,7 +79,8 @@ pub(in crate::relief::table) struct Locator {
     pub(in crate::relief::table) root: Vec<f64>,
     /// 1/(s′_{i+1} − s′_i) of each s′ interval.
     pub(in crate::relief::table) inv_ds: Vec<f64>,
-    /// 1/(c_k − c_{k+1}) of each pair of neighbouring planes (0 where they coincide in c).
+    /// 1/(c_{k+1} − c_k) of each pair of neighbouring planes (c falls as |β| grows; 0 where
+    /// they coincide in c).
     pub(in crate::relief::table) inv_dc: Vec<f64>,
     /// 1/(λ_{j+1} − λ_j) of each plane's wavelength intervals, at the row of λ_j.
     pub(in crate::relief::table) inv_dl: Vec<f64>,
@@ -109,7 +110,7 @@ impl Locator {
                 .windows(2)
                 .map(|w| {
                     if w[0] > w[1] {
-                        1.0 / (w[0] - w[1])
+                        1.0 / (w[1] - w[0])
                     } else {
                         0.0
                     }
