@@ -39,6 +39,8 @@ mod tabulated_access;
 #[cfg(feature = "relief")]
 mod tabulated_nodes;
 use grid::Grid;
+#[cfg(all(feature = "relief", feature = "gpu"))]
+pub(crate) use incidence::GpuIncidence;
 use layout::{LAMBDA_MIN_NM, U_MAX};
 use source::Source;
 pub use source::TableSource;

@@ -11,7 +11,7 @@
 //! | [`KERNEL_WGSL`] | `diffraction_single_slit_cycles(y)`, `diffraction_n_slit_cycles(x, n)`, `diffraction_intensity_cycles(x, y, n)` | nothing |
 //! | [`TYPES_WGSL`] | the structs of [`GpuGrating`], [`GpuIllumination`], [`GpuTableHeader`], [`GpuTableBlock`], [`GpuTableNode`] | nothing |
 //! | [`COLOR_TABLE_WGSL`] | `diffraction_table_lookup(u) -> XYZ` | types, [`color_table_bindings`] |
-//! | [`INCIDENCE_WGSL`] | `diffraction_table_colour(u, s) -> XYZ`: the table's colour at the incidence s = wi.x (a table of tabulated efficiencies) | colour table, [`incidence_bindings`] |
+//! | [`INCIDENCE_WGSL`] | `diffraction_table_colour(u, s) -> XYZ`: the table's colour at the incidence s = wi.x (a table of tabulated efficiencies); `diffraction_table_colour_conical(u, s, b) -> XYZ`: a conical table's, on its planes of b = min(\|wi.y\|, \|wo.y\|) | colour table, [`incidence_bindings`] |
 //! | [`SHADING_WGSL`] | `diffraction_shade` (eq. 12), `diffraction_shade_grating`, `diffraction_xyz_to_linear_srgb`, `diffraction_phase_u` | types, colour table |
 //! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`, `diffraction_bsdf_sample`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
 //! | [`TABULATED_WGSL`] | `diffraction_bsdf_tabulated_f`, `_pdf`, `_sample`, `diffraction_eta`: a tabulated model from its packed table (`GpuEfficiencyTables`, feature `relief`) | types, kernels, BSDF, [`efficiency_table_bindings`] |
@@ -66,8 +66,11 @@ pub const TYPES_WGSL: &str = include_str!("gpu/types.wgsl");
 /// [`TYPES_WGSL`] and the bindings of [`color_table_bindings`].
 pub const COLOR_TABLE_WGSL: &str = include_str!("gpu/color_table.wgsl");
 /// The colour at an incidence, `diffraction_table_colour(u, s) -> vec3<f32>` (XYZ; a table of
-/// tabulated efficiencies depends on s = wi.x, the others give `diffraction_table_lookup(u)`);
-/// needs [`COLOR_TABLE_WGSL`], its bindings and the binding of [`incidence_bindings`].
+/// tabulated efficiencies depends on s = wi.x, the others give `diffraction_table_lookup(u)`),
+/// and a conical table's off the plane across the grooves,
+/// `diffraction_table_colour_conical(u, s, b)` with b = min(|wi.y|, |wo.y|) (its planes of
+/// |wi.y|; the first function for any other table); needs [`COLOR_TABLE_WGSL`], its bindings
+/// and the binding of [`incidence_bindings`].
 pub const INCIDENCE_WGSL: &str = include_str!("gpu/incidence.wgsl");
 
 /// The declaration of the colour table's incidence ([`GpuColorTable::incidence`]) at `group`,
@@ -171,8 +174,8 @@ type GridNodes = Vec<([f64; 3], [f64; 3])>;
 
 /// Appends the grids of `table`'s incidence nodes to `blocks` and `nodes` (grid g's blocks
 /// from g·(blocks of grid 0) on: node k's over u ≥ 0 is grid 1 + 2k, over u ≤ 0 2 + 2k; every
-/// grid of a table has the same blocks) and returns the incidence words of
-/// [`GpuColorTable::incidence`].
+/// grid of a table has the same blocks), then those of a conical table's other planes, and
+/// returns the incidence words of [`GpuColorTable::incidence`].
 #[cfg(feature = "relief")]
 fn append_incidence(
     table: &ColorTable,
@@ -183,6 +186,36 @@ fn append_incidence(
         return Vec::from([0, 0]);
     };
     let block_count = blocks.len();
+    let mut words = Vec::new();
+    append_plane(t, block_count, blocks, nodes, &mut words);
+    let planes = table.gpu_planes();
+    words.push(planes.len() as u32);
+    let head = words.len();
+    words.resize(head + 4 * planes.len(), 0);
+    for (p, (b, c, t)) in planes.into_iter().enumerate() {
+        let grid_base = (blocks.len() / block_count) as u32;
+        let offset = words.len() as u32;
+        words[head + 4 * p..head + 4 * p + 4].copy_from_slice(&[
+            (b as f32).to_bits(),
+            (c as f32).to_bits(),
+            offset,
+            grid_base,
+        ]);
+        append_plane(t, block_count, blocks, nodes, &mut words);
+    }
+    words
+}
+
+/// Appends one plane's grids to `blocks` and `nodes` and its words (K, M, the M bins, each
+/// node's σ and 1/(next σ − σ)) to `words`.
+#[cfg(feature = "relief")]
+fn append_plane(
+    t: crate::color_table::GpuIncidence<'_>,
+    block_count: usize,
+    blocks: &mut Vec<GpuTableBlock>,
+    nodes: &mut Vec<GpuTableNode>,
+    words: &mut Vec<u32>,
+) {
     // A grid equal to the one before it (the grid over u ≤ 0 of a mirror-symmetric table,
     // which is the one over u ≥ 0) repeats only its blocks; they point at the same nodes.
     let mut last: Option<(GridNodes, u32)> = None;
@@ -203,13 +236,12 @@ fn append_incidence(
         );
         last = Some((grid_nodes, first));
     }
-    let mut words = Vec::with_capacity(2 + t.bins.len() + 2 * t.nodes.len());
+    words.reserve(2 + t.bins.len() + 2 * t.nodes.len());
     words.extend([t.nodes.len() as u32, t.bins.len() as u32]);
     words.extend_from_slice(t.bins);
     for (sigma, inv_next) in t.nodes {
         words.extend([(sigma as f32).to_bits(), (inv_next as f32).to_bits()]);
     }
-    words
 }
 
 /// Without the feature `relief` no table has incidence nodes.
@@ -432,7 +464,10 @@ pub struct GpuColorTable {
     /// The incidence of a table of tabulated efficiencies (storage, `array<u32>`, read by
     /// `diffraction_table_colour`): K (its incidence nodes), M (its bins), the M bins (the node
     /// starting each finest interval of σ), then per node σ and 1/(next σ − σ) as f32 bits;
-    /// `[0, 0]` for a table without incidence.
+    /// then P, a conical table's planes of |wi.y| off the plane across the grooves (0 for any
+    /// other table), per plane |wi.y| and c = √(1 − wi.y²) as f32 bits, the word where its own
+    /// K, M, bins and nodes start and its first grid, and those words (read by
+    /// `diffraction_table_colour_conical`); `[0, 0]` for a table without incidence.
     pub incidence: Vec<u32>,
     resolved: bool,
 }

@@ -461,7 +461,9 @@ fn mirror_symmetric_colour_tables_store_their_nodes_once() {
     use diffraction::{ColorTable, GratingBsdf, GrooveSpread};
     let spectral = Spectral::new(Illuminant::D65);
     for (preset, mirrored) in [(Preset::Cd, true), (Preset::Blazed600, false)] {
-        // The classical reading (a conical table's GPU table is its plane β = 0: the same).
+        // The classical reading, and the conical one (`GratingBsdf::preset`), whose GPU table
+        // starts with the same words, blocks and nodes (its plane β = 0 is the classical
+        // table) and holds its other planes after them.
         let conical = GratingBsdf::preset(preset, 8)
             .unwrap()
             .with_groove(GrooveSpread::gaussian(0.02).unwrap());
@@ -472,27 +474,100 @@ fn mirror_symmetric_colour_tables_store_their_nodes_once() {
         let t = GpuColorTable::new(&table);
         let from_conical = ColorTable::new(&spectral, &conical, 1e-1).unwrap();
         assert!(from_conical.node_count() > table.node_count(), "{preset}");
-        assert_eq!(GpuColorTable::new(&from_conical), t, "{preset}");
+        let c = GpuColorTable::new(&from_conical);
         let count = t.header.block_count as usize;
         let k = t.incidence[0] as usize;
-        let grid = |g: usize| &t.blocks[g * count..(g + 1) * count];
-        let nodes = |g: usize| {
-            let b = grid(g);
+        let head = 2 + t.incidence[1] as usize + 2 * k;
+        assert_eq!(t.incidence.len(), head + 1, "{preset}");
+        assert_eq!(
+            t.incidence[head], 0,
+            "{preset}: a classical table has no planes"
+        );
+        assert_eq!(c.incidence[..head], t.incidence[..head], "{preset}");
+        assert_eq!(c.blocks[..t.blocks.len()], t.blocks[..], "{preset}");
+        assert_eq!(c.nodes[..t.nodes.len()], t.nodes[..], "{preset}");
+        assert_eq!(c.header.block_count, t.header.block_count, "{preset}");
+        let nodes = |t: &GpuColorTable, g: usize| {
+            let b = &t.blocks[g * count..(g + 1) * count];
             (b[count - 1].first + b[count - 1].n + 1 - b[0].first) as usize
         };
         assert_eq!(t.blocks.len(), (1 + 2 * k) * count, "{preset}");
-        let mut stored = nodes(0);
-        for node in 0..k {
-            let (pos, neg) = (1 + 2 * node, 2 + 2 * node);
-            assert_eq!(grid(pos) == grid(neg), mirrored, "{preset}, node {node}");
-            stored += nodes(pos) + if mirrored { 0 } else { nodes(neg) };
-        }
+        let stored = stored_after(&t, count, 1, k, mirrored, nodes(&t, 0));
         assert_eq!(t.nodes.len(), stored, "{preset}");
         // The grid of normal incidence and as many as the CPU's incidence nodes keep (one grid
         // a node where mirror symmetric).
-        assert_eq!(t.nodes.len(), nodes(0) + table.node_count(), "{preset}");
-        println!("{preset}: {k} incidence nodes, {} GPU nodes", t.nodes.len());
+        assert_eq!(t.nodes.len(), nodes(&t, 0) + table.node_count(), "{preset}");
+        // The planes: |wi.y| rising, c = √(1 − wi.y²), each plane's words where its entry
+        // says and its grids after the previous plane's, every node stored once.
+        let planes = c.incidence[head] as usize;
+        assert_eq!(planes, 8, "{preset}");
+        let (mut next_word, mut next_grid) = (head + 1 + 4 * planes, 1 + 2 * k);
+        let mut stored = stored_after(&c, count, 1, k, mirrored, nodes(&c, 0));
+        let mut last_beta = 0.0f32;
+        for p in 0..planes {
+            let e = &c.incidence[head + 1 + 4 * p..head + 5 + 4 * p];
+            let (beta, cp) = (f32::from_bits(e[0]), f32::from_bits(e[1]));
+            assert!(beta > last_beta, "{preset} plane {p}");
+            assert!(
+                (cp - (1.0 - beta * beta).sqrt()).abs() < 1e-6,
+                "{preset} plane {p}"
+            );
+            last_beta = beta;
+            assert_eq!(
+                (e[2] as usize, e[3] as usize),
+                (next_word, next_grid),
+                "{preset} plane {p}"
+            );
+            let kp = c.incidence[next_word] as usize;
+            let bins = c.incidence[next_word + 1] as usize;
+            assert!(kp >= 2 && bins >= 1, "{preset} plane {p}");
+            stored = stored_after(&c, count, next_grid, kp, mirrored, stored);
+            next_word += 2 + bins + 2 * kp;
+            next_grid += 2 * kp;
+        }
+        assert_eq!(c.incidence.len(), next_word, "{preset}");
+        assert_eq!(c.blocks.len(), next_grid * count, "{preset}");
+        assert_eq!(c.nodes.len(), stored, "{preset}");
+        assert_eq!(
+            c.nodes.len(),
+            nodes(&c, 0) + from_conical.node_count(),
+            "{preset}"
+        );
+        println!(
+            "{preset}: {k} incidence nodes, {} GPU nodes; conical: {planes} more planes, {} GPU \
+             nodes",
+            t.nodes.len(),
+            c.nodes.len()
+        );
     }
+}
+
+/// `stored` plus the nodes of `k` incidence nodes' grids from grid `first` on (one grid a node
+/// where `mirrored`, whose grid over u ≤ 0 repeats the blocks of the one over u ≥ 0).
+fn stored_after(
+    c: &diffraction::gpu::GpuColorTable,
+    count: usize,
+    first: usize,
+    k: usize,
+    mirrored: bool,
+    stored: usize,
+) -> usize {
+    let grid = |g: usize| &c.blocks[g * count..(g + 1) * count];
+    let nodes = |g: usize| {
+        let b = grid(g);
+        (b[count - 1].first + b[count - 1].n + 1 - b[0].first) as usize
+    };
+    let mut stored = stored;
+    for node in 0..k {
+        let (pos, neg) = (first + 2 * node, first + 1 + 2 * node);
+        assert_eq!(
+            grid(pos) == grid(neg),
+            mirrored,
+            "node {node} from grid {first}"
+        );
+        stored += nodes(pos) + if mirrored { 0 } else { nodes(neg) };
+    }
+    stored
 }
 
 #[test]

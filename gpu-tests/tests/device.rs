@@ -4,6 +4,8 @@
 //! from the device at hand. In CI (the `CI` variable set) a missing adapter fails; elsewhere
 //! the tests skip with a message. `NODEVICE_SELECT=1` silences a harmless Mesa warning.
 
+#[path = "common/colour.rs"]
+mod colour;
 #[path = "../../tests/support/gpu_cases.rs"]
 mod gpu_cases;
 #[path = "../../tests/support/gpu_tolerance.rs"]
@@ -11,6 +13,7 @@ mod gpu_tolerance;
 
 use std::time::Instant;
 
+use colour::{cell_scale, plane_bound, sigma_of};
 use diffraction::glam::DVec3;
 use diffraction::gpu::{shading_source, GpuColorTable, KERNEL_WGSL};
 use diffraction::kernel::{n_slit_cycles, single_slit_cycles};
@@ -309,51 +312,6 @@ fn table_lookup_matches_the_cpu_table() {
     );
 }
 
-/// Per channel, the sum of the magnitudes of the cell's four Hermite terms at u and twice the
-/// cell's largest slope (the scales of the lookup's rounding, see TABLE_ROUNDINGS), in grid 0.
-fn cell_scale(t: &GpuColorTable, u: f32) -> ([f64; 3], [f64; 3]) {
-    let (_, m, dm) = cell(t, 0, u.abs().min(2.0));
-    (m, dm)
-}
-
-/// Grid g's interpolant at a ∈ [0, 2] in f64 from its f32 nodes, and the rounding scales of
-/// `cell_scale`.
-fn cell(t: &GpuColorTable, g: usize, a: f32) -> ([f64; 3], [f64; 3], [f64; 3]) {
-    let k = if a >= t.header.u_lo {
-        ((a.to_bits() >> 20) - t.header.base_key + 1) as usize
-    } else {
-        0
-    };
-    let count = t.header.block_count as usize;
-    let b = t.blocks[g * count + k.min(count - 1)];
-    let s_all = ((a - b.u0) * b.inv_h) as f64;
-    let j = (s_all as u32).min(b.n - 1);
-    let s = s_all - j as f64;
-    let (p, q) = (
-        t.nodes[(b.first + j) as usize],
-        t.nodes[(b.first + j + 1) as usize],
-    );
-    let h = b.h as f64;
-    let (s2, s3) = (s * s, s * s * s);
-    let w = [
-        2.0 * s3 - 3.0 * s2 + 1.0,
-        (s3 - 2.0 * s2 + s) * h,
-        3.0 * s2 - 2.0 * s3,
-        (s3 - s2) * h,
-    ];
-    let (mut v, mut m, mut dm) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-    for c in 0..3 {
-        let (fp, dp, fq, dq) = (p.f[c] as f64, p.d[c] as f64, q.f[c] as f64, q.d[c] as f64);
-        v[c] = (w[0] * fp + w[1] * dp + w[2] * fq + w[3] * dq).max(0.0);
-        m[c] = w[0].abs() * fp.abs()
-            + w[1].abs() * dp.abs()
-            + w[2].abs() * fq.abs()
-            + w[3].abs() * dq.abs();
-        dm[c] = 2.0 * dp.abs().max(dq.abs()).max(((fq - fp) / h).abs());
-    }
-    (v, m, dm)
-}
-
 const COLOUR_MAIN: &str = "
 struct Query { u: f32, s: f32 }
 @group(0) @binding(0) var<storage, read> queries: array<Query>;
@@ -366,15 +324,6 @@ fn colour_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 ";
-
-/// σ of the incidence s at u (the CPU's place between the grazing directions, in f64).
-fn sigma_of(tau: f64) -> f64 {
-    let (a, b) = (
-        tau.clamp(0.0, 1.0).sqrt(),
-        (1.0 - tau.clamp(0.0, 1.0)).sqrt(),
-    );
-    a / (a + b)
-}
 
 #[test]
 fn table_colour_at_an_incidence_matches_the_cpu_table() {
@@ -399,13 +348,6 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
     let words = &t.incidence;
     let (k, bins) = (words[0] as usize, words[1] as usize);
     assert!(k >= 9 && bins >= 8, "{k} nodes, {bins} bins");
-    let node = |i: usize| {
-        let at = 2 + bins + 2 * i;
-        (
-            f32::from_bits(words[at]) as f64,
-            f32::from_bits(words[at + 1]) as f64,
-        )
-    };
     const QUERIES: usize = 1 << 18;
     let mut rng = Mix(11);
     // wi.x and wo.x uniform in (−0.99, 0.99), u = wi.x + wo.x rounded to f32.
@@ -465,26 +407,9 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
         let dtau = 16.0 * U * (1.0 + sf.abs() + uf.abs()) / width + 2.0 * U * tau;
         let sigma = sigma_of(tau);
         let dsigma = sigma_of(tau + dtau) - sigma_of(tau - dtau) + 24.0 * U * sigma;
-        let i = ((sigma * bins as f64) as usize).min(bins - 1);
-        let i = words[2 + i] as usize;
-        // Over the nodes the GPU may use (the neighbouring intervals where σ is near a node):
-        // the grids' roundings and the largest slope in σ.
-        let side = if u >= 0.0 { 1 } else { 2 };
-        let lo = i.saturating_sub(1);
-        let hi = (i + 2).min(k - 1);
-        let cells: Vec<_> = (lo..=hi).map(|j| cell(&t, side + 2 * j, a)).collect();
+        let bound = plane_bound(&t, (0, 1), a, u >= 0.0, sigma, dsigma);
         for ch in 0..3 {
-            let mut grid_tol = 0.0f64;
-            let mut slope = 0.0f64;
-            for (jj, j) in (lo..=hi).enumerate() {
-                let (v, m, dm) = cells[jj];
-                grid_tol = grid_tol
-                    .max(TABLE_ROUNDINGS * U * m[ch] + 2.0 * U * a as f64 * dm[ch] + U * v[ch]);
-                if j < hi {
-                    slope = slope.max((cells[jj + 1].0[ch] - v[ch]).abs() * node(j).1);
-                }
-            }
-            let tol = grid_tol + slope * (dsigma + 4.0 * U) + 1e-12 * c[ch].abs();
+            let tol = bound[ch].0 + 1e-12 * c[ch].abs();
             let e = (out[4 * q + ch] as f64 - c[ch]).abs();
             assert!(
                 e <= tol,
@@ -504,6 +429,166 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
          its bound",
         secs * 1e3,
         worst_abs / table.scale()
+    );
+}
+
+const CONICAL_MAIN: &str = "
+struct Query { u: f32, s: f32, b: f32, pad: f32 }
+@group(0) @binding(0) var<storage, read> queries: array<Query>;
+@group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
+@compute @workgroup_size(256)
+fn conical_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&out) {
+        let q = queries[id.x];
+        out[id.x] = vec4<f32>(diffraction_table_colour_conical(q.u, q.s, q.b), 0.0);
+    }
+}
+";
+
+/// A conical table's colour on its planes of |wi.y| (the CD as `GratingBsdf::preset` reads it)
+/// against `ColorTable::xyz`: b = min(|wi.y|, |wo.y|) from 0 to past the last plane, each
+/// plane's bound (`plane_bound`, with σ's rounding through r = √(1 − b²) and the divisions by
+/// it) blended as the planes are, plus the blend's rounding times the larger plane's colour.
+/// Queries within 10⁻⁶ of a plane's |wi.y| are left out: there the f32 and f64 comparisons may
+/// pick the neighbouring pair of planes, whose blend is the same plane's colour only to within
+/// the rounding of t.
+#[test]
+fn conical_table_colour_matches_the_cpu_table() {
+    use diffraction::relief::Preset;
+    use diffraction::{GratingBsdf, GrooveSpread};
+    let Some(gpu) = gpu() else { return };
+    let b = GratingBsdf::preset(Preset::Cd, 8)
+        .unwrap()
+        .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+    let start = Instant::now();
+    let table = ColorTable::new(&Spectral::new(Illuminant::D65), &b, 1e-1).unwrap();
+    let build = start.elapsed().as_secs_f64();
+    let t = GpuColorTable::new(&table);
+    let words = &t.incidence;
+    let head = 2 + words[1] as usize + 2 * words[0] as usize;
+    let planes = words[head] as usize;
+    // (|wi.y|, c, first word, first grid) of each plane, the plane across the grooves first.
+    let mut plane = vec![(0.0f64, 1.0f64, 0usize, 1usize)];
+    for p in 0..planes {
+        let e = &words[head + 1 + 4 * p..head + 5 + 4 * p];
+        plane.push((
+            f32::from_bits(e[0]) as f64,
+            f32::from_bits(e[1]) as f64,
+            e[2] as usize,
+            e[3] as usize,
+        ));
+    }
+    assert_eq!(planes, 8);
+    const QUERIES: usize = 1 << 16;
+    let mut rng = Mix(12);
+    // (u, s, b, wo.y): b uniform in [0, 0.97], wi.y = b, wo.y in [b, b + 0.02].
+    let mut cases = Vec::with_capacity(QUERIES);
+    while cases.len() < QUERIES {
+        let bq = (0.97 * rng.next()) as f32;
+        let (bf, oy) = (bq as f64, bq as f64 + 0.02 * rng.next());
+        if plane.iter().any(|p| (bf - p.0).abs() < 1e-6 && p.0 > 0.0) || oy >= 0.999 {
+            continue;
+        }
+        let (ri, ro) = ((1.0 - bf * bf).sqrt(), (1.0 - oy * oy).sqrt());
+        let s = (ri * (1.98 * rng.next() - 0.99)) as f32;
+        let u = (s as f64 + ro * (1.98 * rng.next() - 0.99)) as f32;
+        cases.push((u, s, bq, oy));
+    }
+    let bytes: Vec<u8> = cases
+        .iter()
+        .flat_map(|&(u, s, bq, _)| [u, s, bq, 0.0].map(f32::to_le_bytes))
+        .flatten()
+        .collect();
+    let source = [
+        diffraction::gpu::TYPES_WGSL,
+        &diffraction::gpu::color_table_bindings(1, 0),
+        &diffraction::gpu::incidence_bindings(1, 3),
+        diffraction::gpu::COLOR_TABLE_WGSL,
+        diffraction::gpu::INCIDENCE_WGSL,
+        CONICAL_MAIN,
+    ]
+    .join("\n");
+    let (h, bl, n, inc) = (
+        t.header_bytes(),
+        t.blocks_bytes(),
+        t.nodes_bytes(),
+        t.incidence_bytes(),
+    );
+    let (out, secs) = gpu.run(
+        &source,
+        "conical_main",
+        &[&bytes],
+        16 * QUERIES,
+        QUERIES,
+        Some(&[&h, &bl, &n, &inc]),
+    );
+    let out = f32s(&out);
+    let (mut worst, mut worst_abs, mut checked, mut off_plane) = (0.0f64, 0.0f64, 0usize, 0usize);
+    for (q, &(u, s, bq, oy)) in cases.iter().enumerate() {
+        let (uf, sf, bf) = (u as f64, s as f64, bq as f64);
+        let ox = uf - sf;
+        let (wiz2, woz2) = (1.0 - sf * sf - bf * bf, 1.0 - ox * ox - oy * oy);
+        if wiz2 <= 1e-4 || woz2 <= 1e-4 {
+            continue;
+        }
+        let wi = DVec3::new(sf, bf, wiz2.sqrt());
+        let wo = DVec3::new(ox, -oy, woz2.sqrt());
+        let g = b.groove().value(wi.y + wo.y, 550.0);
+        let xyz = table.xyz(wo, wi);
+        let c = [xyz.x, xyz.y, xyz.z].map(|v| v / (wi.z * g));
+        // σ on the planes: r and the divisions by it (relative dr), then p, the width and τ
+        // (as the plane across the grooves, `table_colour_at_an_incidence_matches_the_cpu_table`).
+        let a = u.abs();
+        let r = (1.0 - bf * bf).sqrt();
+        let dr = U * (2.0 + bf * bf / (1.0 - bf * bf));
+        let (ur, sr) = (uf / r, sf / r);
+        let width = 2.0 - ur.abs();
+        let p = (sr - ur.max(0.0) + 1.0).clamp(0.0, width);
+        let tau = p / width;
+        let dw = ur.abs() * (dr + U) + 4.0 * U;
+        let dp = 16.0 * U * (1.0 + sr.abs() + ur.abs()) + 2.0 * (sr.abs() + ur.abs()) * dr;
+        let dtau = (dp + tau * dw) / width + 2.0 * U * tau;
+        let sigma = sigma_of(tau);
+        let dsigma = sigma_of(tau + dtau) - sigma_of(tau - dtau) + 24.0 * U * sigma;
+        // The planes around b and the blend between them (the last plane alone past it).
+        let k = plane.iter().rposition(|p| p.0 <= bf).unwrap();
+        let read = |k: usize| plane_bound(&t, (plane[k].2, plane[k].3), a, u >= 0.0, sigma, dsigma);
+        let x = read(k);
+        let (y, tb, dt) = if k + 1 < plane.len() {
+            let (c0, c1) = (plane[k].1, plane[k + 1].1);
+            let tb = ((c0 - r) / (c0 - c1)).clamp(0.0, 1.0);
+            (read(k + 1), tb, (8.0 * U + r * dr) / (c0 - c1) + 4.0 * U)
+        } else {
+            (x, 0.0, 0.0)
+        };
+        off_plane += usize::from(k > 0 || tb > 0.0);
+        for ch in 0..3 {
+            let most = x[ch].1.max(y[ch].1);
+            let tol =
+                (1.0 - tb) * x[ch].0 + tb * y[ch].0 + most * (dt + 4.0 * U) + 1e-12 * c[ch].abs();
+            let e = (out[4 * q + ch] as f64 - c[ch]).abs();
+            assert!(
+                e <= tol,
+                "u={u} s={s} b={bq} channel {ch}: {} vs {} (tol {tol:e})",
+                out[4 * q + ch],
+                c[ch]
+            );
+            worst = worst.max(e / tol);
+            worst_abs = worst_abs.max(e);
+        }
+        checked += 1;
+    }
+    assert!(
+        checked > QUERIES / 2 && off_plane > QUERIES / 2,
+        "{checked} checked"
+    );
+    let relative = worst_abs / table.scale();
+    assert!(relative <= CONICAL_COLOUR_WORST_MEASURED, "{relative:e}");
+    println!(
+        "conical table colour: {} planes ({build:.1} s to build), {checked} queries in {:.1} ms, \
+         worst error {relative:.2e} of the table's scale, {worst:.3} of its bound",
+        planes + 1,
+        secs * 1e3,
     );
 }
 

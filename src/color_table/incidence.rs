@@ -86,8 +86,14 @@ pub(super) fn coordinate(u: f64, s: f64) -> Option<f64> {
     if !(width > 0.0 && (0.0..=width).contains(&p)) {
         return None;
     }
+    Some(place(p, width))
+}
+
+/// σ = √p/(√p + √(w − p)) for 0 ≤ p ≤ w, w > 0 (see [`coordinate`]).
+#[inline]
+pub(super) fn place(p: f64, width: f64) -> f64 {
     let (a, b) = (sqrt(p), sqrt(width - p));
-    Some(a / (a + b))
+    a / (a + b)
 }
 
 /// One incidence node: σ (its field `s`) and its grids over u ≥ 0 and u ≤ 0 (the latter in
@@ -428,23 +434,36 @@ pub(crate) struct GpuIncidence<'a> {
 }
 
 #[cfg(feature = "gpu")]
-impl super::ColorTable {
-    /// The incidence nodes and their grids (`None` for a table without incidence).
-    pub(crate) fn gpu_incidence(&self) -> Option<GpuIncidence<'_>> {
-        let t = self.tabulated()?;
+impl Incidence {
+    /// The nodes and their grids for the GPU.
+    fn gpu(&self) -> GpuIncidence<'_> {
         let parts = |g: &Grid| {
             let (blocks, nodes) = g.gpu_parts();
             (blocks.collect(), nodes.collect())
         };
-        Some(GpuIncidence {
-            bins: &t.bins,
-            nodes: t.nodes.iter().map(|n| (n.s, n.inv_next)).collect(),
-            grids: t
+        GpuIncidence {
+            bins: &self.bins,
+            nodes: self.nodes.iter().map(|n| (n.s, n.inv_next)).collect(),
+            grids: self
                 .nodes
                 .iter()
                 .flat_map(|n| [parts(&n.pos), parts(n.neg())])
                 .collect(),
-        })
+        }
+    }
+}
+
+#[cfg(feature = "gpu")]
+impl super::ColorTable {
+    /// The incidence nodes and their grids (`None` for a table without incidence).
+    pub(crate) fn gpu_incidence(&self) -> Option<GpuIncidence<'_>> {
+        Some(self.tabulated()?.gpu())
+    }
+
+    /// A conical table's planes off the plane across the grooves: (|wi.y|, c = √(1 − wi.y²),
+    /// the plane's incidence nodes and grids); empty for any other table.
+    pub(crate) fn gpu_planes(&self) -> Vec<(f64, f64, GpuIncidence<'_>)> {
+        self.planes().map(|(b, c, t)| (b, c, t.gpu())).collect()
     }
 }
 

@@ -196,10 +196,10 @@ pub(super) fn conical_value(
     if width.is_nan() || width <= 0.0 {
         return Xyz::default();
     }
+    // σ from the clamped p itself (a round trip through s would leave [0, w] by rounding at
+    // the ends, where the clamp puts the directions past the grazing ones).
     let p = (s_r - u_r.max(0.0) + 1.0).clamp(0.0, width);
-    let Some(sigma) = super::incidence::coordinate(u_r, u_r.max(0.0) - 1.0 + p) else {
-        return Xyz::default();
-    };
+    let sigma = super::incidence::place(p, width);
     // The plane at or below |β| (index into [first, planes...]) and the blend toward the next.
     let at = |k: usize| if k == 0 { first } else { &planes[k - 1].2 };
     let c_of = |k: usize| if k == 0 { 1.0 } else { planes[k - 1].1 };

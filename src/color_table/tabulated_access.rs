@@ -29,6 +29,17 @@ impl ColorTable {
         planes.iter().map(|(_, _, t)| t)
     }
 
+    /// A conical table's planes off the plane across the grooves: (|wi.y|, c = √(1 − wi.y²),
+    /// incidence nodes).
+    #[cfg(all(feature = "relief", feature = "gpu"))]
+    pub(super) fn planes(&self) -> impl Iterator<Item = (f64, f64, &incidence::Incidence)> {
+        let planes = match &self.source {
+            Source::Tabulated { planes, .. } => &planes[..],
+            _ => &[],
+        };
+        planes.iter().map(|(b, c, t)| (*b, *c, t))
+    }
+
     /// Without the feature `relief` there are no tabulated sources.
     #[cfg(not(feature = "relief"))]
     #[inline(always)]
