@@ -16,7 +16,8 @@
 //! preset (N = 34, Gaussian groove σ = 0.02, D65, accuracy 10⁻³; `xyz_fine` at 2.5·10⁻⁴) at
 //! 1024 random pairs against the generic colour of the same BSDF on 16 of them: `GenericStrategy::WINDOWS` (what the
 //! Whitted renderer called before) and 8-point Gauss-Legendre on 512 intervals (the tests'
-//! reference).
+//! reference); `xyz_conical` times the table of the CD as `GratingBsdf::preset` reads it
+//! (conically: 9 planes of |wi.y|) at pairs off the plane across the grooves.
 //!
 //! `cargo bench --features serde --bench color_table -- --warm-up-time 1 --measurement-time 2`
 
@@ -266,6 +267,33 @@ fn bench_tabulated(c: &mut Criterion) {
     group.bench_function("xyz_fine", |bch| {
         let fine = fine.get_or_init(|| ColorTable::new(&s, &b, 2.5e-4).unwrap());
         bch.iter(|| lookups(fine))
+    });
+    // The conical reading (`GratingBsdf::preset`'s): its table of 9 planes of |wi.y| (about 20 s
+    // to build, so only when its benchmark runs), at pairs off the plane across the grooves,
+    // wi.y uniform in [0, 0.6] and wo.y = −wi.y − 0.01 (the groove lobe).
+    let conical = GratingBsdf::preset(Preset::Cd, 34)
+        .unwrap()
+        .with_groove(GrooveSpread::gaussian(0.02).unwrap());
+    let off_plane: Vec<(DVec3, DVec3)> = pairs
+        .iter()
+        .map(|&(o, i)| {
+            let iy = 0.6 * next();
+            let oy = -iy - 0.01;
+            let (ix, ox) = (i.x * (1.0 - iy * iy).sqrt(), o.x * (1.0 - oy * oy).sqrt());
+            let wi = DVec3::new(ix, iy, (1.0 - ix * ix - iy * iy).sqrt());
+            let wo = DVec3::new(ox, oy, (1.0 - ox * ox - oy * oy).sqrt());
+            (wo, wi)
+        })
+        .collect();
+    let conical_table = std::cell::OnceCell::new();
+    group.bench_function("xyz_conical", |bch| {
+        let t = conical_table.get_or_init(|| ColorTable::new(&s, &conical, 1e-3).unwrap());
+        bch.iter(|| {
+            off_plane
+                .iter()
+                .map(|&(o, i)| t.xyz(black_box(o), i).y)
+                .sum::<f64>()
+        })
     });
     group.throughput(Throughput::Elements(BASELINE_BATCH as u64));
     let rules = [
