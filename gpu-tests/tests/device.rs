@@ -325,6 +325,59 @@ fn colour_main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 ";
 
+/// The colours of `queries` queries (`bytes`) by the entry `entry` of `main` on the device,
+/// with the colour table `t` and its incidence bound at group 1, and the dispatch's seconds.
+fn colours(
+    gpu: &Gpu,
+    t: &GpuColorTable,
+    main: &str,
+    entry: &str,
+    bytes: &[u8],
+    queries: usize,
+) -> (Vec<f32>, f64) {
+    let source = [
+        diffraction::gpu::TYPES_WGSL,
+        &diffraction::gpu::color_table_bindings(1, 0),
+        &diffraction::gpu::incidence_bindings(1, 3),
+        diffraction::gpu::COLOR_TABLE_WGSL,
+        diffraction::gpu::INCIDENCE_WGSL,
+        main,
+    ]
+    .join("\n");
+    let (h, bl, n, inc) = (
+        t.header_bytes(),
+        t.blocks_bytes(),
+        t.nodes_bytes(),
+        t.incidence_bytes(),
+    );
+    let (out, secs) = gpu.run(
+        &source,
+        entry,
+        &[bytes],
+        16 * queries,
+        queries,
+        Some(&[&h, &bl, &n, &inc]),
+    );
+    (f32s(&out), secs)
+}
+
+/// Each channel of the device's colour `got` within `tol` (plus 10⁻¹² relative: the CPU's own
+/// rounding) of the CPU's `c`; `worst` keeps the largest error over its bound and in absolute.
+fn check(got: &[f32], c: [f64; 3], tol: [f64; 3], at: &str, worst: (&mut f64, &mut f64)) {
+    for ch in 0..3 {
+        let tol = tol[ch] + 1e-12 * c[ch].abs();
+        let e = (got[ch] as f64 - c[ch]).abs();
+        assert!(
+            e <= tol,
+            "{at} channel {ch}: {} vs {} (tol {tol:e})",
+            got[ch],
+            c[ch]
+        );
+        *worst.0 = worst.0.max(e / tol);
+        *worst.1 = worst.1.max(e);
+    }
+}
+
 #[test]
 fn table_colour_at_an_incidence_matches_the_cpu_table() {
     use diffraction::grating_bsdf::OrderEfficiency;
@@ -333,9 +386,10 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
     let Some(gpu) = gpu() else { return };
     // The blazed grating (its colour is not even in u: a symmetric profile's grids over u ≥ 0
     // and u ≤ 0 are the same by reciprocity and mirror symmetry) with 8 grooves lit, at 10⁻¹
-    // (a build of seconds unoptimised), read classically: the GPU packs a table's plane
-    // β = 0, which is the classical reading's table (tests/gpu_wgsl.rs), and the conical
-    // reading's planes of |wi.y| would take minutes unoptimised.
+    // (a build of seconds unoptimised), read classically: `diffraction_table_colour` reads a
+    // table's plane β = 0, which is the classical reading's table (tests/gpu_wgsl.rs); the
+    // conical reading's planes of |wi.y| are the next test's (the CD's: a blazed600 read
+    // conically would take minutes unoptimised).
     let classical = OrderEfficiency::from_static(Preset::Blazed600.table()).unwrap();
     let b = GratingBsdf::preset(Preset::Blazed600, 8)
         .and_then(|b| b.with_efficiency(classical))
@@ -363,30 +417,7 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
         .flat_map(|&(u, s)| [u.to_le_bytes(), s.to_le_bytes()])
         .flatten()
         .collect();
-    let source = [
-        diffraction::gpu::TYPES_WGSL,
-        &diffraction::gpu::color_table_bindings(1, 0),
-        &diffraction::gpu::incidence_bindings(1, 3),
-        diffraction::gpu::COLOR_TABLE_WGSL,
-        diffraction::gpu::INCIDENCE_WGSL,
-        COLOUR_MAIN,
-    ]
-    .join("\n");
-    let (h, bl, n, inc) = (
-        t.header_bytes(),
-        t.blocks_bytes(),
-        t.nodes_bytes(),
-        t.incidence_bytes(),
-    );
-    let (out, secs) = gpu.run(
-        &source,
-        "colour_main",
-        &[&bytes],
-        16 * QUERIES,
-        QUERIES,
-        Some(&[&h, &bl, &n, &inc]),
-    );
-    let out = f32s(&out);
+    let (out, secs) = colours(&gpu, &t, COLOUR_MAIN, "colour_main", &bytes, QUERIES);
     let g0 = b.groove().value(0.0, 550.0);
     let (mut worst, mut worst_abs, mut checked) = (0.0f64, 0.0f64, 0usize);
     for (q, &(u, s)) in queries.iter().enumerate() {
@@ -408,18 +439,15 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
         let sigma = sigma_of(tau);
         let dsigma = sigma_of(tau + dtau) - sigma_of(tau - dtau) + 24.0 * U * sigma;
         let bound = plane_bound(&t, (0, 1), a, u >= 0.0, sigma, dsigma);
-        for ch in 0..3 {
-            let tol = bound[ch].0 + 1e-12 * c[ch].abs();
-            let e = (out[4 * q + ch] as f64 - c[ch]).abs();
-            assert!(
-                e <= tol,
-                "u={u} s={s} channel {ch}: {} vs {} (tol {tol:e})",
-                out[4 * q + ch],
-                c[ch]
-            );
-            worst = worst.max(e / tol);
-            worst_abs = worst_abs.max(e);
-        }
+        let tol = [0, 1, 2].map(|ch| bound[ch].0);
+        let got = &out[4 * q..4 * q + 3];
+        check(
+            got,
+            c,
+            tol,
+            &format!("u={u} s={s}"),
+            (&mut worst, &mut worst_abs),
+        );
         checked += 1;
     }
     assert!(checked > QUERIES / 2, "{checked} checked");
@@ -499,30 +527,7 @@ fn conical_table_colour_matches_the_cpu_table() {
         .flat_map(|&(u, s, bq, _)| [u, s, bq, 0.0].map(f32::to_le_bytes))
         .flatten()
         .collect();
-    let source = [
-        diffraction::gpu::TYPES_WGSL,
-        &diffraction::gpu::color_table_bindings(1, 0),
-        &diffraction::gpu::incidence_bindings(1, 3),
-        diffraction::gpu::COLOR_TABLE_WGSL,
-        diffraction::gpu::INCIDENCE_WGSL,
-        CONICAL_MAIN,
-    ]
-    .join("\n");
-    let (h, bl, n, inc) = (
-        t.header_bytes(),
-        t.blocks_bytes(),
-        t.nodes_bytes(),
-        t.incidence_bytes(),
-    );
-    let (out, secs) = gpu.run(
-        &source,
-        "conical_main",
-        &[&bytes],
-        16 * QUERIES,
-        QUERIES,
-        Some(&[&h, &bl, &n, &inc]),
-    );
-    let out = f32s(&out);
+    let (out, secs) = colours(&gpu, &t, CONICAL_MAIN, "conical_main", &bytes, QUERIES);
     let (mut worst, mut worst_abs, mut checked, mut off_plane) = (0.0f64, 0.0f64, 0usize, 0usize);
     for (q, &(u, s, bq, oy)) in cases.iter().enumerate() {
         let (uf, sf, bf) = (u as f64, s as f64, bq as f64);
@@ -562,20 +567,11 @@ fn conical_table_colour_matches_the_cpu_table() {
             (x, 0.0, 0.0)
         };
         off_plane += usize::from(k > 0 || tb > 0.0);
-        for ch in 0..3 {
-            let most = x[ch].1.max(y[ch].1);
-            let tol =
-                (1.0 - tb) * x[ch].0 + tb * y[ch].0 + most * (dt + 4.0 * U) + 1e-12 * c[ch].abs();
-            let e = (out[4 * q + ch] as f64 - c[ch]).abs();
-            assert!(
-                e <= tol,
-                "u={u} s={s} b={bq} channel {ch}: {} vs {} (tol {tol:e})",
-                out[4 * q + ch],
-                c[ch]
-            );
-            worst = worst.max(e / tol);
-            worst_abs = worst_abs.max(e);
-        }
+        let tol = [0, 1, 2]
+            .map(|ch| (1.0 - tb) * x[ch].0 + tb * y[ch].0 + x[ch].1.max(y[ch].1) * (dt + 4.0 * U));
+        let got = &out[4 * q..4 * q + 3];
+        let at = format!("u={u} s={s} b={bq}");
+        check(got, c, tol, &at, (&mut worst, &mut worst_abs));
         checked += 1;
     }
     assert!(
