@@ -61,6 +61,9 @@ const MAX_FAST_VALUES: usize = 1 << 17;
 pub(super) struct Lookup {
     #[cfg(feature = "std")]
     fast: OnceLock<Option<Fast>>,
+    /// The stored values node by node for the proposals of the generic rule (`proposal.rs`).
+    #[cfg(feature = "std")]
+    pub(super) by_node: OnceLock<Option<super::proposal::ByNode>>,
 }
 
 impl PartialEq for Lookup {
@@ -77,6 +80,8 @@ impl Lookup {
         Lookup {
             #[cfg(feature = "std")]
             fast: OnceLock::new(),
+            #[cfg(feature = "std")]
+            by_node: OnceLock::new(),
         }
     }
 }

@@ -7,8 +7,47 @@
 //! a positive probability.
 
 use core::ops::RangeInclusive;
+#[cfg(feature = "std")]
+use std::vec::Vec;
 
 use super::{conical, Cell, EfficiencyTable, OrderCell, Storage, Values};
+
+/// The largest table (values per polarisation) whose stored values are kept node by node
+/// ([`ByNode`]): 2²⁰, 8 MiB of them.
+#[cfg(feature = "std")]
+const MAX_BY_NODE_VALUES: usize = 1 << 20;
+
+/// The stored unpolarised efficiencies (TE + TM)/2 node by node, derived on first use (feature
+/// `std`) for the proposals of the tables the generic rule reads: node n's order k at n·K + k
+/// (K stored orders). A proposal's sum and an order's weight then read each corner's values of
+/// neighbouring orders side by side, instead of one order's slice after another (the values of
+/// a corner's orders lie K·(nodes) apart in the table's own layout).
+#[cfg(feature = "std")]
+#[derive(Debug, Clone)]
+pub(super) struct ByNode {
+    orders: usize,
+    eta: Vec<f64>,
+}
+
+#[cfg(feature = "std")]
+impl ByNode {
+    /// The stored values `te`, `tm` of `orders` orders of `slice` nodes each; `None` past
+    /// [`MAX_BY_NODE_VALUES`].
+    fn new<T: Values + ?Sized>(te: &T, tm: &T, slice: usize, orders: usize) -> Option<ByNode> {
+        if slice.checked_mul(orders)? > MAX_BY_NODE_VALUES {
+            return None;
+        }
+        let mut eta = Vec::with_capacity(slice * orders);
+        for n in 0..slice {
+            for k in 0..orders {
+                // stored_unpolarised's operations.
+                let v = k * slice + n;
+                eta.push(0.5 * (te.at(v) + tm.at(v)));
+            }
+        }
+        Some(ByNode { orders, eta })
+    }
+}
 
 /// A query's order proposal ([`EfficiencyTable::cell_proposal`]): the cell's corners of
 /// positive weight, the candidate orders that propagate at the query (the query clamped to the
@@ -98,6 +137,15 @@ impl EfficiencyTable {
         }
         // m − order_min is in 0..order_count: p's orders are stored ones.
         let k = (i64::from(m) - i64::from(self.order_min)) as usize;
+        #[cfg(feature = "std")]
+        if let Some(Some(b)) = self.lookup.by_node.get() {
+            // The same products, in the same order, of the same values.
+            let mut e = 0.0;
+            for c in 0..p.count {
+                e += p.w[c] * b.eta[p.at[c] * b.orders + k];
+            }
+            return e;
+        }
         let base = k * p.slice;
         with_arrays!(self, |_sin, _bet, _lam, te, tm| {
             let mut e = 0.0;
@@ -108,6 +156,43 @@ impl EfficiencyTable {
             }
             e
         })
+    }
+
+    /// Σ over the orders `lo..=hi` of the corners' weighted stored unpolarised values (`w`, at
+    /// the flat indices `at` of an order's `slice` nodes): corner by corner from [`ByNode`]
+    /// where it is kept, else order by order (the same terms, summed in another order).
+    fn proposal_total<T: Values + ?Sized>(
+        &self,
+        (lo, hi): (i32, i32),
+        (w, at): (&[f64], &[usize]),
+        slice: usize,
+        te: &T,
+        tm: &T,
+    ) -> f64 {
+        let first = |m: i32| (i64::from(m) - i64::from(self.order_min)) as usize;
+        let (k0, k1) = (first(lo), first(hi) + 1);
+        #[cfg(feature = "std")]
+        if let Some(b) = self
+            .lookup
+            .by_node
+            .get_or_init(|| ByNode::new(te, tm, slice, self.order_count))
+        {
+            let mut total = 0.0;
+            for (&wc, &n) in w.iter().zip(at) {
+                let row = &b.eta[n * b.orders + k0..n * b.orders + k1];
+                total += wc * row.iter().sum::<f64>();
+            }
+            return total;
+        }
+        let mut total = 0.0;
+        for k in k0..k1 {
+            for (&wc, &n) in w.iter().zip(at) {
+                // stored_unpolarised's operations.
+                let v = k * slice + n;
+                total += wc * (0.5 * (te.at(v) + tm.at(v)));
+            }
+        }
+        total
     }
 
     /// The stored unpolarised efficiency (TE + TM)/2 at flat index `at` of the values (order
@@ -149,15 +234,7 @@ impl EfficiencyTable {
                 count += 1;
             }
         }
-        let mut total = 0.0;
-        for m in lo..=hi {
-            let base = (i64::from(m) - i64::from(self.order_min)) as usize * slice;
-            for c in 0..count {
-                // stored_unpolarised's operations.
-                let v = base + at[c];
-                total += w[c] * (0.5 * (te.at(v) + tm.at(v)));
-            }
-        }
+        let total = self.proposal_total((lo, hi), (&w[..count], &at[..count]), slice, te, tm);
         Some(CellProposal {
             w,
             at,
