@@ -9,7 +9,7 @@
 //! CD preset's classical table (`cd_f`, `cd_f4`, `cd_pdf4`, `cd_sample_and_pdf`, `cd_sample4`,
 //! period 1600 nm as well; `OrderEfficiency::from_static(Preset::Cd.table())`): target within
 //! 1.5× of the amplitude model's `f`, `f4`, `pdf4`, `sample_and_pdf` and `sample4`. And the CD
-//! preset as `GratingBsdf::preset` reads it, conically (`cd_reduced_f`,
+//! preset as `GratingBsdf::preset` reads it, conically (`cd_reduced_f`, `cd_reduced_f4`,
 //! `cd_reduced_sample_and_pdf`: `Preset::conical_table`, a reduced conical table read by the
 //! general conical path).
 //!
@@ -106,15 +106,17 @@ fn bench(c: &mut Criterion) {
                 acc
             })
         });
-        g.bench_with_input(BenchmarkId::new("cd_f4", n), &inputs, |b, s| {
-            b.iter(|| {
-                let mut acc = 0.0;
-                for (&(wi, wo, _), l4) in s.iter().zip(&lambdas) {
-                    acc += cd.eval4(black_box(wo), black_box(wi), l4)[3];
-                }
-                acc
-            })
-        });
+        for (name, bsdf) in [("cd_f4", &cd), ("cd_reduced_f4", &cd_reduced)] {
+            g.bench_with_input(BenchmarkId::new(name, n), &inputs, |b, s| {
+                b.iter(|| {
+                    let mut acc = 0.0;
+                    for (&(wi, wo, _), l4) in s.iter().zip(&lambdas) {
+                        acc += bsdf.eval4(black_box(wo), black_box(wi), l4)[3];
+                    }
+                    acc
+                })
+            });
+        }
         g.bench_with_input(BenchmarkId::new("pdf", n), &inputs, |b, s| {
             b.iter(|| {
                 let mut acc = 0.0;
