@@ -378,6 +378,16 @@ fn check(got: &[f32], c: [f64; 3], tol: [f64; 3], at: &str, worst: (&mut f64, &m
     }
 }
 
+/// The colour table of `b` (D65, 10⁻¹: seconds to a minute unoptimised), its GPU form and the
+/// seconds of its build.
+fn colour_tables(b: &diffraction::GratingBsdf) -> (ColorTable, GpuColorTable, f64) {
+    let start = Instant::now();
+    let table = ColorTable::new(&Spectral::new(Illuminant::D65), b, 1e-1).unwrap();
+    let build = start.elapsed().as_secs_f64();
+    let t = GpuColorTable::new(&table);
+    (table, t, build)
+}
+
 #[test]
 fn table_colour_at_an_incidence_matches_the_cpu_table() {
     use diffraction::grating_bsdf::OrderEfficiency;
@@ -395,10 +405,7 @@ fn table_colour_at_an_incidence_matches_the_cpu_table() {
         .and_then(|b| b.with_efficiency(classical))
         .unwrap()
         .with_groove(GrooveSpread::gaussian(0.02).unwrap());
-    let start = Instant::now();
-    let table = ColorTable::new(&Spectral::new(Illuminant::D65), &b, 1e-1).unwrap();
-    let build = start.elapsed().as_secs_f64();
-    let t = GpuColorTable::new(&table);
+    let (table, t, build) = colour_tables(&b);
     let words = &t.incidence;
     let (k, bins) = (words[0] as usize, words[1] as usize);
     assert!(k >= 9 && bins >= 8, "{k} nodes, {bins} bins");
@@ -488,10 +495,7 @@ fn conical_table_colour_matches_the_cpu_table() {
     let b = GratingBsdf::preset(Preset::Cd, 8)
         .unwrap()
         .with_groove(GrooveSpread::gaussian(0.02).unwrap());
-    let start = Instant::now();
-    let table = ColorTable::new(&Spectral::new(Illuminant::D65), &b, 1e-1).unwrap();
-    let build = start.elapsed().as_secs_f64();
-    let t = GpuColorTable::new(&table);
+    let (table, t, build) = colour_tables(&b);
     let words = &t.incidence;
     let head = 2 + words[1] as usize + 2 * words[0] as usize;
     let planes = words[head] as usize;
