@@ -5,7 +5,8 @@
 //! is made. A query takes its bin's interval and steps to its own, so the interval is the
 //! binary search's (`interval`) for every query, and c and the roots are the formulas' own
 //! bits; the weights are products by the reciprocal widths (as the classical table's fast
-//! reading takes them), within an ulp or two of the quotients.
+//! reading takes them), within an ulp or two of the quotients, and the quotients themselves
+//! where a subnormal width's reciprocal overflows (`fraction` in the parent module).
 
 use alloc::vec::Vec;
 
