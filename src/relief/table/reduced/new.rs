@@ -1,6 +1,7 @@
 //! The constructor of a reduced conical table and its checks on load (`docs/efficiency_tables.md`,
 //! "Reduced conical tables").
 
+use alloc::boxed::Box;
 use alloc::vec;
 use alloc::vec::Vec;
 
