@@ -41,6 +41,8 @@ pub use scalar::{
 pub use shape::{Relief, MAX_DEPTH_NM, MAX_SAMPLES};
 #[cfg(feature = "presets")]
 pub use table::Preset;
+#[cfg(feature = "gpu")]
+pub(crate) use table::ReducedParts;
 pub(crate) use table::{CellProposal, FastProposal, Incidences};
 pub use table::{EfficiencyTable, MAX_TABLE_ABS_BETA};
 #[cfg(feature = "alloc")]

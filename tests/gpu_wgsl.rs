@@ -242,9 +242,9 @@ fn the_efficiency_tables_pack_as_documented() {
         let sin: Vec<f64> = t.sin_theta_i().collect();
         let lam: Vec<f64> = t.lambda_nm().collect();
         let (n_s, n_l, k) = (sin.len(), lam.len(), t.order_count());
-        let v = 8 + n_s + n_l;
+        let v = 10 + n_s + n_l;
         assert_eq!(
-            &w[..8],
+            &w[..10],
             &[
                 t.period_nm() as f32,
                 n_s as f32,
@@ -253,7 +253,9 @@ fn the_efficiency_tables_pack_as_documented() {
                 k as f32,
                 v as f32,
                 (v + 3 * k * n_l * n_s) as f32,
-                (v + 2 * k * n_l * n_s) as f32
+                (v + 2 * k * n_l * n_s) as f32,
+                0.0,
+                0.0
             ]
         );
         let cells = (n_s - 1) * (n_l - 1);
@@ -293,10 +295,10 @@ fn the_efficiency_tables_pack_as_documented() {
             "{p:?}: no cell marked"
         );
         for (i, &s) in sin.iter().enumerate() {
-            assert_eq!(w[8 + i] as f64, s);
+            assert_eq!(w[10 + i] as f64, s);
         }
         for (j, &l) in lam.iter().enumerate() {
-            assert_eq!(w[8 + n_s + j] as f64, l);
+            assert_eq!(w[10 + n_s + j] as f64, l);
         }
         for (o, m) in t.orders().enumerate() {
             for (j, &l) in lam.iter().enumerate() {
@@ -342,6 +344,111 @@ fn the_efficiency_tables_pack_as_documented() {
         (g.table, g.slit_width_nm, g.scale),
         (77, 0.0, (34.0 * 1600.0) as f32)
     );
+}
+
+/// A reduced conical table (the presets' `conical_table`, what `GratingBsdf::preset` reads)
+/// packs its first plane as a classical table, then its own section (src/gpu/tabulated.rs):
+/// the planes' |β| and c, their rows and wavelength nodes, per order and node
+/// q = η·cos θi/cos θm at the node's conical incidence (α = s′·c_p, β_p, its wavelength) or −1
+/// where the order does not propagate (cos² θm ≤ 10⁻⁶), the nodes' unpolarised η, and a 0/1 mark
+/// per reduced cell. The node values are the plane's own reading at the node
+/// (`plane_efficiencies`, which is the stored values where their sum stays below 1).
+#[cfg(feature = "presets")]
+#[test]
+fn reduced_tables_pack_as_documented() {
+    use diffraction::gpu::pack_efficiency_table;
+    use diffraction::relief::{Polarised, Preset};
+    for p in [Preset::Cd, Preset::Foil] {
+        let t = p.conical_table();
+        let w = pack_efficiency_table(t);
+        let word = |i: usize| w[i] as f64;
+        let sin: Vec<f64> = t.sin_theta_i().collect();
+        let bet: Vec<f64> = t.abs_beta().collect();
+        let (n_s, n_b, k) = (sin.len(), bet.len(), t.order_count());
+        assert_eq!(word(8) as usize, n_b, "{p:?}");
+        let r = word(9) as usize;
+        let (q, e, m) = (word(r) as usize, word(r + 1) as usize, word(r + 2) as usize);
+        let band = t.lambda_range_nm();
+        assert_eq!(
+            (word(r + 3), word(r + 4)),
+            (band.0 as f32 as f64, band.1 as f32 as f64)
+        );
+        let planes: Vec<Vec<f64>> = (0..n_b).map(|b| t.plane_lambda_nm(b).collect()).collect();
+        let rows: usize = planes.iter().map(Vec::len).sum();
+        let (bn, cn, rn, ln) = (r + 5, r + 5 + n_b, r + 5 + 2 * n_b, r + 6 + 3 * n_b);
+        assert_eq!(q, ln + rows);
+        assert_eq!(e, q + 2 * k * rows * n_s);
+        assert_eq!(m, e + k * rows * n_s);
+        let mut first = 0;
+        for (b, nodes) in planes.iter().enumerate() {
+            assert_eq!(word(bn + b), bet[b] as f32 as f64);
+            assert_eq!(word(cn + b), (1.0 - bet[b] * bet[b]).sqrt() as f32 as f64);
+            assert_eq!(word(rn + b) as usize, first);
+            for (j, &l) in nodes.iter().enumerate() {
+                assert_eq!(word(ln + first + j), l as f32 as f64);
+            }
+            first += nodes.len();
+        }
+        assert_eq!(word(rn + n_b) as usize, rows);
+        // The cells: (n_s − 1)·(n_p + n_p+1 − 3) per slab between planes p and p + 1.
+        let cells: usize = planes
+            .windows(2)
+            .map(|x| (n_s - 1) * (x[0].len() + x[1].len() - 3))
+            .sum();
+        assert_eq!(w.len(), m + cells, "{p:?}");
+        let marked = w[m..].iter().filter(|&&x| x == 1.0).count();
+        assert!(w[m..].iter().all(|&x| x == 0.0 || x == 1.0));
+        assert!(marked > 0, "{p:?}: no reduced cell marked");
+        let d = t.period_nm();
+        let mut out = vec![Polarised::default(); k];
+        let (mut grazing, mut values) = (0usize, 0usize);
+        let mut row = 0;
+        for (b, nodes) in planes.iter().enumerate() {
+            let cp = (1.0 - bet[b] * bet[b]).sqrt();
+            for &l in nodes {
+                for (i, &sn) in sin.iter().enumerate() {
+                    t.plane_efficiencies(b, sn, l, &mut out);
+                    for (o, order) in t.orders().enumerate() {
+                        let at = (o * rows + row) * n_s + i;
+                        let am = sn * cp + order as f64 * l / d;
+                        let cm2 = 1.0 - am * am - bet[b] * bet[b];
+                        if cm2 <= 1e-6 {
+                            assert_eq!((w[q + 2 * at], w[q + 2 * at + 1]), (-1.0, -1.0));
+                            grazing += 1;
+                            continue;
+                        }
+                        let g = cp * (1.0 - sn * sn).sqrt() / cm2.sqrt();
+                        let x = out[o];
+                        for (got, want) in
+                            [(w[q + 2 * at], x.te * g), (w[q + 2 * at + 1], x.tm * g)]
+                        {
+                            assert!(
+                                (got as f64 - want).abs() <= ORDER_ROW_F32 * want + 1e-12,
+                                "{p:?} plane {b} m={order} s′={sn} λ={l}: {got} vs {want}"
+                            );
+                        }
+                        let node = w[e + at] as f64;
+                        let want = x.unpolarised();
+                        assert!(
+                            (node - want).abs() <= ORDER_ROW_F32 * want + 1e-12,
+                            "{p:?} plane {b} m={order} s′={sn} λ={l}: node {node} vs {want}"
+                        );
+                        values += 1;
+                    }
+                }
+                row += 1;
+            }
+        }
+        assert!(
+            grazing > 100 && values > 10_000,
+            "{p:?}: {grazing} {values}"
+        );
+        println!(
+            "{p:?}'s conical table: {} words ({r} before its section), {marked} of {cells} cells \
+             marked",
+            w.len()
+        );
+    }
 }
 
 /// The freedoms the WGSL spec leaves an implementation in the kernels, each pushed one way:

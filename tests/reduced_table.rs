@@ -388,7 +388,8 @@ fn version_3_files_load_and_bad_ones_name_the_field_and_element() {
 
 /// The GPU packs a reduced table's first plane as a classical table: the same words as the
 /// classical table of that plane's own nodes and values (to one f32 rounding of the q's), but
-/// no cell marked (a conical table's marks hold for its own reading).
+/// no cell marked (a conical table's marks hold for its own reading), and header words 8 and 9
+/// naming its planes and the section of them that follows (tests/gpu_wgsl.rs checks that).
 #[cfg(feature = "gpu")]
 #[test]
 fn the_gpu_packs_the_first_plane() {
@@ -413,15 +414,18 @@ fn the_gpu_packs_the_first_plane() {
     let classical =
         EfficiencyTable::new(cd.period_nm(), *cd.orders().start(), s, l, te, tm).unwrap();
     let (a, b) = (pack_efficiency_table(&t), pack_efficiency_table(&classical));
-    assert_eq!(a.len(), b.len());
+    assert_eq!((a[8], a[9], b[8], b[9]), (3.0, b.len() as f32, 0.0, 0.0));
+    assert!(a.len() > b.len());
     let marks = b[6] as usize;
     let mut worst = 0.0f32;
-    for (x, y) in a[..marks].iter().zip(&b[..marks]) {
-        worst = worst.max((x - y).abs() / y.abs().max(1e-30));
+    for (i, (x, y)) in a[..marks].iter().zip(&b[..marks]).enumerate() {
+        if i != 8 && i != 9 {
+            worst = worst.max((x - y).abs() / y.abs().max(1e-30));
+        }
     }
     println!("first plane packed against its classical table: worst relative {worst:.2e}");
     assert!(worst <= 2.0 * f32::EPSILON, "{worst}");
-    assert!(a[marks..].iter().all(|&w| w == 0.0));
+    assert!(a[marks..b.len()].iter().all(|&w| w == 0.0));
 }
 
 /// `reduced_from_classical` of a bare grating (the foil): its planes map onto the classical

@@ -1,18 +1,21 @@
 //! Tabulated efficiencies in WGSL (`TABULATED_WGSL`, the tables packed by
-//! `GpuEfficiencyTables`) on a device against the CPU, for every preset: the interpolation
-//! `diffraction_eta` against `EfficiencyTable::efficiency` at 10⁵ queries per preset (every
+//! `GpuEfficiencyTables`) on a device against the CPU, for every preset's classical table and
+//! its conical one (`Preset::conical_table`, a reduced table: what `GratingBsdf::preset`
+//! reads): the interpolation `diffraction_eta` against `EfficiencyTable::efficiency` and
+//! `diffraction_eta_conical` against `efficiency_conical` at 10⁵ queries per table (every
 //! stored order, incidences and wavelengths beyond the grid included), and the tabulated BSDF's
 //! f, pdf and sampler against `GratingBsdf::eval`, `pdf` and `sample` (same random numbers in,
 //! same order, direction within its bound, the sample weight), with bounds derived from the
-//! WGSL accuracy rules (docs/gpu.md, "Tabulated efficiencies"); the mean weight of 2¹⁸ device
-//! samples of the CD is the CPU's albedo. In CI (`CI` set) a missing adapter fails.
+//! WGSL accuracy rules (`common/eta.rs`; docs/gpu.md, "Tabulated efficiencies"); the mean
+//! weight of 2¹⁸ device samples of the CD, read classically and conically, is the CPU's albedo.
+//! In CI (`CI` set) a missing adapter fails.
 
 mod common;
 
 use common::gpu_cases::Mix;
 use common::gpu_tolerance::*;
 use common::*;
-use diffraction::glam::{DVec2, DVec3};
+use diffraction::glam::DVec2;
 use diffraction::gpu::{
     bsdf_bindings, efficiency_table_bindings, GpuBsdf, GpuEfficiencyTables, BSDF_WGSL, KERNEL_WGSL,
     TABULATED_WGSL, TYPES_WGSL,
@@ -22,7 +25,7 @@ use diffraction::relief::{EfficiencyTable, Preset};
 use diffraction::{Bsdf, DiffractionBrdf, GratingBsdf, GrooveSpread};
 
 const ETA_MAIN: &str = "
-struct Query { m: i32, s: f32, lambda_nm: f32, table: u32 }
+struct Query { m: i32, alpha: f32, beta: f32, lambda_nm: f32, table: u32, conical: u32, pad: vec2<u32> }
 @group(0) @binding(0) var<storage, read> queries: array<Query>;
 @group(0) @binding(2) var<storage, read_write> out: array<f32>;
 @compute @workgroup_size(256)
@@ -30,112 +33,69 @@ fn eta_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i < arrayLength(&queries) {
         let q = queries[i];
-        out[i] = diffraction_eta(q.table, q.m, q.s, q.lambda_nm);
+        if q.conical != 0u {
+            out[i] = diffraction_eta_conical(q.table, q.m, q.alpha, q.beta, q.lambda_nm);
+        } else {
+            out[i] = diffraction_eta(q.table, q.m, q.alpha, q.lambda_nm);
+        }
     }
 }
 ";
 
-/// The bound of |η_GPU − η_CPU| (unpolarised, normalised) for order m at (s, λ) of the table
-/// packed at `words` (docs/gpu.md, "Tabulated efficiencies"): the cell's weights (the position
-/// in the cell, 8u relative for t and u + 8u·t for 1 − t), the weighted mean of the corners' q
-/// (≤ Q, the largest) and its roundings, cos θm/cos θi at the query (the conditioning of
-/// √(1 − sin² θm) near the order's Rayleigh line), and the normalisation over every order.
-pub fn eta_bound(words: &[f32], m: i32, s: f64, l: f64) -> f64 {
-    let w = |i: usize| words[i] as f64;
-    let (d, n_s, n_l) = (w(0), w(1) as usize, w(2) as usize);
-    let (first, count, v) = (w(3) as i32, w(4) as usize, w(5) as usize);
-    let sin: Vec<f64> = (0..n_s).map(|i| w(8 + i)).collect();
-    let lam: Vec<f64> = (0..n_l).map(|j| w(8 + n_s + j)).collect();
-    let s = s.clamp(sin[0], sin[n_s - 1]);
-    let l = l.clamp(lam[0], lam[n_l - 1]);
-    let cos_i = (1.0 - s * s).max(0.0).sqrt();
-    if cos_i <= 0.0 {
-        return 0.0;
-    }
-    let interval = |nodes: &[f64], x: f64| {
-        let k = nodes.partition_point(|&n| n <= x);
-        k.saturating_sub(1).min(nodes.len() - 2)
-    };
-    let (i, j) = (interval(&sin, s), interval(&lam, l));
-    let tx = (s - sin[i]) / (sin[i + 1] - sin[i]);
-    let ty = (l - lam[j]) / (lam[j + 1] - lam[j]);
-    // The relative error of 1 − t (t itself: 8u).
-    let e1 = |t: f64| {
-        if t < 1.0 {
-            (U + 8.0 * U * t) / (1.0 - t)
-        } else {
-            f64::INFINITY
-        }
-    };
-    let wts = [
-        ((1.0 - tx) * (1.0 - ty), e1(tx) + e1(ty) + U),
-        (tx * (1.0 - ty), 8.0 * U + e1(ty) + U),
-        ((1.0 - tx) * ty, e1(tx) + 8.0 * U + U),
-        (tx * ty, 16.0 * U + U),
-    ];
-    let corner = [0, 1, n_s, n_s + 1];
-    let ci_rel = (2.0 * U * s * s + U) / (2.0 * cos_i * cos_i) + U;
-    // (raw η, its bound) of order mm, the larger polarisation's.
-    let raw = |mm: i32| -> (f64, f64) {
-        let k = (mm - first) as usize;
-        let base = v + 2 * ((k * n_l + j) * n_s + i);
-        let (mut num, mut den, mut q_max, mut werr) = (0.0, 0.0, 0.0f64, 0.0);
-        for c in 0..4 {
-            let (wc, ec) = wts[c];
-            let at = base + 2 * corner[c];
-            let q = w(at).max(w(at + 1));
-            if wc > 0.0 && w(at) >= 0.0 {
-                num += wc * q;
-                den += wc;
-                q_max = q_max.max(q);
-                werr += wc * ec.min(1.0);
-            }
-        }
-        let sm = s + mm as f64 * l / d;
-        let dsm = (mm as f64 * l / d).abs() * 7.0 * U + U * sm.abs() + U;
-        let a = 1.0 - sm * sm;
-        let da = 2.0 * sm.abs() * dsm + dsm * dsm + 2.0 * U;
-        if den <= 0.0 {
-            return (0.0, 0.0);
-        }
-        let r = num / den;
-        let dr = q_max * (2.0 * werr / den + 15.0 * U);
-        let (root, droot) = if a > 0.0 {
-            let root = a.sqrt();
-            (root, (da / root).min(da.sqrt()) + U * root)
-        } else {
-            (0.0, (a + da).max(0.0).sqrt())
-        };
-        let k = root / cos_i;
-        (
-            r * k,
-            (dr + r) * droot / cos_i + dr * k + r * k * (ci_rel + 6.0 * U),
-        )
-    };
-    let (eta, deta) = raw(m);
-    let (mut sum, mut dsum) = (0.0, 0.0);
-    for k in 0..count {
-        let (a, b) = raw(first + k as i32);
-        sum += a;
-        dsum += b;
-    }
-    let norm = if sum + dsum >= 1.0 {
-        eta * (dsum + count as f64 * U * sum) / sum.max(1.0)
-    } else {
-        0.0
-    };
-    deta + norm + 2.0 * U * eta
+/// One packed table: the preset, whether it is the preset's conical table
+/// (`Preset::conical_table`, what `GratingBsdf::preset` reads) or its classical one, and the
+/// word offset.
+struct Packed {
+    preset: Preset,
+    conical: bool,
+    offset: u32,
 }
 
-fn tables() -> (GpuEfficiencyTables, Vec<(Preset, u32)>) {
+impl Packed {
+    fn table(&self) -> &'static EfficiencyTable {
+        if self.conical {
+            self.preset.conical_table()
+        } else {
+            self.preset.table()
+        }
+    }
+}
+
+/// Every preset's classical table, then every preset's conical one, in one buffer.
+fn tables() -> (GpuEfficiencyTables, Vec<Packed>) {
     let mut t = GpuEfficiencyTables::default();
-    let at = Preset::ALL
-        .iter()
-        .map(|&p| (p, t.push(p.table())))
-        .collect();
+    let mut at = Vec::new();
+    for conical in [false, true] {
+        for &preset in &Preset::ALL {
+            let table = if conical {
+                preset.conical_table()
+            } else {
+                preset.table()
+            };
+            let offset = t.push(table);
+            at.push(Packed {
+                preset,
+                conical,
+                offset,
+            });
+        }
+    }
     (t, at)
 }
 
+fn offset_of(at: &[Packed], preset: Preset, conical: bool) -> u32 {
+    at.iter()
+        .find(|x| x.preset == preset && x.conical == conical)
+        .expect("packed")
+        .offset
+}
+
+/// `diffraction_eta` at (m, s, λ) against `EfficiencyTable::efficiency` for the classical
+/// tables (s on [−1, 1], λ on 340-850 nm: beyond the grid included), and
+/// `diffraction_eta_conical` at (m, α, β, λ) against `efficiency_conical` for the conical ones
+/// (α = −w.x, β = −w.y of a direction uniform on the hemisphere with w.z ≥ 0.05), each within
+/// its bound (`common::eta::eta_bound`), except where f32 may take the neighbouring cell of a
+/// reduced table (a position within its rounding of a node line: at most 1 in 2000 queries).
 #[test]
 fn eta_matches_the_cpu_table() {
     let Some(gpu) = gpu() else { return };
@@ -152,23 +112,32 @@ fn eta_matches_the_cpu_table() {
     .join("\n");
     let per = 100_000;
     let mut rng = Mix(31);
-    for &(p, offset) in &at {
-        let t: &EfficiencyTable = p.table();
+    for packed in &at {
+        let (p, offset, conical) = (packed.preset, packed.offset, packed.conical);
+        let t = packed.table();
         let (first, count) = (*t.orders().start(), t.order_count() as i32);
-        let queries: Vec<(i32, f32, f32)> = (0..per)
+        let queries: Vec<(i32, f32, f32, f32)> = (0..per)
             .map(|_| {
                 let m = first + ((rng.next() * count as f64) as i32).min(count - 1);
-                let s = (2.1 * rng.next() - 1.05).clamp(-1.0, 1.0) as f32;
+                let (alpha, beta) = if conical {
+                    let w = hemisphere_f32(&mut rng);
+                    (-w[0], -w[1])
+                } else {
+                    ((2.1 * rng.next() - 1.05).clamp(-1.0, 1.0) as f32, 0.0)
+                };
                 let l = (340.0 + 510.0 * rng.next()) as f32;
-                (m, s, l)
+                (m, alpha, beta, l)
             })
             .collect();
-        let mut bytes = Vec::with_capacity(16 * per);
-        for &(m, s, l) in &queries {
+        let mut bytes = Vec::with_capacity(32 * per);
+        for &(m, alpha, beta, l) in &queries {
             bytes.extend_from_slice(&m.to_le_bytes());
-            bytes.extend_from_slice(&s.to_le_bytes());
-            bytes.extend_from_slice(&l.to_le_bytes());
-            bytes.extend_from_slice(&offset.to_le_bytes());
+            for v in [alpha, beta, l] {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+            for v in [offset, u32::from(conical), 0, 0] {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
         }
         let (out, secs) = gpu.run(
             &source,
@@ -179,14 +148,22 @@ fn eta_matches_the_cpu_table() {
         );
         let out = f32s(&out);
         let words = &tables.words()[offset as usize..];
-        let (mut worst, mut worst_rel, mut nonzero) = (0.0f64, 0.0f64, 0usize);
-        for (&(m, s, l), &g) in queries.iter().zip(&out) {
-            let cpu = t.efficiency(m, s as f64, l as f64).unpolarised();
-            let tol = eta_bound(words, m, s as f64, l as f64);
+        let (mut worst, mut worst_rel, mut nonzero, mut skipped) = (0.0f64, 0.0f64, 0usize, 0);
+        for (&(m, alpha, beta, l), &g) in queries.iter().zip(&out) {
+            let (a, b, l) = (alpha as f64, beta as f64, l as f64);
+            let cpu = if conical {
+                t.efficiency_conical(m, a, b, l).unpolarised()
+            } else {
+                t.efficiency(m, a, l).unpolarised()
+            };
+            let Some(tol) = eta::eta_bound(words, m, a, b, l) else {
+                skipped += 1;
+                continue;
+            };
             let e = (g as f64 - cpu).abs();
             assert!(
                 e <= tol,
-                "{p:?} m={m} s={s} λ={l}: {g} vs {cpu} (tol {tol:e})"
+                "{p:?} (conical {conical}) m={m} α={alpha} β={beta} λ={l}: {g} vs {cpu} (tol {tol:e})"
             );
             if cpu > 0.0 {
                 nonzero += 1;
@@ -197,9 +174,12 @@ fn eta_matches_the_cpu_table() {
             }
         }
         assert!(nonzero > per / 4, "{nonzero}");
+        assert!(skipped * 2000 <= per, "{skipped} near node lines");
+        assert!(worst <= ETA_WORST_MEASURED, "{p:?}: worst |Δη| {worst:e}");
         println!(
-            "eta {p:?}: {per} queries in {:.1} ms, {nonzero} non-zero, worst |Δη| = {worst:.2e} \
-             ({worst_rel:.3} of its bound)",
+            "eta {p:?}{}: {per} queries in {:.1} ms, {nonzero} non-zero, worst |Δη| = {worst:.2e} \
+             ({worst_rel:.3} of its bound), {skipped} skipped near node lines",
+            if conical { " conical" } else { "" },
             secs * 1e3
         );
     }
@@ -294,85 +274,8 @@ fn device_samples(
     (samples, secs)
 }
 
-/// The sampler's order proposal for wo at λ, recomputed from the table's public reading: the
-/// candidates clipped to the stored orders and trimmed to those propagating at the clamped
-/// query, P(m) = (1 − δ)·η̂_m/Σ η̂ + δ/K with η̂_m = Σ_c w_c·η_m,c the table's values at the
-/// cell's corners with the query's bilinear weights, and each P's device bound: each weight
-/// within 19u absolute (its two factors' errors, as in `eta_bound`, and the product), so
-/// η̂_m within 76u·max_c η_m,c plus its own roundings (the node values' to f32, the products
-/// and the sum: 6u·η̂_m); the total within the sum of those plus K·u of it; P through the
-/// quotients, the product and the sum (8u). `None` where f32 may trim another order (the query
-/// within 10⁻⁵ of an order's Rayleigh line).
-fn weights(t: &EfficiencyTable, wo: DVec3, l: f64) -> Option<Vec<(i64, f64, f64)>> {
-    let d = t.period_nm();
-    let step = l / d;
-    let lo = (((wo.x - 1.0) / step - 0.5).floor() as i64 + 1).max(*t.orders().start() as i64);
-    let hi = (((wo.x + 1.0) / step + 0.5).ceil() as i64 - 1).min(*t.orders().end() as i64);
-    let sin: Vec<f64> = t.sin_theta_i().collect();
-    let lam: Vec<f64> = t.lambda_nm().collect();
-    let s = (-wo.x).clamp(sin[0], sin[sin.len() - 1]);
-    let lc = l.clamp(lam[0], lam[lam.len() - 1]);
-    let interval = |nodes: &[f64], x: f64| {
-        let k = nodes.partition_point(|&n| n <= x);
-        k.saturating_sub(1).min(nodes.len() - 2)
-    };
-    let (i, j) = (interval(&sin, s), interval(&lam, lc));
-    let tx = (s - sin[i]) / (sin[i + 1] - sin[i]);
-    let ty = (lc - lam[j]) / (lam[j + 1] - lam[j]);
-    if (1.0 - s * s).sqrt() <= 0.0 {
-        return Some(Vec::new());
-    }
-    let propagates = |m: i64| (s + m as f64 * lc / d).abs() < 1.0;
-    let edge = (lo..=hi).any(|m| ((s + m as f64 * lc / d).abs() - 1.0).abs() < 1e-5);
-    if edge {
-        return None;
-    }
-    let corners = [
-        ((1.0 - tx) * (1.0 - ty), sin[i], lam[j]),
-        (tx * (1.0 - ty), sin[i + 1], lam[j]),
-        ((1.0 - tx) * ty, sin[i], lam[j + 1]),
-        (tx * ty, sin[i + 1], lam[j + 1]),
-    ];
-    let orders: Vec<i64> = (lo..=hi).filter(|&m| propagates(m)).collect();
-    // (η̂_m, its bound)
-    let hat: Vec<(f64, f64)> = orders
-        .iter()
-        .map(|&m| {
-            let (mut e, mut top) = (0.0, 0.0f64);
-            for &(w, sn, ln) in &corners {
-                let v = t.efficiency(m as i32, sn, ln).unpolarised();
-                top = top.max(v);
-                if w > 0.0 {
-                    e += w * v;
-                }
-            }
-            (e, 76.0 * U * top + 6.0 * U * e)
-        })
-        .collect();
-    let total: f64 = hat.iter().map(|h| h.0).sum();
-    let k = orders.len() as f64;
-    let dtotal: f64 = hat.iter().map(|h| h.1).sum::<f64>() + k * U * total;
-    let share = diffraction::grating_bsdf::TABULATED_DEFENSIVE_SHARE;
-    Some(
-        orders
-            .iter()
-            .zip(&hat)
-            .map(|(&m, &(e, de))| {
-                if total > 0.0 {
-                    let p = (1.0 - share) * e / total + share / k;
-                    let dp =
-                        (1.0 - share) * (de / total + e * dtotal / (total * total)) + 8.0 * U * p;
-                    (m, p, dp)
-                } else {
-                    (m, 1.0 / k, 8.0 * U / k)
-                }
-            })
-            .collect(),
-    )
-}
-
-/// The preset with `n` grooves on its classical table (`Preset::table`), the reading the
-/// WGSL implements (`GratingBsdf::preset` reads it conically).
+/// The preset with `n` grooves on its classical table (`Preset::table`; `GratingBsdf::preset`
+/// reads its conical table).
 fn classical(p: Preset, n: u32) -> GratingBsdf {
     GratingBsdf::preset(p, n)
         .unwrap()
@@ -380,16 +283,29 @@ fn classical(p: Preset, n: u32) -> GratingBsdf {
         .unwrap()
 }
 
-fn preset_models() -> Vec<(Preset, GratingBsdf)> {
+/// The models of the per-sample test: (preset, conical, model), the classical readings and
+/// the presets' default conical ones.
+fn preset_models() -> Vec<(Preset, bool, GratingBsdf)> {
+    let conical = |p: Preset, n: u32| GratingBsdf::preset(p, n).unwrap();
+    let gaussian = GrooveSpread::gaussian(0.02).unwrap();
     vec![
-        (Preset::Cd, classical(Preset::Cd, 34)),
+        (Preset::Cd, false, classical(Preset::Cd, 34)),
         (
             Preset::Cd,
-            classical(Preset::Cd, 34).with_groove(GrooveSpread::gaussian(0.02).unwrap()),
+            false,
+            classical(Preset::Cd, 34).with_groove(gaussian),
         ),
-        (Preset::Dvd, classical(Preset::Dvd, 300)),
-        (Preset::Blazed600, classical(Preset::Blazed600, 100)),
-        (Preset::Foil, classical(Preset::Foil, 10)),
+        (Preset::Dvd, false, classical(Preset::Dvd, 300)),
+        (Preset::Blazed600, false, classical(Preset::Blazed600, 100)),
+        (Preset::Foil, false, classical(Preset::Foil, 10)),
+        (
+            Preset::Cd,
+            true,
+            conical(Preset::Cd, 34).with_groove(gaussian),
+        ),
+        (Preset::Dvd, true, conical(Preset::Dvd, 300)),
+        (Preset::Blazed600, true, conical(Preset::Blazed600, 100)),
+        (Preset::Foil, true, conical(Preset::Foil, 10)),
     ]
 }
 
@@ -399,10 +315,14 @@ fn tabulated_bsdf_matches_the_cpu_per_sample() {
     let (tables, at) = tables();
     let per = 20_000;
     let mut rng = Mix(41);
-    for (p, b) in preset_models() {
-        let offset = at.iter().find(|(q, _)| *q == p).unwrap().1;
+    for (p, conical, b) in preset_models() {
+        let offset = offset_of(&at, p, conical);
         let words = &tables.words()[offset as usize..];
-        let t = p.table();
+        let t = if conical {
+            p.conical_table()
+        } else {
+            p.table()
+        };
         let g = GpuBsdf::new(&b, 0).with_table(offset);
         let lobe = Lobe::of(&g, true);
         let cases: Vec<([f32; 3], f32, [f32; 3])> = (0..per)
@@ -430,7 +350,7 @@ fn tabulated_bsdf_matches_the_cpu_per_sample() {
                 "{s:?}"
             );
             let cpu = b.sample(wo64, l64, xi64[0], DVec2::new(xi64[1], xi64[2]));
-            let Some(w) = weights(t, wo64, l64) else {
+            let Some(w) = eta::weights(words, wo64, l64) else {
                 skipped += 1;
                 continue;
             };
@@ -487,9 +407,17 @@ fn tabulated_bsdf_matches_the_cpu_per_sample() {
             // lobe's scale, plus η̃ times the lobe's bound.
             let m = s.order as i32;
             let (scale, tol_l) = lobe.f_bound(wo64, wi, l64);
-            let e_wo = t.efficiency(m, -wo64.x, l64).unpolarised();
-            let e_wi = t.efficiency(m, -wi.x, l64).unpolarised();
-            let deta = eta_bound(words, m, -wo64.x, l64).max(eta_bound(words, m, -wi.x, l64));
+            let e_wo = t.efficiency_conical(m, -wo64.x, -wo64.y, l64).unpolarised();
+            let e_wi = t.efficiency_conical(m, -wi.x, -wi.y, l64).unpolarised();
+            let bounds = (
+                eta::eta_bound(words, m, -wo64.x, -wo64.y, l64),
+                eta::eta_bound(words, m, -wi.x, -wi.y, l64),
+            );
+            let (Some(d_wo), Some(d_wi)) = bounds else {
+                skipped += 1;
+                continue;
+            };
+            let deta = d_wo.max(d_wi);
             let tol_f = deta * scale + e_wo.min(e_wi) * tol_l;
             let f_cpu = b.eval(wo64, wi, l64);
             let e_f = (s.f as f64 - f_cpu).abs();
@@ -550,10 +478,11 @@ fn tabulated_bsdf_matches_the_cpu_per_sample() {
             "{skipped} of {per} at rounding boundaries"
         );
         println!(
-            "tabulated {p:?} N={} groove={}: {per} samples in {:.1} ms, {compared} compared, worst \
+            "tabulated {p:?}{} N={} groove={}: {per} samples in {:.1} ms, {compared} compared, worst \
              |Δwi| {worst_dir:.3} of its bound, |Δf| = {worst_f:.2e} of the lobe's scale, \
              |Δpdf|/pdf = {worst_p:.2e}, |Δweight| = {worst_w:.2e} of the weight bound, \
              {skipped} skipped at rounding boundaries",
+            if conical { " conical" } else { "" },
             g.slits,
             g.groove,
             secs * 1e3
@@ -567,48 +496,55 @@ fn tabulated_sample_weights_average_to_the_albedo() {
     let (tables, at) = tables();
     let count = 1usize << 18;
     let mut rng = Mix(43);
-    let b = classical(Preset::Cd, 34);
-    let offset = at[0].1;
-    for (wo, l) in [
-        ([0.0f32, 0.0], 550.0f32),
-        ([0.6, 0.1], 420.0),
-        ([-0.3, -0.5], 700.0),
-    ] {
-        let wo = [wo[0], wo[1], (1.0 - wo[0] * wo[0] - wo[1] * wo[1]).sqrt()];
-        let cases: Vec<([f32; 3], f32, [f32; 3])> = (0..count)
-            .map(|_| {
-                (
-                    wo,
-                    l,
-                    [unit_f32(&mut rng), unit_f32(&mut rng), unit_f32(&mut rng)],
-                )
-            })
-            .collect();
-        let (out, secs) = device_samples(&gpu, &b, &tables, offset, &cases);
-        let w: Vec<f64> = out
-            .iter()
-            .map(|s| {
-                if s.valid {
-                    s.f as f64 * s.wi[2] as f64 / s.pdf as f64
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let mean = w.iter().sum::<f64>() / count as f64;
-        let var = w.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (count - 1) as f64;
-        let se = (var / count as f64).sqrt();
-        let albedo = b.albedo(widen(wo), l as f64).expect("albedo");
-        let tol = 5.0 * se + SAMPLE_WEIGHT_F32 * b.sample_weight_bound(widen(wo), l as f64);
-        println!(
-            "albedo CD N=34 wo={wo:?} λ={l}: device mean weight {mean:.6} ± {se:.1e} ({count} \
+    for conical in [false, true] {
+        let b = if conical {
+            GratingBsdf::preset(Preset::Cd, 34).unwrap()
+        } else {
+            classical(Preset::Cd, 34)
+        };
+        let offset = offset_of(&at, Preset::Cd, conical);
+        for (wo, l) in [
+            ([0.0f32, 0.0], 550.0f32),
+            ([0.6, 0.1], 420.0),
+            ([-0.3, -0.5], 700.0),
+        ] {
+            let wo = [wo[0], wo[1], (1.0 - wo[0] * wo[0] - wo[1] * wo[1]).sqrt()];
+            let cases: Vec<([f32; 3], f32, [f32; 3])> = (0..count)
+                .map(|_| {
+                    (
+                        wo,
+                        l,
+                        [unit_f32(&mut rng), unit_f32(&mut rng), unit_f32(&mut rng)],
+                    )
+                })
+                .collect();
+            let (out, secs) = device_samples(&gpu, &b, &tables, offset, &cases);
+            let w: Vec<f64> = out
+                .iter()
+                .map(|s| {
+                    if s.valid {
+                        s.f as f64 * s.wi[2] as f64 / s.pdf as f64
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            let mean = w.iter().sum::<f64>() / count as f64;
+            let var = w.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (count - 1) as f64;
+            let se = (var / count as f64).sqrt();
+            let albedo = b.albedo(widen(wo), l as f64).expect("albedo");
+            let tol = 5.0 * se + SAMPLE_WEIGHT_F32 * b.sample_weight_bound(widen(wo), l as f64);
+            println!(
+            "albedo CD{} N=34 wo={wo:?} λ={l}: device mean weight {mean:.6} ± {se:.1e} ({count} \
              samples, {:.0} ms), CPU albedo {albedo:.6}: {:.2} standard errors",
+            if conical { " conical" } else { "" },
             secs * 1e3,
             (mean - albedo).abs() / se
         );
-        assert!(
-            (mean - albedo).abs() <= tol,
-            "{mean} vs {albedo} (tol {tol:e})"
-        );
+            assert!(
+                (mean - albedo).abs() <= tol,
+                "{mean} vs {albedo} (tol {tol:e})"
+            );
+        }
     }
 }

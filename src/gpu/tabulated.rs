@@ -10,7 +10,11 @@ use alloc::vec::Vec;
 use crate::relief::EfficiencyTable;
 
 /// The words of a table's header in `diffraction_efficiency_tables`.
-pub const EFFICIENCY_HEADER_WORDS: usize = 8;
+pub const EFFICIENCY_HEADER_WORDS: usize = 10;
+
+/// The words of a reduced table's section before its axes: the offsets of its q's, its stored
+/// values and its marks, and its band.
+const REDUCED_HEADER_WORDS: usize = 5;
 
 /// The CPU's grazing corner (`relief/table.rs`): cos² θm at or below this does not propagate.
 const GRAZING_CORNER: f64 = 1e-6;
@@ -24,8 +28,10 @@ const GRAZING_CORNER: f64 = 1e-6;
 /// let t = Preset::Cd.table();
 /// let words = pack_efficiency_table(t);
 /// let (n_s, n_l, k) = (t.sin_theta_i().len(), t.lambda_nm().len(), t.order_count());
-/// assert_eq!(words.len(), 8 + n_s + n_l + 3 * k * n_l * n_s + (n_s - 1) * (n_l - 1));
+/// assert_eq!(words.len(), 10 + n_s + n_l + 3 * k * n_l * n_s + (n_s - 1) * (n_l - 1));
 /// assert_eq!((words[0], words[3], words[4]), (1600.0, -8.0, 17.0));
+/// // A classical table: no planes, no reduced section.
+/// assert_eq!((words[8], words[9]), (0.0, 0.0));
 /// # }
 /// ```
 #[must_use]
@@ -47,10 +53,13 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
         values as f32,
         (values + 3 * nodes) as f32,
         (values + 2 * nodes) as f32,
+        0.0,
+        0.0,
     ]);
     w.extend(sin.iter().map(|&s| s as f32));
     w.extend(lam.iter().map(|&l| l as f32));
-    // A reduced conical table (version 3): its first plane's own nodes, read there alone.
+    // A reduced conical table (version 3): its first plane's own nodes, read there alone (its
+    // planes follow in its section).
     let reduced = table.is_reduced();
     for m in table.orders() {
         let mf = f64::from(m);
@@ -97,7 +106,43 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
             0.0
         }
     }));
+    if let Some(parts) = table.reduced_parts() {
+        pack_reduced(&mut w, &parts, n_s);
+    }
     w
+}
+
+/// Appends a reduced table's section (layout on [`GpuEfficiencyTables`]) and sets the
+/// header's plane count and offset.
+fn pack_reduced(w: &mut Vec<f32>, p: &crate::relief::ReducedParts, n_s: usize) {
+    let at = w.len();
+    let n_b = p.abs_beta.len();
+    let rows = p.rows[n_b];
+    let axes = REDUCED_HEADER_WORDS + 2 * n_b + (n_b + 1) + rows;
+    let (q, e) = (at + axes, at + axes + 2 * p.q.len());
+    let m = e + p.unpolarised.len();
+    w[8] = n_b as f32;
+    w[9] = at as f32;
+    w.extend_from_slice(&[
+        q as f32,
+        e as f32,
+        m as f32,
+        p.band.0 as f32,
+        p.band.1 as f32,
+    ]);
+    w.extend(p.abs_beta.iter().map(|&b| b as f32));
+    w.extend(p.c.iter().map(|&c| c as f32));
+    w.extend(p.rows.iter().map(|&r| r as f32));
+    w.extend(p.lambda_nm.iter().map(|&l| l as f32));
+    for v in &p.q {
+        match v {
+            Some([te, tm]) => w.extend_from_slice(&[*te as f32, *tm as f32]),
+            None => w.extend_from_slice(&[-1.0, -1.0]),
+        }
+    }
+    w.extend(p.unpolarised.iter().map(|&u| u as f32));
+    w.extend(p.marks.iter().map(|&b| if b { 1.0 } else { 0.0 }));
+    debug_assert_eq!(p.q.len() % (rows * n_s), 0);
 }
 
 /// Several packed tables in one storage buffer, each at the word offset [`push`](Self::push)
@@ -111,10 +156,11 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
 /// | `o + 0` | d, nm |
 /// | `o + 1`, `o + 2` | n_s, n_λ: the node counts of sin θi and λ |
 /// | `o + 3`, `o + 4` | the first stored order and the number of orders K |
-/// | `o + 5` | V: the offset of the values from `o` (8 + n_s + n_λ) |
+/// | `o + 5` | V: the offset of the values from `o` (10 + n_s + n_λ) |
 /// | `o + 6` | M: the offset of the cells' marks from `o` (P + K·n_λ·n_s) |
 /// | `o + 7` | P: the offset of the node efficiencies from `o` (V + 2·K·n_λ·n_s) |
-/// | `o + 8 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
+/// | `o + 8`, `o + 9` | n_β, R: a reduced conical table's plane count and the offset of its section from `o` (0 and 0 for any other table) |
+/// | `o + 10 ..` | the n_s sin θi nodes, then the n_λ wavelength nodes (nm), ascending |
 /// | `o + V ..` | per order k, wavelength node j, sin node i: (q_TE, q_TM) at `o + V + 2·((k·n_λ + j)·n_s + i)` |
 /// | `o + P ..` | the stored unpolarised η = (TE + TM)/2 at `o + P + (k·n_λ + j)·n_s + i`, what the sampler's cell proposal reads |
 /// | `o + M ..` | per interpolation cell (j, i) at `o + M + j·(n_s − 1) + i`: 1 where no query in it needs the normalisation (the CPU's per-cell bound), else 0 |
@@ -126,16 +172,32 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
 /// values to an f64 rounding, or, at a node whose stored sum over orders exceeds 1 (at most
 /// 1 + 10⁻⁶ on load), the values scaled to sum 1.
 ///
+/// A **reduced conical table** (version 3, [`EfficiencyTable::is_reduced`]: the presets'
+/// `Preset::conical_table`, which `GratingBsdf::preset` reads) packs its first plane as
+/// above (on that plane's own wavelength nodes, no cell marked), then its section at `o + R`,
+/// which `diffraction_eta_conical` and the tabulated BSDF read at the full incident direction
+/// (any other table is read at sin θi = α, ignoring β):
+///
+/// | words | what |
+/// |---|---|
+/// | `o + R + 0 ..= 2` | Q, E, M′: the offsets from `o` of its q's, stored values and marks |
+/// | `o + R + 3`, `o + R + 4` | the band [λ0, λ1] a query's wavelength is clamped to |
+/// | `o + R + 5 ..` | the n_β planes' \|β\|, their c = √(1 − β²), the n_β + 1 starts of their wavelength rows (n_rows in all), and every plane's wavelength nodes |
+/// | `o + Q ..` | per order k, row r, s′ node i: (q_TE, q_TM) at `o + Q + 2·((k·n_rows + r)·n_s + i)`, of the stored values at the node's conical incidence (α = s′·c_p, β_p, λ_r), −1 where the order does not propagate there |
+/// | `o + E ..` | the stored unpolarised η at `o + E + (k·n_rows + r)·n_s + i` |
+/// | `o + M′ ..` | per reduced cell (numbered as the CPU numbers them: per slab between planes p and p + 1, i + (n_s − 1)·(j_p + j_p+1)): 1 where no query in it needs the normalisation |
+///
 /// ```
-/// # #[cfg(feature = "presets")] {
+/// # #[cfg(all(feature = "presets", feature = "std"))] {
 /// use diffraction::gpu::{GpuBsdf, GpuEfficiencyTables};
 /// use diffraction::relief::Preset;
 /// use diffraction::GratingBsdf;
 /// let mut tables = GpuEfficiencyTables::default();
+/// // `GratingBsdf::preset` reads the preset's conical table: pack that one.
 /// let cd = GratingBsdf::preset(Preset::Cd, 34)?;
 /// let dvd = GratingBsdf::preset(Preset::Dvd, 34)?;
-/// let at_cd = tables.push(Preset::Cd.table());
-/// let at_dvd = tables.push(Preset::Dvd.table());
+/// let at_cd = tables.push(Preset::Cd.conical_table());
+/// let at_dvd = tables.push(Preset::Dvd.conical_table());
 /// let (g_cd, g_dvd) = (GpuBsdf::new(&cd, 0).with_table(at_cd), GpuBsdf::new(&dvd, 0).with_table(at_dvd));
 /// assert_eq!((g_cd.table, g_dvd.table), (0, at_dvd));
 /// assert_eq!(tables.to_bytes().len(), 4 * tables.words().len());

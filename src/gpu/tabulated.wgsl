@@ -6,19 +6,33 @@
 // tables (`GpuEfficiencyTables`; layout in src/gpu/tabulated.rs and docs/gpu.md).
 // The table is the model's `table` word offset.
 
-// One query's interpolation cell (the CPU's `Cell`): s = sin(theta_i) and lambda clamped to
-// the grid, cos(theta_i), the corners' bilinear weights and the flat index j * n_s + i of
-// corner 0; ok = false at grazing incidence (every order 0).
+// One query's interpolation cell, shared by every order (the CPU's `Cell`, or `Cell3` of a
+// reduced conical table): the query clamped to the grid (alpha: sin(theta_i) = s, or
+// s' * c of a reduced table; c2 = 1 - beta^2, 1 for a classical table; lambda), cos(theta_i),
+// eight corners' weights (w0: corners 0-3, w1: corners 4-7, 0 for a classical table) and
+// flat node indices within an order's slice of `slice` nodes, the cell's number among the
+// marks, and the word offsets (from the table) of the nodes' q's, of the stored unpolarised
+// values and of the marks; ok = false without a cell (grazing incidence, a non-finite query,
+// alpha^2 + beta^2 >= 1): every order 0.
 struct DiffractionEtaCell {
-    s: f32,
+    alpha: f32,
+    c2: f32,
     lambda_nm: f32,
     cos_i: f32,
     ok: bool,
-    w: vec4<f32>,
-    index: u32,
-    n_s: u32,
-    n_l: u32,
+    w0: vec4<f32>,
+    w1: vec4<f32>,
+    at0: vec4<u32>,
+    at1: vec4<u32>,
+    slice: u32,
+    cell: u32,
+    values: u32,
+    nodes: u32,
+    marks: u32,
 }
+
+// The words of a table's header (the Rust `EFFICIENCY_HEADER_WORDS`).
+const DIFFRACTION_ETA_HEADER: u32 = 10u;
 
 // The defensive share of the sampler's order proposal: the CPU's
 // `grating_bsdf::TABULATED_DEFENSIVE_SHARE`.
@@ -40,11 +54,27 @@ fn diffraction_eta_interval(first: u32, n: u32, x: f32) -> u32 {
     return min(max(lo, 1u) - 1u, n - 2u);
 }
 
+// Corner k's weight and flat index (k in 0..8).
+fn diffraction_eta_corner_w(c: DiffractionEtaCell, k: u32) -> f32 {
+    if k < 4u {
+        return c.w0[k];
+    }
+    return c.w1[k - 4u];
+}
+
+fn diffraction_eta_corner_at(c: DiffractionEtaCell, k: u32) -> u32 {
+    if k < 4u {
+        return c.at0[k];
+    }
+    return c.at1[k - 4u];
+}
+
+// The cell of a classical table at s = sin(theta_i) (a conical table's first plane).
 fn diffraction_eta_cell(t: u32, s_in: f32, lambda_in: f32) -> DiffractionEtaCell {
     var c: DiffractionEtaCell;
     let n_s = u32(diffraction_efficiency_tables[t + 1u]);
     let n_l = u32(diffraction_efficiency_tables[t + 2u]);
-    let sn = t + 8u;
+    let sn = t + DIFFRACTION_ETA_HEADER;
     let ln = sn + n_s;
     let s = clamp(s_in, diffraction_efficiency_tables[sn],
                   diffraction_efficiency_tables[sn + n_s - 1u]);
@@ -58,45 +88,63 @@ fn diffraction_eta_cell(t: u32, s_in: f32, lambda_in: f32) -> DiffractionEtaCell
     let l1 = diffraction_efficiency_tables[ln + j + 1u];
     let tx = (s - s0) / (s1 - s0);
     let ty = (l - l0) / (l1 - l0);
-    c.s = s;
+    c.alpha = s;
+    c.c2 = 1.0;
     c.lambda_nm = l;
     c.cos_i = sqrt(max(1.0 - s * s, 0.0));
     c.ok = c.cos_i > 0.0;
-    c.w = vec4<f32>((1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty);
-    c.index = j * n_s + i;
-    c.n_s = n_s;
-    c.n_l = n_l;
+    c.w0 = vec4<f32>((1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty);
+    let index = j * n_s + i;
+    c.at0 = vec4<u32>(index, index + 1u, index + n_s, index + n_s + 1u);
+    c.slice = n_l * n_s;
+    // The cell j * (n_s - 1) + i of corner 0 at j * n_s + i.
+    c.cell = index - index / n_s;
+    c.values = u32(diffraction_efficiency_tables[t + 5u]);
+    c.nodes = u32(diffraction_efficiency_tables[t + 7u]);
+    c.marks = u32(diffraction_efficiency_tables[t + 6u]);
     return c;
 }
 
+// The cell of the incident direction of travel (alpha, beta) = (-w.x, -w.y) at lambda: a
+// reduced conical table's (`diffraction_reduced_cell`), a classical table's at s = alpha
+// (beta ignored: the classical-mount reading).
+fn diffraction_eta_cell_conical(t: u32, alpha: f32, beta: f32, lambda_nm: f32) -> DiffractionEtaCell {
+    if diffraction_efficiency_tables[t + 8u] > 0.5 {
+        return diffraction_reduced_cell(t, alpha, beta, lambda_nm);
+    }
+    return diffraction_eta_cell(t, alpha, lambda_nm);
+}
+
 // Order m's (TE, TM) efficiencies at the cell before the normalisation: 0 where it is
-// evanescent at the query (|s + m*lambda/d| >= 1) or at every corner of positive weight;
-// otherwise the weighted mean of q = eta*cos(theta_i)/cos(theta_m) over the propagating
-// corners, times cos(theta_m)/cos(theta_i) at the query. m must be a stored order.
+// evanescent at the query ((alpha + m*lambda/d)^2 >= c2) or at every corner of positive
+// weight; otherwise the weighted mean of q = eta*cos(theta_i)/cos(theta_m) over the
+// propagating corners, times cos(theta_m)/cos(theta_i) at the query. m must be a stored order.
 fn diffraction_eta_raw(t: u32, c: DiffractionEtaCell, m: i32) -> vec2<f32> {
     let d = diffraction_efficiency_tables[t];
     let k = u32(m - i32(diffraction_efficiency_tables[t + 3u]));
-    let sm = c.s + f32(m) * c.lambda_nm / d;
-    if !c.ok || abs(sm) >= 1.0 {
+    let am = c.alpha + f32(m) * c.lambda_nm / d;
+    let cm2 = c.c2 - am * am;
+    if !c.ok || !(cm2 > 0.0) {
         return vec2<f32>(0.0);
     }
-    let base = t + u32(diffraction_efficiency_tables[t + 5u]) + 2u * (k * c.n_l * c.n_s + c.index);
-    let offsets = vec4<u32>(0u, 2u, 2u * c.n_s, 2u * c.n_s + 2u);
+    let base = t + c.values + 2u * k * c.slice;
     var num = vec2<f32>(0.0);
     var den = 0.0;
-    for (var corner = 0; corner < 4; corner++) {
-        let w = c.w[corner];
-        let at = base + offsets[corner];
-        let q = vec2<f32>(diffraction_efficiency_tables[at], diffraction_efficiency_tables[at + 1u]);
-        if w > 0.0 && q.x >= 0.0 {
-            num += w * q;
-            den += w;
+    for (var corner = 0u; corner < 8u; corner++) {
+        let w = diffraction_eta_corner_w(c, corner);
+        if w > 0.0 {
+            let at = base + 2u * diffraction_eta_corner_at(c, corner);
+            let q = vec2<f32>(diffraction_efficiency_tables[at], diffraction_efficiency_tables[at + 1u]);
+            if q.x >= 0.0 {
+                num += w * q;
+                den += w;
+            }
         }
     }
     if !(den > 0.0) {
         return vec2<f32>(0.0);
     }
-    return num * (sqrt(max(1.0 - sm * sm, 0.0)) / (den * c.cos_i));
+    return num * (sqrt(cm2) / (den * c.cos_i));
 }
 
 // The normalisation's factors per polarisation: 1/sum where the sum over every stored order
@@ -126,9 +174,7 @@ fn diffraction_eta_at(t: u32, c: DiffractionEtaCell, k: vec2<f32>, m: i32) -> f3
 // Whether no query in the cell needs the normalisation (the packed marks: the CPU's per-cell
 // bound of the sum over orders).
 fn diffraction_eta_unit(t: u32, c: DiffractionEtaCell) -> bool {
-    // The cell j * (n_s - 1) + i of corner 0 at j * n_s + i.
-    let cell = c.index - c.index / c.n_s;
-    return diffraction_efficiency_tables[t + u32(diffraction_efficiency_tables[t + 6u]) + cell] > 0.5;
+    return diffraction_efficiency_tables[t + c.marks + c.cell] > 0.5;
 }
 
 // The unpolarised eta_m of the stored order m at the cell, normalised: that order alone in a
@@ -155,9 +201,26 @@ fn diffraction_eta(t: u32, m: i32, sin_theta_i: f32, lambda_nm: f32) -> f32 {
     return diffraction_eta_one(t, c, m);
 }
 
+// eta_m(alpha, beta, lambda) of table t for the incident direction of travel with direction
+// cosines alpha across and beta along the grooves: the CPU's `EfficiencyTable::
+// efficiency_conical(m, alpha, beta, lambda).unpolarised()` of a reduced conical table, and
+// `diffraction_eta(t, m, alpha, lambda)` of any other (beta ignored).
+fn diffraction_eta_conical(t: u32, m: i32, alpha: f32, beta: f32, lambda_nm: f32) -> f32 {
+    let c = diffraction_eta_cell_conical(t, alpha, beta, lambda_nm);
+    if !c.ok {
+        return 0.0;
+    }
+    let first = i32(diffraction_efficiency_tables[t + 3u]);
+    let count = i32(diffraction_efficiency_tables[t + 4u]);
+    if m < first || m >= first + count {
+        return 0.0;
+    }
+    return diffraction_eta_one(t, c, m);
+}
+
 // f = eta~_m * (N*d/lambda) * F_N(d*u/lambda) * g(v) for the order m = round(x) owning u, with
-// eta~_m = min(eta_m(-wo.x, lambda), eta_m(-wi.x, lambda)) (reciprocal); 0 below the surface
-// and for delta lobes.
+// eta~_m = min(eta_m(-wo.x, -wo.y, lambda), eta_m(-wi.x, -wi.y, lambda)) (reciprocal; a
+// classical table ignores the second argument); 0 below the surface and for delta lobes.
 fn diffraction_bsdf_tabulated_f(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>,
                                 lambda_nm: f32) -> f32 {
     if b.groove >= 2u || wo.z <= 0.0 || wi.z <= 0.0 || lambda_nm <= 0.0 {
@@ -168,18 +231,18 @@ fn diffraction_bsdf_tabulated_f(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f32>
         return 0.0;
     }
     let m = i32(round(x));
-    return diffraction_bsdf_tabulated_lobe(b, diffraction_eta(b.table, m, -wo.x, lambda_nm), m, wo,
+    return diffraction_bsdf_tabulated_lobe(b, diffraction_eta_conical(b.table, m, -wo.x, -wo.y, lambda_nm), m, wo,
                                            wi, lambda_nm);
 }
 
-// f from eta_m(-wo.x, lambda) = e of the order m owning u: min(e, eta_m(-wi.x, lambda)) times
-// the lobe.
+// f from eta_m(-wo.x, -wo.y, lambda) = e of the order m owning u: min(e, eta_m(-wi.x, -wi.y,
+// lambda)) times the lobe.
 fn diffraction_bsdf_tabulated_lobe(b: DiffractionBsdf, e: f32, m: i32, wo: vec3<f32>,
                                    wi: vec3<f32>, lambda_nm: f32) -> f32 {
     if !(e > 0.0) {
         return 0.0;
     }
-    let k = min(e, diffraction_eta(b.table, m, -wi.x, lambda_nm));
+    let k = min(e, diffraction_eta_conical(b.table, m, -wi.x, -wi.y, lambda_nm));
     return k * diffraction_bsdf_f(b, wo, wi, lambda_nm);
 }
 
@@ -207,19 +270,20 @@ struct DiffractionEtaProposal {
 // Whether order m propagates at the cell's query: the test of `diffraction_eta_raw`.
 fn diffraction_eta_propagates(t: u32, c: DiffractionEtaCell, m: i32) -> bool {
     let d = diffraction_efficiency_tables[t];
-    return c.ok && abs(c.s + f32(m) * c.lambda_nm / d) < 1.0;
+    let am = c.alpha + f32(m) * c.lambda_nm / d;
+    return c.ok && c.c2 - am * am > 0.0;
 }
 
 // eta^_m of the stored order m: the corners' stored unpolarised efficiencies with the cell's
 // bilinear weights.
 fn diffraction_eta_node(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
     let k = u32(m - i32(diffraction_efficiency_tables[t + 3u]));
-    let base = t + u32(diffraction_efficiency_tables[t + 7u]) + k * c.n_l * c.n_s + c.index;
-    let offsets = vec4<u32>(0u, 1u, c.n_s, c.n_s + 1u);
+    let base = t + c.nodes + k * c.slice;
     var e = 0.0;
-    for (var corner = 0; corner < 4; corner++) {
-        if c.w[corner] > 0.0 {
-            e += c.w[corner] * diffraction_efficiency_tables[base + offsets[corner]];
+    for (var corner = 0u; corner < 8u; corner++) {
+        let w = diffraction_eta_corner_w(c, corner);
+        if w > 0.0 {
+            e += w * diffraction_efficiency_tables[base + diffraction_eta_corner_at(c, corner)];
         }
     }
     return e;
@@ -272,7 +336,7 @@ fn diffraction_bsdf_tabulated_pdf(b: DiffractionBsdf, wo: vec3<f32>, wi: vec3<f3
     if range.y < range.x {
         return 0.0;
     }
-    let c = diffraction_eta_cell(b.table, -wo.x, lambda_nm);
+    let c = diffraction_eta_cell_conical(b.table, -wo.x, -wo.y, lambda_nm);
     let p = diffraction_eta_proposal(b.table, c, range);
     if p.hi < p.lo {
         return 0.0;
@@ -308,7 +372,7 @@ fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_n
     if range.y < range.x {
         return out;
     }
-    let c = diffraction_eta_cell(b.table, -wo.x, lambda_nm);
+    let c = diffraction_eta_cell_conical(b.table, -wo.x, -wo.y, lambda_nm);
     let p = diffraction_eta_proposal(b.table, c, range);
     if p.hi < p.lo {
         return out;

@@ -74,6 +74,8 @@ use nodes_q::NodeQ;
 
 pub(crate) use lookup::{FastProposal, Incidences};
 pub(crate) use proposal::CellProposal;
+#[cfg(all(feature = "alloc", feature = "gpu"))]
+pub(crate) use reduced::ReducedParts;
 
 use unit::UnitCells;
 

@@ -34,6 +34,11 @@ pub const TABLE_ROUNDINGS: f64 = 16.0;
 /// `ColorTable::xyz`, relative to the table's scale: measured 2.05e-6 on lavapipe (the CD
 /// preset, N = 8, 10⁻¹, 65,536 queries; 0.035 of the derived bound); margin 5×.
 pub const CONICAL_COLOUR_WORST_MEASURED: f64 = 1e-5;
+/// A packed efficiency table's interpolated η (`diffraction_eta`, `diffraction_eta_conical`)
+/// against `EfficiencyTable::efficiency` and `efficiency_conical`, absolute: measured 3.7e-6
+/// (classical tables) and 5.4e-6 (the presets' conical tables) on lavapipe at 10⁵ queries per
+/// table, 0.03-0.09 of the derived bounds (gpu-tests/tests/tabulated.rs); margin 4.6×.
+pub const ETA_WORST_MEASURED: f64 = 2.5e-5;
 
 /// The mean ΔE2000 between the example gpu's fig. 6 (G-buffer on the CPU, eq. 12 and the colour
 /// table in WGSL) and the reference tracer's with the same colour rule, at 96×72 and 4 spp
@@ -63,9 +68,10 @@ pub const SAMPLE_WEIGHT_F32: f64 = 1e-4;
 /// The mean ΔE2000 between the example's `gpu cd` (the CD preset's tabulated BSDF in WGSL) and
 /// the same estimator on the CPU with the same random numbers, at 48×36, 4 spp, 8 wavelengths
 /// (gpu-tests/tests/scenes.rs): the f32 shading's roundings only (and the rare sample whose
-/// order or validity is decided within rounding), measured 1.1e-4 on lavapipe (1.2e-4 at
-/// 320×240, 32 spp, 16 wavelengths); margin 10×.
+/// order or validity is decided within rounding), measured 1.16e-4 on lavapipe with the CD read
+/// conically (its default; 1.1e-4 classically, and 1.16e-4 at 320×240, 32 spp, 16
+/// wavelengths); margin 10×.
 pub const CD_MEAN_DELTA_E: f64 = 1.1e-3;
-/// The largest ΔE2000 of one pixel there: measured 0.010 (at 320×240 the
-/// largest is 0.67, one pixel, not traced to its sample); margin 5×.
+/// The largest ΔE2000 of one pixel there: measured 0.011 (0.010 classically; at 320×240 the
+/// largest is 0.68, one pixel, not traced to its sample); margin 5×.
 pub const CD_MAX_DELTA_E: f64 = 0.05;

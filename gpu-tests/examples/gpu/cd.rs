@@ -1,6 +1,6 @@
-//! `gpu cd`: the CD preset (`GratingBsdf::preset(Preset::Cd, 34)` on the preset's classical
-//! table, the rigorous efficiencies of aluminium pits under polycarbonate in the classical
-//! mount) rendered with the library's tabulated BSDF in WGSL
+//! `gpu cd`: the CD preset (`GratingBsdf::preset(Preset::Cd, 34)`: the rigorous efficiencies
+//! of aluminium pits under polycarbonate, read conically from the preset's reduced table)
+//! rendered with the library's tabulated BSDF in WGSL
 //! (`cd.wgsl`: the table as a storage buffer, `diffraction_bsdf_tabulated_f` for a disk light
 //! at K stratified wavelengths and `diffraction_bsdf_tabulated_sample` toward a sky), and the
 //! same estimator on the CPU (`GratingBsdf::eval` and `Bsdf::sample` in f64, the same random
@@ -18,7 +18,6 @@ use diffraction::glam::{DVec2, DVec3};
 use diffraction::gpu::{
     bsdf_bindings, GpuBsdf, GpuEfficiencyTables, BSDF_WGSL, KERNEL_WGSL, TABULATED_WGSL, TYPES_WGSL,
 };
-use diffraction::grating_bsdf::OrderEfficiency;
 use diffraction::relief::Preset;
 use diffraction::spectrum::Illuminant;
 use diffraction::{Bsdf, DiffractionBrdf, GratingBsdf, GrooveSpread};
@@ -139,13 +138,10 @@ fn cmf_rows() -> Vec<[f32; 4]> {
         .collect()
 }
 
-/// The model: the CD preset on its classical table (the reading the WGSL implements;
-/// `GratingBsdf::preset` reads it conically), 34 coherent grooves, a Gaussian groove spread
-/// σ = 0.02.
+/// The model: the CD preset read conically (`GratingBsdf::preset`'s default, its table
+/// `Preset::conical_table`), 34 coherent grooves, a Gaussian groove spread σ = 0.02.
 pub fn model() -> GratingBsdf {
-    let classical = OrderEfficiency::from_static(Preset::Cd.table()).expect("a preset's table");
     GratingBsdf::preset(Preset::Cd, 34)
-        .and_then(|b| b.with_efficiency(classical))
         .expect("the preset builds")
         .with_groove(GrooveSpread::gaussian(0.02).expect("σ = 0.02 is valid"))
 }
@@ -286,7 +282,7 @@ fn render_gpu(
     });
     let start = Instant::now();
     let mut tables = GpuEfficiencyTables::default();
-    let at = tables.push(Preset::Cd.table());
+    let at = tables.push(Preset::Cd.conical_table());
     let g = GpuBsdf::new(b, 0).with_table(at);
     let v4 = |v: DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
     let mut params: Vec<u8> = Vec::new();

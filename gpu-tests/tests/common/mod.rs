@@ -9,6 +9,7 @@ use diffraction::glam::DVec3;
 use diffraction::gpu::GpuBsdf;
 use wgpu::util::DeviceExt;
 
+pub mod eta;
 #[path = "../../../tests/support/gpu_cases.rs"]
 pub mod gpu_cases;
 #[path = "../../../tests/support/gpu_tolerance.rs"]

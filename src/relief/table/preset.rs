@@ -210,8 +210,8 @@ impl Preset {
     /// solve at azimuths 30-80°, where the classical reading of [`table`](Self::table) puts
     /// 41.2 % (`docs/validity.md`, "Conical incidence"). [`conical_table`](Self::conical_table)
     /// is this table built once, what `GratingBsdf::preset` reads. The colour tables tabulate
-    /// a conical table on planes of |wi.y|; the GPU packs its first plane (the classical
-    /// mount off the plane across the grooves).
+    /// a conical table on planes of |wi.y|, and the GPU's packed table holds its planes and
+    /// reads them as the CPU does (`gpu::pack_efficiency_table`).
     ///
     /// # Errors
     ///

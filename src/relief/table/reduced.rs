@@ -617,9 +617,13 @@ impl EfficiencyTable {
 }
 
 mod from_classical;
+#[cfg(feature = "gpu")]
+mod gpu;
 mod locate;
 mod new;
 
+#[cfg(feature = "gpu")]
+pub(crate) use gpu::ReducedParts;
 pub(super) use locate::Locator;
 
 pub use from_classical::REDUCED_PLANES;
