@@ -51,7 +51,9 @@ use alloc::vec::Vec;
 #[cfg(feature = "relief")]
 mod tabulated;
 #[cfg(feature = "relief")]
-pub use tabulated::{pack_efficiency_table, GpuEfficiencyTables, EFFICIENCY_HEADER_WORDS};
+pub use tabulated::{
+    pack_efficiency_table, GpuEfficiencyTables, EFFICIENCY_HEADER_WORDS, MAX_PACKED_TABLE_WORDS,
+};
 
 use crate::grating_bsdf::DEFENSIVE_ORDER_SHARE;
 use crate::num::special::atan;

@@ -236,8 +236,8 @@ fn the_efficiency_tables_pack_as_documented() {
     let (mut grazing, mut values) = (0usize, 0usize);
     for p in Preset::ALL {
         let t = p.table();
-        let w = pack_efficiency_table(t);
-        let at = all.push(t) as usize;
+        let w = pack_efficiency_table(t).unwrap();
+        let at = all.push(t).unwrap() as usize;
         assert_eq!(&all.words()[at..at + w.len()], &w[..]);
         let sin: Vec<f64> = t.sin_theta_i().collect();
         let lam: Vec<f64> = t.lambda_nm().collect();
@@ -346,6 +346,42 @@ fn the_efficiency_tables_pack_as_documented() {
     );
 }
 
+/// A table whose packed words would pass 2²⁴ (where their offsets stop being exact in f32) is
+/// refused by `pack_efficiency_table` and `GpuEfficiencyTables::push` with an error naming
+/// `table`, the count its value, and the buffer is left as it was.
+#[cfg(feature = "relief")]
+#[test]
+fn a_table_too_large_to_pack_is_refused() {
+    use diffraction::gpu::{pack_efficiency_table, GpuEfficiencyTables, MAX_PACKED_TABLE_WORDS};
+    use diffraction::relief::EfficiencyTable;
+    let (n_s, n_l) = (4096, 1100);
+    let s: Vec<f64> = (0..n_s)
+        .map(|i| -0.99 + 1.98 * i as f64 / (n_s - 1) as f64)
+        .collect();
+    let l: Vec<f64> = (0..n_l).map(|j| 360.0 + 0.4 * j as f64).collect();
+    let big =
+        EfficiencyTable::new(1000.0, 0, s, l, vec![0.1; n_s * n_l], vec![0.1; n_s * n_l]).unwrap();
+    let words = 10 + n_s + n_l + 3 * n_s * n_l + (n_s - 1) * (n_l - 1);
+    assert!(words > MAX_PACKED_TABLE_WORDS);
+    let e = pack_efficiency_table(&big).unwrap_err();
+    assert_eq!((e.parameter(), e.value()), ("table", words as f64));
+    assert!(e.to_string().contains("MAX_PACKED_TABLE_WORDS"), "{e}");
+    let small = EfficiencyTable::new(
+        1000.0,
+        0,
+        vec![-0.5, 0.5],
+        vec![400.0, 700.0],
+        vec![0.5; 4],
+        vec![0.5; 4],
+    )
+    .unwrap();
+    let mut tables = GpuEfficiencyTables::default();
+    assert_eq!(tables.push(&small).unwrap(), 0);
+    let before = tables.words().to_vec();
+    assert_eq!(tables.push(&big).unwrap_err().parameter(), "table");
+    assert_eq!(tables.words(), &before[..]);
+}
+
 /// A reduced conical table (the presets' `conical_table`, what `GratingBsdf::preset` reads)
 /// packs its first plane as a classical table, then its own section (src/gpu/tabulated.rs):
 /// the planes' |β| and c, their rows and wavelength nodes, per order and node
@@ -360,7 +396,7 @@ fn reduced_tables_pack_as_documented() {
     use diffraction::relief::{Polarised, Preset};
     for p in [Preset::Cd, Preset::Foil] {
         let t = p.conical_table();
-        let w = pack_efficiency_table(t);
+        let w = pack_efficiency_table(t).unwrap();
         let word = |i: usize| w[i] as f64;
         let sin: Vec<f64> = t.sin_theta_i().collect();
         let bet: Vec<f64> = t.abs_beta().collect();

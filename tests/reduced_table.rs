@@ -413,7 +413,10 @@ fn the_gpu_packs_the_first_plane() {
     }
     let classical =
         EfficiencyTable::new(cd.period_nm(), *cd.orders().start(), s, l, te, tm).unwrap();
-    let (a, b) = (pack_efficiency_table(&t), pack_efficiency_table(&classical));
+    let (a, b) = (
+        pack_efficiency_table(&t).unwrap(),
+        pack_efficiency_table(&classical).unwrap(),
+    );
     assert_eq!((a[8], a[9], b[8], b[9]), (3.0, b.len() as f32, 0.0, 0.0));
     assert!(a.len() > b.len());
     let marks = b[6] as usize;

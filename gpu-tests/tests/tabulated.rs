@@ -72,7 +72,7 @@ fn tables() -> (GpuEfficiencyTables, Vec<Packed>) {
             } else {
                 preset.table()
             };
-            let offset = t.push(table);
+            let offset = t.push(table).expect("a preset packs");
             at.push(Packed {
                 preset,
                 conical,

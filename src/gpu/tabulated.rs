@@ -7,6 +7,7 @@
 
 use alloc::vec::Vec;
 
+use crate::error::{Error, Requirement};
 use crate::relief::EfficiencyTable;
 
 /// The words of a table's header in `diffraction_efficiency_tables`.
@@ -16,33 +17,73 @@ pub const EFFICIENCY_HEADER_WORDS: usize = 10;
 /// values and its marks, and its band.
 const REDUCED_HEADER_WORDS: usize = 5;
 
+/// The most words one packed table may have: its offsets and counts are f32 words, exact up
+/// to 2²⁴ (a table of about 5.6 million values per polarisation, or fewer for a reduced one).
+pub const MAX_PACKED_TABLE_WORDS: usize = 1 << 24;
+
 /// The CPU's grazing corner (`relief/table.rs`): cos² θm at or below this does not propagate.
 const GRAZING_CORNER: f64 = 1e-6;
 
+/// The number of words [`pack_efficiency_table`] writes for `table`.
+fn packed_words(table: &EfficiencyTable) -> usize {
+    let (n_s, n_l, k) = (
+        table.sin_theta_i().len(),
+        table.lambda_nm().len(),
+        table.order_count(),
+    );
+    let classical = EFFICIENCY_HEADER_WORDS + n_s + n_l + 3 * k * n_l * n_s + (n_s - 1) * (n_l - 1);
+    if !table.is_reduced() {
+        return classical;
+    }
+    let rows: Vec<usize> = (0..table.abs_beta().len())
+        .map(|p| table.plane_lambda_nm(p).len())
+        .collect();
+    let n_b = rows.len();
+    let all: usize = rows.iter().sum();
+    let cells: usize = rows.windows(2).map(|r| (n_s - 1) * (r[0] + r[1] - 3)).sum();
+    classical + REDUCED_HEADER_WORDS + 3 * n_b + 1 + all + 3 * k * all * n_s + cells
+}
+
 /// One table in the layout of [`GpuEfficiencyTables`], as f32 words.
+///
+/// # Errors
+///
+/// `table` ([`Requirement::AtMost`] [`MAX_PACKED_TABLE_WORDS`], the value the table's word
+/// count): the words' offsets would not be exact in f32.
 ///
 /// ```
 /// # #[cfg(feature = "presets")] {
 /// use diffraction::gpu::pack_efficiency_table;
 /// use diffraction::relief::Preset;
 /// let t = Preset::Cd.table();
-/// let words = pack_efficiency_table(t);
+/// let words = pack_efficiency_table(t)?;
 /// let (n_s, n_l, k) = (t.sin_theta_i().len(), t.lambda_nm().len(), t.order_count());
 /// assert_eq!(words.len(), 10 + n_s + n_l + 3 * k * n_l * n_s + (n_s - 1) * (n_l - 1));
 /// assert_eq!((words[0], words[3], words[4]), (1600.0, -8.0, 17.0));
 /// // A classical table: no planes, no reduced section.
 /// assert_eq!((words[8], words[9]), (0.0, 0.0));
 /// # }
+/// # Ok::<(), diffraction::Error>(())
 /// ```
-#[must_use]
-pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
+pub fn pack_efficiency_table(table: &EfficiencyTable) -> Result<Vec<f32>, Error> {
+    let size = packed_words(table);
+    if size > MAX_PACKED_TABLE_WORDS {
+        return Err(Error::invalid(
+            "table",
+            size as f64,
+            Requirement::AtMost {
+                bound_name: "MAX_PACKED_TABLE_WORDS",
+                bound: MAX_PACKED_TABLE_WORDS as f64,
+            },
+        ));
+    }
     let sin: Vec<f64> = table.sin_theta_i().collect();
     let lam: Vec<f64> = table.lambda_nm().collect();
     let (n_s, n_l, count) = (sin.len(), lam.len(), table.order_count());
     let values = EFFICIENCY_HEADER_WORDS + n_s + n_l;
     let nodes = count * n_l * n_s;
     let cells = (n_s - 1) * (n_l - 1);
-    let mut w = Vec::with_capacity(values + 3 * nodes + cells);
+    let mut w = Vec::with_capacity(size);
     let d = table.period_nm();
     w.extend_from_slice(&[
         d as f32,
@@ -109,7 +150,8 @@ pub fn pack_efficiency_table(table: &EfficiencyTable) -> Vec<f32> {
     if let Some(parts) = table.reduced_parts() {
         pack_reduced(&mut w, &parts, n_s);
     }
-    w
+    debug_assert_eq!(w.len(), size);
+    Ok(w)
 }
 
 /// Appends a reduced table's section (layout on [`GpuEfficiencyTables`]) and sets the
@@ -196,8 +238,8 @@ fn pack_reduced(w: &mut Vec<f32>, p: &crate::relief::ReducedParts, n_s: usize) {
 /// // `GratingBsdf::preset` reads the preset's conical table: pack that one.
 /// let cd = GratingBsdf::preset(Preset::Cd, 34)?;
 /// let dvd = GratingBsdf::preset(Preset::Dvd, 34)?;
-/// let at_cd = tables.push(Preset::Cd.conical_table());
-/// let at_dvd = tables.push(Preset::Dvd.conical_table());
+/// let at_cd = tables.push(Preset::Cd.conical_table())?;
+/// let at_dvd = tables.push(Preset::Dvd.conical_table())?;
 /// let (g_cd, g_dvd) = (GpuBsdf::new(&cd, 0).with_table(at_cd), GpuBsdf::new(&dvd, 0).with_table(at_dvd));
 /// assert_eq!((g_cd.table, g_dvd.table), (0, at_dvd));
 /// assert_eq!(tables.to_bytes().len(), 4 * tables.words().len());
@@ -211,10 +253,28 @@ pub struct GpuEfficiencyTables {
 
 impl GpuEfficiencyTables {
     /// Appends `table` ([`pack_efficiency_table`]); returns its word offset.
-    pub fn push(&mut self, table: &EfficiencyTable) -> u32 {
+    ///
+    /// # Errors
+    ///
+    /// `table`: as [`pack_efficiency_table`], or ([`Requirement::AtMost`] `u32::MAX`, the value
+    /// the buffer's word count with it) when its offset or end would not fit the `u32` word
+    /// offsets of [`GpuBsdf::table`](super::GpuBsdf::table). The buffer is unchanged then.
+    pub fn push(&mut self, table: &EfficiencyTable) -> Result<u32, Error> {
+        let words = pack_efficiency_table(table)?;
+        let end = self.words.len() + words.len();
+        if end > u32::MAX as usize {
+            return Err(Error::invalid(
+                "table",
+                end as f64,
+                Requirement::AtMost {
+                    bound_name: "u32::MAX words",
+                    bound: u32::MAX as f64,
+                },
+            ));
+        }
         let at = self.words.len() as u32;
-        self.words.extend(pack_efficiency_table(table));
-        at
+        self.words.extend(words);
+        Ok(at)
     }
 
     /// The words.

@@ -282,7 +282,9 @@ fn render_gpu(
     });
     let start = Instant::now();
     let mut tables = GpuEfficiencyTables::default();
-    let at = tables.push(Preset::Cd.conical_table());
+    let at = tables
+        .push(Preset::Cd.conical_table())
+        .map_err(|e| e.to_string())?;
     let g = GpuBsdf::new(b, 0).with_table(at);
     let v4 = |v: DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
     let mut params: Vec<u8> = Vec::new();
