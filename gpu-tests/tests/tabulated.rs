@@ -96,10 +96,16 @@ fn offset_of(at: &[Packed], preset: Preset, conical: bool) -> u32 {
 /// (α = −w.x, β = −w.y of a direction uniform on the hemisphere with w.z ≥ 0.05), each within
 /// its bound (`common::eta::eta_bound`), except where f32 may take the neighbouring cell of a
 /// reduced table (a position within its rounding of a node line: at most 1 in 2000 queries).
-#[test]
-fn eta_matches_the_cpu_table() {
-    let Some(gpu) = gpu() else { return };
-    let (tables, at) = tables();
+/// `diffraction_eta` (`conical` false) or `diffraction_eta_conical` of the packed table at
+/// word `offset` of `tables` at each (m, α, β, λ) of `queries` on the device, and the seconds
+/// of the dispatch.
+fn device_etas(
+    gpu: &Gpu,
+    tables: &GpuEfficiencyTables,
+    offset: u32,
+    conical: bool,
+    queries: &[(i32, f32, f32, f32)],
+) -> (Vec<f32>, f64) {
     let source = [
         TYPES_WGSL,
         KERNEL_WGSL,
@@ -110,6 +116,30 @@ fn eta_matches_the_cpu_table() {
         ETA_MAIN,
     ]
     .join("\n");
+    let mut bytes = Vec::with_capacity(32 * queries.len());
+    for &(m, alpha, beta, l) in queries {
+        bytes.extend_from_slice(&m.to_le_bytes());
+        for v in [alpha, beta, l] {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        for v in [offset, u32::from(conical), 0, 0] {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    let (out, secs) = gpu.run(
+        &source,
+        "eta_main",
+        &[&bytes, &tables.to_bytes()],
+        4 * queries.len(),
+        queries.len(),
+    );
+    (f32s(&out), secs)
+}
+
+#[test]
+fn eta_matches_the_cpu_table() {
+    let Some(gpu) = gpu() else { return };
+    let (tables, at) = tables();
     let per = 100_000;
     let mut rng = Mix(31);
     for packed in &at {
@@ -129,24 +159,7 @@ fn eta_matches_the_cpu_table() {
                 (m, alpha, beta, l)
             })
             .collect();
-        let mut bytes = Vec::with_capacity(32 * per);
-        for &(m, alpha, beta, l) in &queries {
-            bytes.extend_from_slice(&m.to_le_bytes());
-            for v in [alpha, beta, l] {
-                bytes.extend_from_slice(&v.to_le_bytes());
-            }
-            for v in [offset, u32::from(conical), 0, 0] {
-                bytes.extend_from_slice(&v.to_le_bytes());
-            }
-        }
-        let (out, secs) = gpu.run(
-            &source,
-            "eta_main",
-            &[&bytes, &tables.to_bytes()],
-            4 * per,
-            per,
-        );
-        let out = f32s(&out);
+        let (out, secs) = device_etas(&gpu, &tables, offset, conical, &queries);
         let words = &tables.words()[offset as usize..];
         let (mut worst, mut worst_rel, mut nonzero, mut skipped) = (0.0f64, 0.0f64, 0usize, 0);
         for (&(m, alpha, beta, l), &g) in queries.iter().zip(&out) {
@@ -181,6 +194,77 @@ fn eta_matches_the_cpu_table() {
              ({worst_rel:.3} of its bound), {skipped} skipped near node lines",
             if conical { " conical" } else { "" },
             secs * 1e3
+        );
+    }
+}
+
+/// Hostile queries (non-finite, huge, tiny or negative α, β and λ, orders outside the stored
+/// ones and at the ends of i32) of every packed table give a finite η in [0, 1] on the device,
+/// as on the CPU (no hang: every loop of the WGSL is bounded by the table's counts).
+#[test]
+fn hostile_eta_queries_give_finite_efficiencies() {
+    let Some(gpu) = gpu() else { return };
+    let (tables, at) = tables();
+    let xs = [
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        1e30,
+        -1e30,
+        1.0,
+        -1.0,
+        0.999_999_9,
+        1e-30,
+        0.0,
+        -0.0,
+        0.3,
+    ];
+    let ls = [
+        f32::NAN,
+        f32::INFINITY,
+        -1.0,
+        0.0,
+        1e-30,
+        1e30,
+        359.0,
+        550.0,
+        2000.0,
+    ];
+    for packed in &at {
+        let t = packed.table();
+        let (first, last) = (*t.orders().start(), *t.orders().end());
+        let orders = [i32::MIN, first - 1, first, 0, last, last + 1, i32::MAX];
+        let mut queries = Vec::new();
+        for &m in &orders {
+            for &a in &xs {
+                for &b in &xs {
+                    for &l in &ls {
+                        queries.push((m, a, b, l));
+                    }
+                }
+            }
+        }
+        let (out, _) = device_etas(&gpu, &tables, packed.offset, packed.conical, &queries);
+        for (q, &g) in queries.iter().zip(&out) {
+            assert!(
+                g.is_finite() && (0.0..=1.0 + 1e-5).contains(&g),
+                "{:?} (conical {}) {q:?}: {g}",
+                packed.preset,
+                packed.conical
+            );
+            let (m, a, b, l) = (q.0, q.1 as f64, q.2 as f64, q.3 as f64);
+            let cpu = if packed.conical {
+                t.efficiency_conical(m, a, b, l)
+            } else {
+                t.efficiency(m, a, l)
+            };
+            assert!(cpu.te.is_finite() && cpu.tm.is_finite(), "{q:?}: {cpu:?}");
+        }
+        println!(
+            "{:?}{}: {} hostile queries, every η finite in [0, 1]",
+            packed.preset,
+            if packed.conical { " conical" } else { "" },
+            queries.len()
         );
     }
 }
