@@ -277,6 +277,46 @@ impl GpuEfficiencyTables {
         Ok(at)
     }
 
+    /// The [`GpuBsdf`](super::GpuBsdf) of `bsdf` ([`GpuBsdf::new`](super::GpuBsdf::new) with
+    /// `first_row`), with the table it reads appended here and its offset set: the table
+    /// `bsdf.order_efficiency().table()` holds, so the WGSL reads what the CPU reads (a preset
+    /// from [`GratingBsdf::preset`](crate::GratingBsdf::preset) its conical table, one from
+    /// `OrderEfficiency::from_static(preset.table())` the classical one). The amplitude model
+    /// packs nothing and keeps [`NO_TABLE`](super::NO_TABLE). Each call packs its table anew;
+    /// models that share one table can share one [`push`](Self::push) through
+    /// [`GpuBsdf::with_table`](super::GpuBsdf::with_table).
+    ///
+    /// # Errors
+    ///
+    /// As [`push`](Self::push); the buffer is unchanged then.
+    ///
+    /// ```
+    /// # #[cfg(all(feature = "presets", feature = "std"))] {
+    /// use diffraction::gpu::{GpuEfficiencyTables, NO_TABLE};
+    /// use diffraction::relief::Preset;
+    /// use diffraction::{Grating, GratingBsdf};
+    /// let mut tables = GpuEfficiencyTables::default();
+    /// let flat = tables.push_bsdf(&GratingBsdf::new(Grating::new(1600.0, 800.0, 34)?), 0)?;
+    /// assert_eq!((flat.table, tables.words().len()), (NO_TABLE, 0));
+    /// let cd = tables.push_bsdf(&GratingBsdf::preset(Preset::Cd, 34)?, 65)?;
+    /// assert_eq!(cd.table, 0);
+    /// // The conical table the preset reads: its planes follow its first one.
+    /// assert_eq!(tables.words()[8] as usize, Preset::Cd.conical_table().abs_beta().len());
+    /// # }
+    /// # Ok::<(), diffraction::Error>(())
+    /// ```
+    pub fn push_bsdf(
+        &mut self,
+        bsdf: &crate::GratingBsdf,
+        first_row: u32,
+    ) -> Result<super::GpuBsdf, Error> {
+        let g = super::GpuBsdf::new(bsdf, first_row);
+        match bsdf.order_efficiency().table() {
+            Some(t) => Ok(g.with_table(self.push(t)?)),
+            None => Ok(g),
+        }
+    }
+
     /// The words.
     #[must_use]
     pub fn words(&self) -> &[f32] {

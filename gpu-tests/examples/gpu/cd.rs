@@ -16,7 +16,7 @@ use std::time::Instant;
 use diffraction::color::{Clip, Xyz};
 use diffraction::glam::{DVec2, DVec3};
 use diffraction::gpu::{
-    bsdf_bindings, GpuBsdf, GpuEfficiencyTables, BSDF_WGSL, KERNEL_WGSL, TABULATED_WGSL, TYPES_WGSL,
+    bsdf_bindings, GpuEfficiencyTables, BSDF_WGSL, KERNEL_WGSL, TABULATED_WGSL, TYPES_WGSL,
 };
 use diffraction::relief::Preset;
 use diffraction::spectrum::Illuminant;
@@ -281,11 +281,9 @@ fn render_gpu(
         cache: None,
     });
     let start = Instant::now();
+    // The table the model reads (the preset's conical one), packed, and the model's constants.
     let mut tables = GpuEfficiencyTables::default();
-    let at = tables
-        .push(Preset::Cd.conical_table())
-        .map_err(|e| e.to_string())?;
-    let g = GpuBsdf::new(b, 0).with_table(at);
+    let g = tables.push_bsdf(b, 0).map_err(|e| e.to_string())?;
     let v4 = |v: DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
     let mut params: Vec<u8> = Vec::new();
     for w in [st.width, st.height, st.spp, st.lambdas] {
