@@ -603,19 +603,7 @@ fn tabulated_sample_weights_average_to_the_albedo() {
                 })
                 .collect();
             let (out, secs) = device_samples(&gpu, &b, &tables, offset, &cases);
-            let w: Vec<f64> = out
-                .iter()
-                .map(|s| {
-                    if s.valid {
-                        s.f as f64 * s.wi[2] as f64 / s.pdf as f64
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
-            let mean = w.iter().sum::<f64>() / count as f64;
-            let var = w.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (count - 1) as f64;
-            let se = (var / count as f64).sqrt();
+            let (mean, se) = mean_weight(out.iter().map(|s| (s.valid, s.f, s.wi[2], s.pdf)));
             let albedo = b.albedo(widen(wo), l as f64).expect("albedo");
             let tol = 5.0 * se + SAMPLE_WEIGHT_F32 * b.sample_weight_bound(widen(wo), l as f64);
             println!(

@@ -189,7 +189,12 @@ fn diffraction_eta_one(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
 // eta_m(sin(theta_i), lambda) of table t: the CPU's `EfficiencyTable::efficiency(m, s,
 // lambda).unpolarised()`.
 fn diffraction_eta(t: u32, m: i32, sin_theta_i: f32, lambda_nm: f32) -> f32 {
-    let c = diffraction_eta_cell(t, sin_theta_i, lambda_nm);
+    return diffraction_eta_in(t, diffraction_eta_cell(t, sin_theta_i, lambda_nm), m);
+}
+
+// The unpolarised eta_m of order m at the cell c, normalised: 0 without a cell and for orders
+// the table does not store.
+fn diffraction_eta_in(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
     if !c.ok {
         return 0.0;
     }
@@ -206,16 +211,7 @@ fn diffraction_eta(t: u32, m: i32, sin_theta_i: f32, lambda_nm: f32) -> f32 {
 // efficiency_conical(m, alpha, beta, lambda).unpolarised()` of a reduced conical table, and
 // `diffraction_eta(t, m, alpha, lambda)` of any other (beta ignored).
 fn diffraction_eta_conical(t: u32, m: i32, alpha: f32, beta: f32, lambda_nm: f32) -> f32 {
-    let c = diffraction_eta_cell_conical(t, alpha, beta, lambda_nm);
-    if !c.ok {
-        return 0.0;
-    }
-    let first = i32(diffraction_efficiency_tables[t + 3u]);
-    let count = i32(diffraction_efficiency_tables[t + 4u]);
-    if m < first || m >= first + count {
-        return 0.0;
-    }
-    return diffraction_eta_one(t, c, m);
+    return diffraction_eta_in(t, diffraction_eta_cell_conical(t, alpha, beta, lambda_nm), m);
 }
 
 // f = eta~_m * (N*d/lambda) * F_N(d*u/lambda) * g(v) for the order m = round(x) owning u, with
@@ -398,12 +394,7 @@ fn diffraction_bsdf_tabulated_sample(b: DiffractionBsdf, wo: vec3<f32>, lambda_n
     // wo from the same cell: the value `diffraction_eta` gives.
     let x = b.period_nm * ((wi.x + wo.x) / lambda_nm);
     let owner = i32(round(x));
-    let first = i32(diffraction_efficiency_tables[b.table + 3u]);
-    let count = i32(diffraction_efficiency_tables[b.table + 4u]);
-    var e = 0.0;
-    if c.ok && owner >= first && owner < first + count {
-        e = diffraction_eta_one(b.table, c, owner);
-    }
+    let e = diffraction_eta_in(b.table, c, owner);
     out.wi = wi;
     out.f = diffraction_bsdf_tabulated_lobe(b, e, owner, wo, wi, lambda_nm);
     out.pdf = pdf;

@@ -264,6 +264,24 @@ pub fn direction_bound(g: &GpuBsdf, wo: DVec3, l: f64, m: i64, xi: [f64; 3]) -> 
     [dx, dy, dz]
 }
 
+/// The mean of the sample weights f·cos θi/pdf of device samples given as (valid, f, wi.z,
+/// pdf) (0 for an invalid one), and its standard error.
+pub fn mean_weight(samples: impl Iterator<Item = (bool, f32, f32, f32)>) -> (f64, f64) {
+    let w: Vec<f64> = samples
+        .map(|(valid, f, z, pdf)| {
+            if valid {
+                f as f64 * z as f64 / pdf as f64
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let count = w.len() as f64;
+    let mean = w.iter().sum::<f64>() / count;
+    let var = w.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (count - 1.0);
+    (mean, (var / count).sqrt())
+}
+
 /// Whether a running sum of `weights` comes within `delta` of `target` (the order choice is
 /// decided within rounding there).
 pub fn near_partial_sum(weights: &[f64], target: f64, delta: f64) -> bool {

@@ -480,40 +480,49 @@ impl EfficiencyTable {
     fn reduced_q(&self, r: &Reduced<'_>) -> Computed {
         #[cfg(feature = "std")]
         {
-            let (n_s, slice) = (r.sin.len(), r.slice());
-            if slice * self.order_count > super::nodes_q::MAX_Q_VALUES {
+            if r.slice() * self.order_count > super::nodes_q::MAX_Q_VALUES {
                 return None;
             }
-            let mut q = Vec::with_capacity(slice * self.order_count);
-            for k in 0..self.order_count {
-                let mf = f64::from(self.order_min) + k as f64;
-                for (p, &bn) in r.bet.iter().enumerate() {
-                    let (b2, cp) = (bn * bn, cb(bn));
-                    for (j, &l) in r.plane(p).iter().enumerate() {
-                        for (i, &sn) in r.sin.iter().enumerate() {
-                            let at = k * slice + (r.rows[p] + j) * n_s + i;
-                            let cos_i = cp * math::sqrt(1.0 - sn * sn);
-                            let v = (r.te, r.tm);
-                            q.push(super::corner_q(
-                                sn * cp,
-                                b2,
-                                l,
-                                cos_i,
-                                mf,
-                                self.period_nm,
-                                v,
-                                at,
-                            ));
-                        }
-                    }
-                }
-            }
+            let mut q = Vec::with_capacity(r.slice() * self.order_count);
+            self.each_node_q(r, |v| q.push(v));
             Some(q)
         }
         #[cfg(not(feature = "std"))]
         {
             let _ = r;
             None
+        }
+    }
+
+    /// Every node's (q_TE, q_TM) in the values' order (order k, row, s′ node), or
+    /// `NOT_PROPAGATING` twice where the order does not propagate there: `corner_q` at the
+    /// node's conical incidence (α = s′·c_p, β_p, the row's wavelength), the corner formulas
+    /// of [`Reduced::find`].
+    #[cfg_attr(not(any(feature = "std", feature = "gpu")), allow(dead_code))]
+    fn each_node_q(&self, r: &Reduced<'_>, mut f: impl FnMut([f64; 2])) {
+        let (n_s, slice) = (r.sin.len(), r.slice());
+        for k in 0..self.order_count {
+            let mf = f64::from(self.order_min) + k as f64;
+            for (p, &bn) in r.bet.iter().enumerate() {
+                let (b2, cp) = (bn * bn, cb(bn));
+                for (j, &l) in r.plane(p).iter().enumerate() {
+                    for (i, &sn) in r.sin.iter().enumerate() {
+                        let at = k * slice + (r.rows[p] + j) * n_s + i;
+                        let cos_i = cp * math::sqrt(1.0 - sn * sn);
+                        let v = (r.te, r.tm);
+                        f(super::corner_q(
+                            sn * cp,
+                            b2,
+                            l,
+                            cos_i,
+                            mf,
+                            self.period_nm,
+                            v,
+                            at,
+                        ));
+                    }
+                }
+            }
         }
     }
 

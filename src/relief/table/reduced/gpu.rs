@@ -7,8 +7,6 @@ use alloc::vec::Vec;
 
 use super::super::nodes_q::NOT_PROPAGATING;
 use super::super::EfficiencyTable;
-use super::cb;
-use crate::num::math;
 
 /// What the GPU's packed table holds of a reduced conical table (feature `gpu`).
 pub(crate) struct ReducedParts {
@@ -35,31 +33,9 @@ impl EfficiencyTable {
     /// The parts of a reduced conical table for the GPU; `None` for any other table.
     pub(crate) fn reduced_parts(&self) -> Option<ReducedParts> {
         let r = self.reduced()?;
-        let (n_s, slice) = (r.sin.len(), r.slice());
+        let slice = r.slice();
         let mut q = Vec::with_capacity(slice * self.order_count);
-        for k in 0..self.order_count {
-            let mf = f64::from(self.order_min) + k as f64;
-            for (p, &bn) in r.bet.iter().enumerate() {
-                let (b2, cp) = (bn * bn, cb(bn));
-                for (j, &l) in r.plane(p).iter().enumerate() {
-                    for (i, &sn) in r.sin.iter().enumerate() {
-                        let at = k * slice + (r.rows[p] + j) * n_s + i;
-                        let cos_i = cp * math::sqrt(1.0 - sn * sn);
-                        let v = super::super::corner_q(
-                            sn * cp,
-                            b2,
-                            l,
-                            cos_i,
-                            mf,
-                            self.period_nm,
-                            (r.te, r.tm),
-                            at,
-                        );
-                        q.push((v[0] != NOT_PROPAGATING).then_some(v));
-                    }
-                }
-            }
-        }
+        self.each_node_q(&r, |v| q.push((v[0] != NOT_PROPAGATING).then_some(v)));
         let unpolarised = (0..slice * self.order_count)
             .map(|at| 0.5 * (r.te[at] + r.tm[at]))
             .collect();
