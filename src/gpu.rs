@@ -14,7 +14,7 @@
 //! | [`INCIDENCE_WGSL`] | `diffraction_table_colour(u, s) -> XYZ`: the table's colour at the incidence s = wi.x (a table of tabulated efficiencies); `diffraction_table_colour_conical(u, s, b) -> XYZ`: a conical table's, on its planes of b = min(\|wi.y\|, \|wo.y\|) | colour table, [`incidence_bindings`] |
 //! | [`SHADING_WGSL`] | `diffraction_shade` (eq. 12), `diffraction_shade_grating`, `diffraction_xyz_to_linear_srgb`, `diffraction_phase_u` | types, colour table |
 //! | [`BSDF_WGSL`] | `diffraction_bsdf_f`, `diffraction_bsdf_pdf`, `diffraction_bsdf_sample`: the radiometric [`GratingBsdf`] (amplitude efficiencies) from a [`GpuBsdf`] | types, kernels, [`bsdf_bindings`] |
-//! | [`TABULATED_WGSL`] | `diffraction_bsdf_tabulated_f`, `_pdf`, `_sample`, `diffraction_eta`, `diffraction_eta_conical`: a tabulated model from its packed table (`GpuEfficiencyTables`, feature `relief`; a reduced conical table read at the full incident direction) | types, kernels, BSDF, [`efficiency_table_bindings`] |
+//! | [`TABULATED_WGSL`] | `diffraction_bsdf_tabulated_f`, `_pdf`, `_sample`, `diffraction_eta`, `diffraction_eta_conical`: a tabulated model from its packed table (`GpuEfficiencyTables`, feature `relief`; a conical table read at the full incident direction) | types, kernels, BSDF, [`efficiency_table_bindings`] |
 //!
 //! [`shading_source`] is all of it with the table's and the BSDF's bindings at a group and
 //! binding of your choice. The kernels are the f32 twins of [`kernel::single_slit_cycles`] and
@@ -124,8 +124,9 @@ pub const BSDF_WGSL: &str = include_str!("gpu/bsdf.wgsl");
 /// The radiometric [`GratingBsdf`] with tabulated efficiencies (a preset's or any
 /// `EfficiencyTable`'s, packed by `GpuEfficiencyTables`): `diffraction_bsdf_tabulated_f`,
 /// `_pdf`, `_sample` and the table's interpolation `diffraction_eta` (and
-/// `diffraction_eta_conical` at the full incident direction: a reduced conical table is read
-/// conically, as the CPU reads it, every other table at sin θi = α); needs [`TYPES_WGSL`],
+/// `diffraction_eta_conical` at the full incident direction: a conical table, reduced or a
+/// version-2 tensor grid, is read conically, as the CPU reads it, a classical one at
+/// sin θi = α); needs [`TYPES_WGSL`],
 /// [`KERNEL_WGSL`], [`BSDF_WGSL`] and the binding of [`efficiency_table_bindings`].
 pub const TABULATED_WGSL: &str = concat!(
     include_str!("gpu/tabulated.wgsl"),

@@ -9,6 +9,9 @@
 mod gpu_cases;
 #[path = "support/gpu_tolerance.rs"]
 mod gpu_tolerance;
+#[cfg(feature = "presets")]
+#[path = "support/tensor_cd.rs"]
+mod tensor_cd;
 
 use diffraction::gpu::{
     bsdf_bindings, color_table_bindings, efficiency_table_bindings, incidence_bindings,
@@ -391,17 +394,22 @@ fn a_table_too_large_to_pack_is_refused() {
 /// (`plane_efficiencies`, which is the stored values where their sum stays below 1).
 #[cfg(feature = "presets")]
 #[test]
-fn reduced_tables_pack_as_documented() {
+fn conical_tables_pack_as_documented() {
     use diffraction::gpu::pack_efficiency_table;
     use diffraction::relief::{Polarised, Preset};
-    for p in [Preset::Cd, Preset::Foil] {
-        let t = p.conical_table();
+    let tensor = tensor_cd::tensor_cd();
+    for (p, t) in [
+        ("Cd", Preset::Cd.conical_table()),
+        ("Foil", Preset::Foil.conical_table()),
+        ("the CD's version-2 tensor grid", &tensor),
+    ] {
+        let reduced = t.is_reduced();
         let w = pack_efficiency_table(t).unwrap();
         let word = |i: usize| w[i] as f64;
         let sin: Vec<f64> = t.sin_theta_i().collect();
         let bet: Vec<f64> = t.abs_beta().collect();
         let (n_s, n_b, k) = (sin.len(), bet.len(), t.order_count());
-        assert_eq!(word(8) as usize, n_b, "{p:?}");
+        assert_eq!(word(8) as usize, n_b, "{p}");
         let r = word(9) as usize;
         let (q, e, m) = (word(r) as usize, word(r + 1) as usize, word(r + 2) as usize);
         let band = t.lambda_range_nm();
@@ -411,7 +419,9 @@ fn reduced_tables_pack_as_documented() {
         );
         let planes: Vec<Vec<f64>> = (0..n_b).map(|b| t.plane_lambda_nm(b).collect()).collect();
         let rows: usize = planes.iter().map(Vec::len).sum();
-        let (bn, cn, rn, ln) = (r + 5, r + 5 + n_b, r + 5 + 2 * n_b, r + 6 + 3 * n_b);
+        // A reduced table is format 0, a tensor grid 1.
+        assert_eq!(word(r + 5), if reduced { 0.0 } else { 1.0 });
+        let (bn, cn, rn, ln) = (r + 6, r + 6 + n_b, r + 6 + 2 * n_b, r + 7 + 3 * n_b);
         assert_eq!(q, ln + rows);
         assert_eq!(e, q + 2 * k * rows * n_s);
         assert_eq!(m, e + k * rows * n_s);
@@ -426,15 +436,22 @@ fn reduced_tables_pack_as_documented() {
             first += nodes.len();
         }
         assert_eq!(word(rn + n_b) as usize, rows);
-        // The cells: (n_s − 1)·(n_p + n_p+1 − 3) per slab between planes p and p + 1.
+        // The cells: (n_s − 1)·(n_p + n_p+1 − 3) per slab between planes p and p + 1 of a
+        // reduced table, (n_s − 1)·(n_λ − 1) of a tensor grid.
         let cells: usize = planes
             .windows(2)
-            .map(|x| (n_s - 1) * (x[0].len() + x[1].len() - 3))
+            .map(|x| {
+                if reduced {
+                    (n_s - 1) * (x[0].len() + x[1].len() - 3)
+                } else {
+                    (n_s - 1) * (x[0].len() - 1)
+                }
+            })
             .sum();
-        assert_eq!(w.len(), m + cells, "{p:?}");
+        assert_eq!(w.len(), m + cells, "{p}");
         let marked = w[m..].iter().filter(|&&x| x == 1.0).count();
         assert!(w[m..].iter().all(|&x| x == 0.0 || x == 1.0));
-        assert!(marked > 0, "{p:?}: no reduced cell marked");
+        assert!(marked > 0, "{p}: no cell marked");
         let d = t.period_nm();
         let mut out = vec![Polarised::default(); k];
         let (mut grazing, mut values) = (0usize, 0usize);
@@ -443,7 +460,11 @@ fn reduced_tables_pack_as_documented() {
             let cp = (1.0 - bet[b] * bet[b]).sqrt();
             for &l in nodes {
                 for (i, &sn) in sin.iter().enumerate() {
-                    t.plane_efficiencies(b, sn, l, &mut out);
+                    if reduced {
+                        t.plane_efficiencies(b, sn, l, &mut out);
+                    } else {
+                        t.efficiencies_conical(sn * cp, bet[b], l, &mut out);
+                    }
                     for (o, order) in t.orders().enumerate() {
                         let at = (o * rows + row) * n_s + i;
                         let am = sn * cp + order as f64 * l / d;
@@ -460,14 +481,14 @@ fn reduced_tables_pack_as_documented() {
                         {
                             assert!(
                                 (got as f64 - want).abs() <= ORDER_ROW_F32 * want + 1e-12,
-                                "{p:?} plane {b} m={order} s′={sn} λ={l}: {got} vs {want}"
+                                "{p} plane {b} m={order} s′={sn} λ={l}: {got} vs {want}"
                             );
                         }
                         let node = w[e + at] as f64;
                         let want = x.unpolarised();
                         assert!(
                             (node - want).abs() <= ORDER_ROW_F32 * want + 1e-12,
-                            "{p:?} plane {b} m={order} s′={sn} λ={l}: node {node} vs {want}"
+                            "{p} plane {b} m={order} s′={sn} λ={l}: node {node} vs {want}"
                         );
                         values += 1;
                     }
@@ -475,12 +496,9 @@ fn reduced_tables_pack_as_documented() {
                 row += 1;
             }
         }
-        assert!(
-            grazing > 100 && values > 10_000,
-            "{p:?}: {grazing} {values}"
-        );
+        assert!(grazing > 100 && values > 10_000, "{p}: {grazing} {values}");
         println!(
-            "{p:?}'s conical table: {} words ({r} before its section), {marked} of {cells} cells \
+            "{p}'s conical table: {} words ({r} before its section), {marked} of {cells} cells \
              marked",
             w.len()
         );

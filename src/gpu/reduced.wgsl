@@ -1,8 +1,10 @@
-// diffraction: the cell of a reduced conical table (version 3) in f32, the twin of the CPU's
-// `Reduced::find` (src/relief/table/reduced.rs): the query's reduced coordinate
+// diffraction: the cell of a conical table in f32. A reduced table (version 3): the twin of
+// the CPU's `Reduced::find` (src/relief/table/reduced.rs): the query's reduced coordinate
 // s' = alpha/c, c = sqrt(1 - beta^2), its two |beta| planes around |beta|, each read at its own
-// physical wavelength lambda * c_p / c, and the planes blended linearly in c. Part of
-// TABULATED_WGSL; the section's layout is on `GpuEfficiencyTables` (src/gpu/tabulated.rs).
+// physical wavelength lambda * c_p / c, and the planes blended linearly in c. A version-2
+// tensor grid: the twin of `Cell3::find` (src/relief/table/conical.rs): the same s', every
+// plane read at lambda, the planes blended linearly in |beta|. Part of TABULATED_WGSL; the
+// section's layout is on `GpuEfficiencyTables` (src/gpu/tabulated.rs).
 
 // (x - a)/(b - a) in [0, 1]; 0 where the nodes coincide.
 fn diffraction_reduced_fraction(x: f32, a: f32, b: f32) -> f32 {
@@ -12,7 +14,7 @@ fn diffraction_reduced_fraction(x: f32, a: f32, b: f32) -> f32 {
     return clamp((x - a) / (b - a), 0.0, 1.0);
 }
 
-// The cell of the incident direction of travel (alpha, beta) at lambda in the reduced table
+// The cell of the incident direction of travel (alpha, beta) at lambda in the conical table
 // at word t: s', |beta| and lambda clamped to the axes and the band (the query is then the
 // clamped point), corner n = di + 2*dk + 4*dj of plane k + dk at s' node i + di and that
 // plane's wavelength row j_dk + dj, with the weight wt(di, tx) * wt(dk, tb) * wt(dj, ty_dk).
@@ -28,7 +30,8 @@ fn diffraction_reduced_cell(t: u32, alpha: f32, beta: f32, lambda_in: f32) -> Di
     let n_b = u32(diffraction_efficiency_tables[t + 8u]);
     let r = t + u32(diffraction_efficiency_tables[t + 9u]);
     let sn = t + DIFFRACTION_ETA_HEADER;
-    let bn = r + 5u;
+    let tensor = diffraction_efficiency_tables[r + 5u] > 0.5;
+    let bn = r + 6u;
     let cn = bn + n_b;
     let rn = cn + n_b;
     let ln = rn + n_b + 1u;
@@ -40,7 +43,7 @@ fn diffraction_reduced_cell(t: u32, alpha: f32, beta: f32, lambda_in: f32) -> Di
     let c2 = (1.0 - b) * (1.0 + b);
     let cq = sqrt(c2);
     var cos_i: f32;
-    if sp == s0 && b == b0 {
+    if sp == s0 && b == b0 && !tensor {
         cos_i = sqrt(c2 - alpha * alpha);
     } else {
         cos_i = cq * sqrt(max(1.0 - sp * sp, 0.0));
@@ -51,7 +54,13 @@ fn diffraction_reduced_cell(t: u32, alpha: f32, beta: f32, lambda_in: f32) -> Di
     let i = diffraction_eta_interval(sn, n_s, sp);
     let k = diffraction_eta_interval(bn, n_b, b);
     let cp = vec2<f32>(diffraction_efficiency_tables[cn + k], diffraction_efficiency_tables[cn + k + 1u]);
-    let tb = diffraction_reduced_fraction(cq, cp.x, cp.y);
+    var tb: f32;
+    if tensor {
+        tb = diffraction_reduced_fraction(b, diffraction_efficiency_tables[bn + k],
+                                          diffraction_efficiency_tables[bn + k + 1u]);
+    } else {
+        tb = diffraction_reduced_fraction(cq, cp.x, cp.y);
+    }
     let tx = diffraction_reduced_fraction(sp, diffraction_efficiency_tables[sn + i],
                                           diffraction_efficiency_tables[sn + i + 1u]);
     var row = vec2<u32>(0u);
@@ -59,8 +68,11 @@ fn diffraction_reduced_cell(t: u32, alpha: f32, beta: f32, lambda_in: f32) -> Di
     for (var d = 0u; d < 2u; d++) {
         let first = u32(diffraction_efficiency_tables[rn + k + d]);
         let n = u32(diffraction_efficiency_tables[rn + k + d + 1u]) - first;
-        let l = clamp(lambda_nm * (cp[d] / cq), diffraction_efficiency_tables[ln + first],
+        var l = lambda_nm;
+        if !tensor {
+            l = clamp(lambda_nm * (cp[d] / cq), diffraction_efficiency_tables[ln + first],
                       diffraction_efficiency_tables[ln + first + n - 1u]);
+        }
         let j = diffraction_eta_interval(ln + first, n, l);
         row[d] = first + j;
         ty[d] = diffraction_reduced_fraction(l, diffraction_efficiency_tables[ln + first + j],
@@ -70,9 +82,14 @@ fn diffraction_reduced_cell(t: u32, alpha: f32, beta: f32, lambda_in: f32) -> Di
     let r1 = u32(diffraction_efficiency_tables[rn + 1u]);
     let rk = u32(diffraction_efficiency_tables[rn + k]);
     let rk1 = u32(diffraction_efficiency_tables[rn + k + 1u]);
-    // The slab's first cell, then the pair j_k + j_k+1 and i (the CPU's numbering).
-    let slab = (n_s - 1u) * ((rk - r0) + (rk1 - r1) - 3u * k);
-    c.cell = slab + (row.x + row.y - rk - rk1) * (n_s - 1u) + i;
+    if tensor {
+        // (k * (n_l - 1) + j) * (n_s - 1) + i, every plane of n_l = r1 - r0 rows.
+        c.cell = (k * (r1 - r0 - 1u) + row.x - rk) * (n_s - 1u) + i;
+    } else {
+        // The slab's first cell, then the pair j_k + j_k+1 and i (the CPU's numbering).
+        let slab = (n_s - 1u) * ((rk - r0) + (rk1 - r1) - 3u * k);
+        c.cell = slab + (row.x + row.y - rk - rk1) * (n_s - 1u) + i;
+    }
     let fx = vec2<f32>(1.0 - tx, tx);
     let fb = vec2<f32>(1.0 - tb, tb);
     let f0 = vec2<f32>(1.0 - ty.x, ty.x);

@@ -13,9 +13,9 @@ use crate::relief::EfficiencyTable;
 /// The words of a table's header in `diffraction_efficiency_tables`.
 pub const EFFICIENCY_HEADER_WORDS: usize = 10;
 
-/// The words of a reduced table's section before its axes: the offsets of its q's, its stored
-/// values and its marks, and its band.
-const REDUCED_HEADER_WORDS: usize = 5;
+/// The words of a conical table's section before its axes: the offsets of its q's, its stored
+/// values and its marks, its band, and its format (0 reduced, 1 a version-2 tensor grid).
+const REDUCED_HEADER_WORDS: usize = 6;
 
 /// The most words one packed table may have: its offsets and counts are f32 words, exact up
 /// to 2²⁴ (a table of about 5.6 million values per polarisation, or fewer for a reduced one).
@@ -32,7 +32,7 @@ fn packed_words(table: &EfficiencyTable) -> usize {
         table.order_count(),
     );
     let classical = EFFICIENCY_HEADER_WORDS + n_s + n_l + 3 * k * n_l * n_s + (n_s - 1) * (n_l - 1);
-    if !table.is_reduced() {
+    if !table.is_conical() {
         return classical;
     }
     let rows: Vec<usize> = (0..table.abs_beta().len())
@@ -40,7 +40,11 @@ fn packed_words(table: &EfficiencyTable) -> usize {
         .collect();
     let n_b = rows.len();
     let all: usize = rows.iter().sum();
-    let cells: usize = rows.windows(2).map(|r| (n_s - 1) * (r[0] + r[1] - 3)).sum();
+    let cells: usize = if table.is_reduced() {
+        rows.windows(2).map(|r| (n_s - 1) * (r[0] + r[1] - 3)).sum()
+    } else {
+        (n_b - 1) * (n_l - 1) * (n_s - 1)
+    };
     classical + REDUCED_HEADER_WORDS + 3 * n_b + 1 + all + 3 * k * all * n_s + cells
 }
 
@@ -171,6 +175,7 @@ fn pack_reduced(w: &mut Vec<f32>, p: &crate::relief::ReducedParts, n_s: usize) {
         m as f32,
         p.band.0 as f32,
         p.band.1 as f32,
+        if p.tensor { 1.0 } else { 0.0 },
     ]);
     w.extend(p.abs_beta.iter().map(|&b| b as f32));
     w.extend(p.c.iter().map(|&c| c as f32));
@@ -214,20 +219,22 @@ fn pack_reduced(w: &mut Vec<f32>, p: &crate::relief::ReducedParts, n_s: usize) {
 /// values to an f64 rounding, or, at a node whose stored sum over orders exceeds 1 (at most
 /// 1 + 10⁻⁶ on load), the values scaled to sum 1.
 ///
-/// A **reduced conical table** (version 3, [`EfficiencyTable::is_reduced`]: the presets'
-/// `Preset::conical_table`, which `GratingBsdf::preset` reads) packs its first plane as
-/// above (on that plane's own wavelength nodes, no cell marked), then its section at `o + R`,
-/// which `diffraction_eta_conical` and the tabulated BSDF read at the full incident direction
-/// (any other table is read at sin θi = α, ignoring β):
+/// A **conical table** (a reduced one, version 3, [`EfficiencyTable::is_reduced`]: the
+/// presets' `Preset::conical_table`, which `GratingBsdf::preset` reads; or a version-2 tensor
+/// grid) packs its first plane as above (a reduced table's on that plane's own wavelength
+/// nodes; no cell marked), then its section at `o + R`, which `diffraction_eta_conical` and
+/// the tabulated BSDF read at the full incident direction, as the CPU does (a classical table
+/// is read at sin θi = α, ignoring β):
 ///
 /// | words | what |
 /// |---|---|
 /// | `o + R + 0 ..= 2` | Q, E, M′: the offsets from `o` of its q's, stored values and marks |
 /// | `o + R + 3`, `o + R + 4` | the band [λ0, λ1] a query's wavelength is clamped to |
-/// | `o + R + 5 ..` | the n_β planes' \|β\|, their c = √(1 − β²), the n_β + 1 starts of their wavelength rows (n_rows in all), and every plane's wavelength nodes |
+/// | `o + R + 5` | 0 for a reduced table, 1 for a version-2 tensor grid (its planes blended linearly in \|β\| and read at the query's λ) |
+/// | `o + R + 6 ..` | the n_β planes' \|β\|, their c = √(1 − β²), the n_β + 1 starts of their wavelength rows (n_rows in all; a version-2 table's planes each hold its n_λ nodes), and every plane's wavelength nodes |
 /// | `o + Q ..` | per order k, row r, s′ node i: (q_TE, q_TM) at `o + Q + 2·((k·n_rows + r)·n_s + i)`, of the stored values at the node's conical incidence (α = s′·c_p, β_p, λ_r), −1 where the order does not propagate there |
 /// | `o + E ..` | the stored unpolarised η at `o + E + (k·n_rows + r)·n_s + i` |
-/// | `o + M′ ..` | per reduced cell (numbered as the CPU numbers them: per slab between planes p and p + 1, i + (n_s − 1)·(j_p + j_p+1)): 1 where no query in it needs the normalisation |
+/// | `o + M′ ..` | per cell, numbered as the CPU numbers them (a reduced table per slab between planes p and p + 1, i + (n_s − 1)·(j_p + j_p+1); a version-2 table (k·(n_λ − 1) + j)·(n_s − 1) + i): 1 where no query in it needs the normalisation |
 ///
 /// ```
 /// # #[cfg(all(feature = "presets", feature = "std"))] {

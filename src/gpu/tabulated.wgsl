@@ -106,8 +106,8 @@ fn diffraction_eta_cell(t: u32, s_in: f32, lambda_in: f32) -> DiffractionEtaCell
 }
 
 // The cell of the incident direction of travel (alpha, beta) = (-w.x, -w.y) at lambda: a
-// reduced conical table's (`diffraction_reduced_cell`), a classical table's at s = alpha
-// (beta ignored: the classical-mount reading).
+// conical table's (`diffraction_reduced_cell`: reduced or a version-2 tensor grid), a
+// classical table's at s = alpha (beta ignored: the classical-mount reading).
 fn diffraction_eta_cell_conical(t: u32, alpha: f32, beta: f32, lambda_nm: f32) -> DiffractionEtaCell {
     if diffraction_efficiency_tables[t + 8u] > 0.5 {
         return diffraction_reduced_cell(t, alpha, beta, lambda_nm);
@@ -208,8 +208,8 @@ fn diffraction_eta_in(t: u32, c: DiffractionEtaCell, m: i32) -> f32 {
 
 // eta_m(alpha, beta, lambda) of table t for the incident direction of travel with direction
 // cosines alpha across and beta along the grooves: the CPU's `EfficiencyTable::
-// efficiency_conical(m, alpha, beta, lambda).unpolarised()` of a reduced conical table, and
-// `diffraction_eta(t, m, alpha, lambda)` of any other (beta ignored).
+// efficiency_conical(m, alpha, beta, lambda).unpolarised()` of a conical table, and
+// `diffraction_eta(t, m, alpha, lambda)` of a classical one (beta ignored).
 fn diffraction_eta_conical(t: u32, m: i32, alpha: f32, beta: f32, lambda_nm: f32) -> f32 {
     return diffraction_eta_in(t, diffraction_eta_cell_conical(t, alpha, beta, lambda_nm), m);
 }

@@ -1,6 +1,6 @@
 //! The error bounds of the packed tables' readings in WGSL (`TABULATED_WGSL`; docs/gpu.md,
 //! "Tabulated efficiencies"): the query's cell recomputed in f64 from the packed words (a
-//! classical table's four corners, a reduced conical table's eight), each corner's weight with
+//! classical table's four corners, a conical table's eight), each corner's weight with
 //! the bound of its f32 error, and from them the bounds of the interpolated efficiency
 //! ([`eta_bound`]) and of the sampler's order proposal ([`weights`]).
 
@@ -133,7 +133,8 @@ fn reduced_cell(words: &[f32], alpha: f64, beta: f64, l: f64) -> Option<Cell> {
         EFFICIENCY_HEADER_WORDS,
     );
     let sin: Vec<f64> = (0..n_s).map(|i| w(h + i)).collect();
-    let (bn, cn, rn) = (r + 5, r + 5 + n_b, r + 5 + 2 * n_b);
+    let tensor = w(r + 5) > 0.5;
+    let (bn, cn, rn) = (r + 6, r + 6 + n_b, r + 6 + 2 * n_b);
     let ln = rn + n_b + 1;
     let bet: Vec<f64> = (0..n_b).map(|k| w(bn + k)).collect();
     let cs: Vec<f64> = (0..n_b).map(|k| w(cn + k)).collect();
@@ -155,7 +156,7 @@ fn reduced_cell(words: &[f32], alpha: f64, beta: f64, l: f64) -> Option<Cell> {
     let dc = d_c2 / (2.0 * c) + 2.0 * U * c;
     // s′ = α/c0 (c0 as c, 4u relative, and the quotient's 3u); 0 where clamped.
     let dsp = if sp == s0 { 8.0 * U * sp.abs() } else { 0.0 };
-    let unclamped = sp == s0 && !b_clamped;
+    let unclamped = sp == s0 && !b_clamped && !tensor;
     let cos_i = if unclamped {
         (c2 - alpha * alpha).sqrt()
     } else {
@@ -171,8 +172,11 @@ fn reduced_cell(words: &[f32], alpha: f64, beta: f64, l: f64) -> Option<Cell> {
     let k = interval(&bet, b);
     let cp = [cs[k], cs[k + 1]];
     let (tx, dtx) = position(sp, sin[i], sin[i + 1], dsp);
-    // c falls as |β| grows: the position from c_k toward c_k+1.
-    let (tb, dtb) = if cp[1] == cp[0] {
+    // A tensor grid: the position in |β| (exact but where clamped to a node rounded to f32);
+    // a reduced table: in c, which falls as |β| grows, from c_k toward c_k+1.
+    let (tb, dtb) = if tensor {
+        position(b, bet[k], bet[k + 1], 0.0)
+    } else if cp[1] == cp[0] {
         (0.0, 0.0)
     } else {
         position(c, cp[0], cp[1], dc)
@@ -181,10 +185,15 @@ fn reduced_cell(words: &[f32], alpha: f64, beta: f64, l: f64) -> Option<Cell> {
     let mut near_node = near(tx, dtx, i, n_s - 1) || near(tb, dtb, k, n_b - 1);
     for d in 0..2 {
         let nodes: Vec<f64> = (rows[k + d]..rows[k + d + 1]).map(|x| w(ln + x)).collect();
-        let raw = lambda_nm * (cp[d] / c);
+        // A tensor grid reads every plane at λ; a reduced table at λ·c_p/c (c_p's rounding,
+        // c's, the quotient and the product).
+        let raw = if tensor {
+            lambda_nm
+        } else {
+            lambda_nm * (cp[d] / c)
+        };
         let lq = raw.clamp(nodes[0], nodes[nodes.len() - 1]);
-        // λ·c_p/c: c_p's rounding, c's, the quotient and the product.
-        let dl = if lq == raw {
+        let dl = if lq == raw && !tensor {
             lq * (6.0 * U + dc / c)
         } else {
             0.0
