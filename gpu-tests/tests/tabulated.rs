@@ -188,12 +188,7 @@ fn eta_matches_the_cpu_table() {
         }
         assert!(nonzero > per / 4, "{nonzero}");
         assert!(skipped * 2000 <= per, "{skipped} near node lines");
-        let measured = if p.contains("tensor") {
-            TENSOR_ETA_WORST_MEASURED
-        } else {
-            ETA_WORST_MEASURED
-        };
-        assert!(worst <= measured, "{p}: worst |Δη| {worst:e}");
+        assert!(worst <= ETA_WORST_MEASURED, "{p}: worst |Δη| {worst:e}");
         println!(
             "eta {p}: {per} queries in {:.1} ms, {nonzero} non-zero, worst |Δη| = {worst:.2e} \
              ({worst_rel:.3} of its bound), {skipped} skipped near node lines",

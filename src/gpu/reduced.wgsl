@@ -42,8 +42,11 @@ fn diffraction_reduced_cell(t: u32, alpha: f32, beta: f32, lambda_in: f32) -> Di
                           diffraction_efficiency_tables[r + 4u]);
     let c2 = (1.0 - b) * (1.0 + b);
     let cq = sqrt(c2);
+    // Where nothing was clamped cos(theta_i) = sqrt(1 - beta^2 - alpha^2) for both formats (the
+    // CPU's c * sqrt(1 - s'^2) of a tensor grid, without f32's cancellation in 1 - s'^2 at
+    // grazing incidence).
     var cos_i: f32;
-    if sp == s0 && b == b0 && !tensor {
+    if sp == s0 && b == b0 {
         cos_i = sqrt(c2 - alpha * alpha);
     } else {
         cos_i = cq * sqrt(max(1.0 - sp * sp, 0.0));

@@ -36,12 +36,10 @@ pub const TABLE_ROUNDINGS: f64 = 16.0;
 pub const CONICAL_COLOUR_WORST_MEASURED: f64 = 1e-5;
 /// A packed efficiency table's interpolated η (`diffraction_eta`, `diffraction_eta_conical`)
 /// against `EfficiencyTable::efficiency` and `efficiency_conical`, absolute: measured 3.7e-6
-/// (classical tables) and 5.4e-6 (the presets' conical tables) on lavapipe at 10⁵ queries per
-/// table, 0.03-0.09 of the derived bounds (gpu-tests/tests/tabulated.rs); margin 4.6×.
+/// (classical tables), 5.4e-6 (the presets' conical tables) and 2.3e-6 (a version-2 tensor
+/// grid, tests/support/tensor_cd.rs) on lavapipe at 10⁵ queries per table, 0.03-0.09 of the
+/// derived bounds (gpu-tests/tests/tabulated.rs); margin 4.6×.
 pub const ETA_WORST_MEASURED: f64 = 2.5e-5;
-/// The same for a version-2 tensor grid (the CD's conical reading on one,
-/// tests/support/tensor_cd.rs): measured 1.94e-5, 0.042 of the derived bound; margin 5.2×.
-pub const TENSOR_ETA_WORST_MEASURED: f64 = 1e-4;
 
 /// The mean ΔE2000 between the example gpu's fig. 6 (G-buffer on the CPU, eq. 12 and the colour
 /// table in WGSL) and the reference tracer's with the same colour rule, at 96×72 and 4 spp

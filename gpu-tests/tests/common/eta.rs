@@ -156,7 +156,7 @@ fn reduced_cell(words: &[f32], alpha: f64, beta: f64, l: f64) -> Option<Cell> {
     let dc = d_c2 / (2.0 * c) + 2.0 * U * c;
     // s′ = α/c0 (c0 as c, 4u relative, and the quotient's 3u); 0 where clamped.
     let dsp = if sp == s0 { 8.0 * U * sp.abs() } else { 0.0 };
-    let unclamped = sp == s0 && !b_clamped && !tensor;
+    let unclamped = sp == s0 && !b_clamped;
     let cos_i = if unclamped {
         (c2 - alpha * alpha).sqrt()
     } else {
