@@ -8,10 +8,8 @@
 #[cfg(feature = "std")]
 use std::{sync::OnceLock, vec::Vec};
 
-#[cfg(feature = "std")]
 use super::corner_q;
 use super::{EfficiencyTable, Values};
-#[cfg(feature = "std")]
 use crate::num::math;
 
 /// The largest table (values per polarisation) whose q's are kept: 2²⁰, 32 MiB of them; a
@@ -85,52 +83,68 @@ impl EfficiencyTable {
     ) -> Computed {
         #[cfg(feature = "std")]
         {
-            let (n_s, n_b, n_l) = (sin.count(), bet.count().max(1), lam.count());
-            let slice = n_s * n_b * n_l;
+            let slice = sin.count() * bet.count().max(1) * lam.count();
             if slice * self.order_count > MAX_Q_VALUES {
                 return None;
             }
             let mut q = std::vec::Vec::with_capacity(slice * self.order_count);
-            for k in 0..self.order_count {
-                let mf = f64::from(self.order_min) + k as f64;
-                for b in 0..n_b {
-                    // A classical table: β = 0 and the corner formulas of `Cell::find`.
-                    let (b2, cb) = match bet.count() {
-                        0 => (0.0, 1.0),
-                        _ => {
-                            let bn = bet.at(b);
-                            (bn * bn, math::sqrt(1.0 - bn * bn))
-                        }
-                    };
-                    for j in 0..n_l {
-                        for i in 0..n_s {
-                            let sn = sin.at(i);
-                            let (alpha, cos_i) = match bet.count() {
-                                0 => (sn, math::sqrt(1.0 - sn * sn)),
-                                _ => (sn * cb, cb * math::sqrt(1.0 - sn * sn)),
-                            };
-                            let at = k * slice + (b * n_l + j) * n_s + i;
-                            let l = lam.at(j);
-                            q.push(corner_q(
-                                alpha,
-                                b2,
-                                l,
-                                cos_i,
-                                mf,
-                                self.period_nm,
-                                (te, tm),
-                                at,
-                            ));
-                        }
-                    }
-                }
-            }
+            self.each_node_q_in(sin, bet, lam, te, tm, |v| q.push(v));
             Some(q)
         }
         #[cfg(not(feature = "std"))]
         {
             let _ = (sin, bet, lam, te, tm);
             None
+        }
+    }
+
+    /// Every node's (q_TE, q_TM) in the values' order (order, |β| plane, λ, s), or
+    /// [`NOT_PROPAGATING`] twice where the order does not propagate there: `corner_q` with the
+    /// corner formulas of [`Cell::find`] (a classical table) and `Cell3::find` (a conical one).
+    #[cfg_attr(not(any(feature = "std", feature = "gpu")), allow(dead_code))]
+    pub(super) fn each_node_q_in<T: Values + ?Sized>(
+        &self,
+        sin: &T,
+        bet: &T,
+        lam: &T,
+        te: &T,
+        tm: &T,
+        mut f: impl FnMut([f64; 2]),
+    ) {
+        let (n_s, n_b, n_l) = (sin.count(), bet.count().max(1), lam.count());
+        let slice = n_s * n_b * n_l;
+        for k in 0..self.order_count {
+            let mf = f64::from(self.order_min) + k as f64;
+            for b in 0..n_b {
+                // A classical table: β = 0 and the corner formulas of `Cell::find`.
+                let (b2, cb) = match bet.count() {
+                    0 => (0.0, 1.0),
+                    _ => {
+                        let bn = bet.at(b);
+                        (bn * bn, math::sqrt(1.0 - bn * bn))
+                    }
+                };
+                for j in 0..n_l {
+                    for i in 0..n_s {
+                        let sn = sin.at(i);
+                        let (alpha, cos_i) = match bet.count() {
+                            0 => (sn, math::sqrt(1.0 - sn * sn)),
+                            _ => (sn * cb, cb * math::sqrt(1.0 - sn * sn)),
+                        };
+                        let at = k * slice + (b * n_l + j) * n_s + i;
+                        f(corner_q(
+                            alpha,
+                            b2,
+                            lam.at(j),
+                            cos_i,
+                            mf,
+                            self.period_nm,
+                            (te, tm),
+                            at,
+                        ));
+                    }
+                }
+            }
         }
     }
 }

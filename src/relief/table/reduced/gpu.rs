@@ -7,9 +7,8 @@
 use alloc::vec::Vec;
 
 use super::super::nodes_q::NOT_PROPAGATING;
-use super::super::{corner_q, EfficiencyTable, Storage};
+use super::super::{EfficiencyTable, Storage};
 use super::cb;
-use crate::num::math;
 
 /// What the GPU's packed table holds of a conical table (feature `gpu`).
 pub(crate) struct ReducedParts {
@@ -84,29 +83,9 @@ impl EfficiencyTable {
         let (n_s, n_b, n_l) = (sin.len(), bet.len(), lam.len());
         let slice = n_s * n_b * n_l;
         let mut q = Vec::with_capacity(slice * self.order_count);
-        for k in 0..self.order_count {
-            let mf = f64::from(self.order_min) + k as f64;
-            for (b, &bn) in bet.iter().enumerate() {
-                let cp = cb(bn);
-                for (j, &l) in lam.iter().enumerate() {
-                    for (i, &sn) in sin.iter().enumerate() {
-                        let at = k * slice + (b * n_l + j) * n_s + i;
-                        let cos_i = cp * math::sqrt(1.0 - sn * sn);
-                        let v = corner_q(
-                            sn * cp,
-                            bn * bn,
-                            l,
-                            cos_i,
-                            mf,
-                            self.period_nm,
-                            (&te[..], &tm[..]),
-                            at,
-                        );
-                        q.push((v[0] != NOT_PROPAGATING).then_some(v));
-                    }
-                }
-            }
-        }
+        self.each_node_q_in(&sin[..], &bet[..], &lam[..], &te[..], &tm[..], |v| {
+            q.push((v[0] != NOT_PROPAGATING).then_some(v));
+        });
         let cells = (n_b - 1) * (n_l - 1) * (n_s - 1);
         Some(ReducedParts {
             tensor: true,
