@@ -47,7 +47,7 @@ pub use grating::{
 pub use solver::{
     work, CoverPasses, Extrapolation, Method, Options, Order, Solution, Solver,
     DEFAULT_MAX_HARMONICS, DEFAULT_MAX_WORK, DEFAULT_TOLERANCE, ENERGY_SLACK, GROWTH,
-    MAX_HARMONICS, MAX_WORK, MIN_HARMONICS,
+    MAX_HARMONICS, MAX_WORK, MIN_HARMONICS, TABLE_MAX_HARMONICS,
 };
 
 pub mod table;

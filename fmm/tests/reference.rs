@@ -95,7 +95,7 @@ fn converged_lamellar_sample() {
         }
         let solved = cases.len() - capped;
         println!(
-            "converged lamellar, {extrapolation:?}: {} cases, {capped} not converged by 401, TE worst {te_worst:.2e}, TM worst {tm_worst:.2e}, TM within 1e-3: {tm_within}/{solved}",
+            "converged lamellar, {extrapolation:?}: {} cases, {capped} not converged, TE worst {te_worst:.2e}, TM worst {tm_worst:.2e}, TM within 1e-3: {tm_within}/{solved}",
             cases.len()
         );
         assert_eq!(capped, 0);
@@ -140,4 +140,61 @@ fn staircase_sample_against_the_c_method() {
     );
     // Measured: TE 7 of 15 within 1e-3 (worst 1.0e-2), TM 0 of 15 (worst 0.21).
     assert!(te_within >= 5);
+}
+
+/// Every lamellar case solved with the default options (ignored: 32 minutes on two cores; `cargo test --release -p diffraction-fmm --test reference -- --ignored
+/// --nocapture`). At the default cap (1601) at most `CAPPED_BY_DEFAULT` cases stop unconverged
+/// (at 801 harmonics 12 did); TE agrees with the reference everywhere; TM, whose reference sits
+/// up to ~2e-3 from the limit (`converged_lamellar_sample`), is within 1e-3 for all but the
+/// counted rows.
+#[test]
+#[ignore]
+fn every_lamellar_case_with_the_default_options() {
+    // Measured: 1 (Ag, d = 2500 nm, 50 nm deep, 450 nm, θ = 30°: last change 6.9e-3 at 1419).
+    const CAPPED_BY_DEFAULT: usize = 1;
+    // Measured: 175 of the 1990 TM rows off by more than 1e-3 (145 at 801 harmonics, 247
+    // cases solved: the values nearer the limit are further from the reference); asserted with
+    // a margin of 1.5.
+    const TM_ROWS_OFF: usize = 175;
+    let cases: Vec<Case> = rigorous_cases()
+        .into_iter()
+        .filter(|c| c.first().profile == "lamellar")
+        .collect();
+    let solver = Solver::new(Options::default()).unwrap();
+    let (mut capped, mut te_worst, mut tm_off, mut tm_rows) = (0usize, 0.0f64, 0usize, 0usize);
+    for c in &cases {
+        let sol = match solver.solve(&c.grating(), incidence(c)) {
+            Ok(sol) => sol,
+            Err(Error::NotConverged {
+                harmonics, change, ..
+            }) => {
+                let r = c.first();
+                println!(
+                    "not converged: {} d = {} nm, {} nm deep, {} nm, θ = {}°: {change:.1e} at {harmonics}",
+                    r.metal, c.grating().period_nm, r.depth_nm, r.lambda_nm, r.theta_deg
+                );
+                capped += 1;
+                continue;
+            }
+            Err(e) => panic!("{e}"),
+        };
+        for row in &c.rows {
+            let o = sol
+                .order(row.order)
+                .expect("the reference's orders propagate");
+            if row.te {
+                te_worst = te_worst.max((o.te - row.efficiency).abs());
+            } else {
+                tm_rows += 1;
+                tm_off += usize::from((o.tm - row.efficiency).abs() > REFERENCE_TOLERANCE);
+            }
+        }
+    }
+    println!(
+        "{} lamellar cases: {capped} not converged; TE worst {te_worst:.2e}; TM rows off by more than 1e-3: {tm_off} of {tm_rows}",
+        cases.len()
+    );
+    assert!(capped <= CAPPED_BY_DEFAULT, "{capped}");
+    assert!(te_worst < REFERENCE_TOLERANCE, "{te_worst:e}");
+    assert!(2 * tm_off <= 3 * TM_ROWS_OFF, "{tm_off}");
 }

@@ -54,7 +54,8 @@ const USAGE: &str =
                --tolerance; the held-out error at --validation random points is measured and stored
   --validation random held-out points (default 64)
   --solve-tolerance  each solve's convergence tolerance, absolute per order (default 1e-3)
-  --max-harmonics    each solve's harmonic cap (default 801, at most 1601)
+  --max-harmonics    each solve's harmonic cap (default 801, at most 1601; a node not converged by then
+               is kept at the cap's count and marked)
   --keep-best  if the tolerance is not reached, write the best table anyway (exit 1)";
 
 /// Polycarbonate: Sultanova et al. 2009's Sellmeier fit ([`CoverIndex::POLYCARBONATE`], as
@@ -129,7 +130,7 @@ fn parse(argv: &[String]) -> Result<Args, Bad> {
     let mut nodes_of = None;
     let mut tolerance_given = false;
     let mut solve_tolerance = diffraction_fmm::DEFAULT_TOLERANCE;
-    let mut max_harmonics = diffraction_fmm::DEFAULT_MAX_HARMONICS;
+    let mut max_harmonics = diffraction_fmm::TABLE_MAX_HARMONICS;
     let mut description = None;
     let mut keep_best = false;
     let mut out = None;
